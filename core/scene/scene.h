@@ -1,0 +1,95 @@
+#pragma once
+// The scene as the bake sees it: one flat triangle soup (so the ray tracer,
+// voxeliser and sampler share indices), with per-triangle material and mesh,
+// plus lights, camera and the scene's own bake defaults.
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace bounce {
+
+struct Material {
+  std::string name;
+  glm::vec3 albedo{0.8f};    // diffuse reflectance per channel, in [0,1)
+  glm::vec3 emission{0.0f};  // emitted radiosity (W/m^2 per channel); > 0 makes an area light
+  bool is_emissive() const { return emission.r > 0.f || emission.g > 0.f || emission.b > 0.f; }
+};
+
+struct MeshInfo {
+  std::string name;    // from scene.json or the file's node/mesh name
+  std::string source;  // file it came from
+  std::uint32_t first_triangle = 0;
+  std::uint32_t triangle_count = 0;
+  // Both sides of each triangle receive and emit light (thin walls, leaves);
+  // otherwise only the side its winding faces (counter-clockwise = front).
+  bool two_sided = false;
+};
+
+struct Light {
+  enum class Type { Point, Spot, Directional };
+  Type type = Type::Point;
+  std::string name;
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // spot and directional: where the light goes
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;         // point/spot: W/sr per unit colour; directional: W/m^2
+  float spot_inner_deg = 30.0f;   // full intensity inside this half-angle
+  float spot_outer_deg = 45.0f;   // zero beyond this half-angle
+};
+
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 5.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fov_y_deg = 45.0f;
+};
+
+// Settings a scene may suggest; the command line overrides each of them.
+struct BakeDefaults {
+  std::optional<int> voxel_resolution;  // cells along the longest axis
+  std::optional<int> patches_total;     // target patch count (derives the resolution)
+  std::optional<int> patches_per_voxel;
+  std::optional<int> samples_per_face;
+};
+
+struct Bounds {
+  glm::vec3 lo{std::numeric_limits<float>::max()};
+  glm::vec3 hi{std::numeric_limits<float>::lowest()};
+  void extend(const glm::vec3& p) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  bool empty() const { return lo.x > hi.x; }
+  glm::vec3 extent() const { return empty() ? glm::vec3(0.0f) : hi - lo; }
+  glm::vec3 center() const { return 0.5f * (lo + hi); }
+};
+
+struct Scene {
+  std::string name;  // folder name for scene.json, file stem for a bare mesh
+  std::string path;  // where it was loaded from
+
+  std::vector<glm::vec3> positions;
+  std::vector<glm::uvec3> triangles;
+  std::vector<std::uint32_t> triangle_material;  // index into materials
+  std::vector<std::uint32_t> triangle_mesh;      // index into meshes
+  std::vector<Material> materials;
+  std::vector<MeshInfo> meshes;
+  std::vector<Light> lights;
+  Camera camera;
+  BakeDefaults defaults;
+
+  std::size_t triangle_count() const { return triangles.size(); }
+  glm::vec3 vertex(std::size_t tri, int corner) const { return positions[triangles[tri][corner]]; }
+  // Unnormalised geometric normal (cross product of edges): length = 2 * area.
+  glm::vec3 triangle_cross(std::size_t tri) const;
+  float triangle_area(std::size_t tri) const;
+  const Material& material_of(std::size_t tri) const { return materials[triangle_material[tri]]; }
+  bool two_sided(std::size_t tri) const { return meshes[triangle_mesh[tri]].two_sided; }
+  Bounds bounds() const;
+};
+
+}  // namespace bounce
