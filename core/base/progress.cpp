@@ -36,8 +36,11 @@ void Progress::report(double fraction) {
   // Monotone: concurrent advance() calls may arrive out of order.
   if (fraction <= last_reported_) return;
   const auto now = std::chrono::steady_clock::now();
-  // Throttle to ~20 reports a second, but always report 0 and 1.
-  if (fraction > 0.0 && fraction < 1.0 && now - last_time_ < std::chrono::milliseconds(50)) return;
+  // Throttle to ~20 reports a second or 1% steps, and always report 0 and 1:
+  // the callback is also where a GUI says "stop", so it must hear often.
+  if (fraction > 0.0 && fraction < 1.0 && fraction - last_reported_ < 0.01 &&
+      now - last_time_ < std::chrono::milliseconds(50))
+    return;
   last_reported_ = fraction;
   last_time_ = now;
   if (callback_ && !callback_(stage_, fraction)) request_stop();

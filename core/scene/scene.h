@@ -36,9 +36,9 @@ struct Light {
   glm::vec3 position{0.0f};
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // spot and directional: where the light goes
   glm::vec3 color{1.0f};
-  float intensity = 1.0f;         // point/spot: W/sr per unit colour; directional: W/m^2
-  float spot_inner_deg = 30.0f;   // full intensity inside this half-angle
-  float spot_outer_deg = 45.0f;   // zero beyond this half-angle
+  float intensity = 1.0f;        // point/spot: W/sr per unit colour; directional: W/m^2
+  float spot_inner_deg = 30.0f;  // full intensity inside this half-angle
+  float spot_outer_deg = 45.0f;  // zero beyond this half-angle
 };
 
 struct Camera {

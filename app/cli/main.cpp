@@ -1,0 +1,40 @@
+// bounce: the command-line baker. A thin front over bounce_core.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "base/error.h"
+#include "commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "Bounce - precomputed radiosity with virtual patches.\n\n"
+      "Typical use:\n"
+      "  bounce info resources/scenes/cornell-box          what is in a scene\n"
+      "  bounce bake resources/scenes/cornell-box --out bakes/cornell\n"
+      "  bounce bake scenes/*/scene.json --out bakes        batch: one folder per scene\n"
+      "  bounce bench bake resources/scenes/cornell-bunny --patches-total 4096\n",
+      "bounce"};
+  app.set_version_flag("--version", std::string("bounce ") + BOUNCE_VERSION);
+  app.require_subcommand(1);
+  bounce::cli::register_bake(app);
+  bounce::cli::register_info(app);
+  bounce::cli::register_bench(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const bounce::cli::ExitCode& e) {
+    return e.code;
+  } catch (const bounce::Cancelled&) {
+    std::fprintf(stderr, "bounce: cancelled; nothing was written\n");
+    return 130;
+  } catch (const bounce::Error& e) {
+    std::fprintf(stderr, "bounce: error: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bounce: internal error: %s\n", e.what());
+    return 3;
+  }
+  return 0;
+}

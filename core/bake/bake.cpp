@@ -1,0 +1,190 @@
+#include "bake/bake.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <string>
+
+#include "raytrace/ray_tracer.h"
+
+namespace bounce {
+
+namespace {
+
+int dominant_direction(const glm::vec3& n) {
+  const glm::vec3 a = glm::abs(n);
+  const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+  return 2 * axis + (n[axis] < 0.0f ? 1 : 0);
+}
+
+std::size_t predicted_patches(const Scene& scene, const Voxelization& vox, int per_voxel,
+                              PatchMode mode) {
+  if (mode == PatchMode::Virtual) return vox.voxels.size() * static_cast<std::size_t>(per_voxel);
+  std::size_t count = 0;
+  for (const OccupiedVoxel& v : vox.voxels) {
+    std::set<int> directions;
+    for (std::uint32_t k = 0; k < v.part_count; ++k) {
+      const std::uint32_t t = vox.parts[v.first_part + k].triangle;
+      const glm::vec3 n = scene.triangle_cross(t);
+      directions.insert(dominant_direction(n));
+      if (scene.two_sided(t)) directions.insert(dominant_direction(-n));
+    }
+    count += directions.size();
+  }
+  return count;
+}
+
+std::string fmt(double v, int digits = 3) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+}  // namespace
+
+int Baker::resolution_for_patch_count(const Scene& scene, int patches_total, int per_voxel,
+                                      PatchMode mode) {
+  const Bounds bounds = scene.bounds();
+  // Patch count grows monotonically (roughly as r^2 for surfaces) with the
+  // resolution r: bisect on r.
+  int lo = 1, hi = 1;
+  auto count_at = [&](int r) {
+    return predicted_patches(scene, voxelize(scene, VoxelGrid(bounds, r)), per_voxel, mode);
+  };
+  const auto target = static_cast<std::size_t>(patches_total);
+  while (hi < VoxelGrid::kMaxResolution && count_at(hi) < target)
+    hi = std::min(2 * hi, VoxelGrid::kMaxResolution);
+  lo = std::max(1, hi / 2);
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    (count_at(mid) < target ? lo : hi) = mid;
+  }
+  const auto dist = [&](int r) {
+    const double c = static_cast<double>(count_at(r));
+    return std::abs(std::log(c / static_cast<double>(target)));
+  };
+  return dist(lo) <= dist(hi) ? lo : hi;
+}
+
+BakeResult Baker::run(Progress& progress) const {
+  const auto start = std::chrono::steady_clock::now();
+  BakeResult r;
+  r.settings = settings_;
+  r.settings.apply_scene_defaults(scene_.defaults);
+  r.settings.validate();
+
+  {
+    StageTimer timer("voxelize");
+    int resolution = BakeSettings::kDefaultVoxelResolution;
+    if (r.settings.voxel_resolution) {
+      resolution = *r.settings.voxel_resolution;
+    } else if (r.settings.patches_total) {
+      progress.begin_stage("choose grid resolution", 1);
+      resolution = resolution_for_patch_count(scene_, *r.settings.patches_total,
+                                              r.settings.patches_per_voxel, r.settings.patch_mode);
+      progress.end_stage();
+    }
+    r.settings.voxel_resolution = resolution;
+    r.voxels = voxelize(scene_, VoxelGrid(scene_.bounds(), resolution), &progress);
+    const auto empty = r.voxels.grid.cell_count() - r.voxels.voxels.size();
+    if (empty > 0)
+      diagnostics_.left_out("voxelize", std::to_string(empty) + " of " +
+                                            std::to_string(r.voxels.grid.cell_count()) +
+                                            " grid cells are empty and get no samples or patches");
+    r.stages.push_back(timer.finish());
+  }
+
+  StageTimer bvh_timer("ray tracer (BVH build)");
+  const RayTracer tracer(scene_);
+  r.stages.push_back(bvh_timer.finish());
+
+  {
+    StageTimer timer("sample");
+    SamplingSettings s;
+    s.samples_per_face = r.settings.samples_per_face;
+    s.seed = r.settings.seed;
+    r.samples = generate_samples(scene_, tracer, r.voxels, s, &progress);
+    if (r.samples.samples.empty())
+      throw Error(scene_.path,
+                  "no surface samples: no ray hit the scene's surfaces from inside any voxel");
+    if (r.samples.unsampled_area > 1e-6 * r.samples.surface_area)
+      diagnostics_.warn("sample", fmt(100.0 * r.samples.unsampled_area / r.samples.surface_area) +
+                                      "% of the surface area found no sample facing its way in its "
+                                      "voxel and carries no light (raise --samples-per-face)");
+    r.stages.push_back(timer.finish());
+  }
+
+  {
+    StageTimer timer("patches");
+    if (r.settings.patch_mode == PatchMode::Virtual) {
+      ClusteringSettings c;
+      c.patches_per_voxel = r.settings.patches_per_voxel;
+      r.patches = cluster_virtual_patches(tracer, r.voxels, r.samples, c, r.clustering, &progress);
+      if (r.clustering.voxels_above_target > 0)
+        diagnostics_.warn("patches", std::to_string(r.clustering.voxels_above_target) +
+                                         " voxels kept more than " +
+                                         std::to_string(r.settings.patches_per_voxel) +
+                                         " patches: their samples face opposite ways and are "
+                                         "never merged");
+    } else {
+      progress.begin_stage("voxel patches", 1);
+      r.patches = voxel_patches(r.samples);
+      progress.end_stage();
+    }
+    r.stages.push_back(timer.finish());
+  }
+
+  {
+    StageTimer timer("form factors");
+    FormFactorSettings fs;
+    fs.visibility_rays = r.settings.visibility_rays;
+    r.form_factors =
+        compute_form_factors(scene_, tracer, r.voxels, r.samples, r.patches, fs, &progress);
+    r.stages.push_back(timer.finish());
+  }
+
+  {
+    StageTimer timer("checks");
+    // A patch that sees nothing also receives nothing (F is reciprocal), so it
+    // can never carry indirect light: leave it out.
+    r.patches_before_pruning = r.patches.size();
+    std::vector<bool> keep(r.patches.size(), true);
+    std::size_t dropped = 0;
+    for (std::size_t p = 0; p < r.patches.size(); ++p) {
+      double row = 0.0;
+      for (std::size_t q = 0; q < r.patches.size(); ++q) row += r.form_factors(p, q);
+      if (!(row > 0.0)) {
+        keep[p] = false;
+        ++dropped;
+      }
+    }
+    if (dropped > 0) {
+      if (dropped == r.patches.size())
+        throw Error(scene_.path,
+                    "no patch sees any other patch: nothing for light to bounce between");
+      r.patches.keep_only(keep);
+      r.form_factors = remove_patches(r.form_factors, keep);
+      diagnostics_.left_out("patches", std::to_string(dropped) + " of " +
+                                           std::to_string(r.patches_before_pruning) +
+                                           " patches see no other patch (zero form-factor row) and "
+                                           "can carry no indirect light");
+    }
+    r.patch_of_sample.assign(r.samples.samples.size(), -1);
+    for (std::size_t p = 0; p < r.patches.size(); ++p)
+      for (std::uint32_t k = r.patches.member_first[p]; k < r.patches.member_first[p + 1]; ++k)
+        r.patch_of_sample[r.patches.member_samples[k]] = static_cast<std::int32_t>(p);
+    r.checks = check_form_factors(r.form_factors, r.patches);
+    if (r.checks.non_finite > 0)
+      throw Error("form factors", std::to_string(r.checks.non_finite) + " NaN/Inf entries");
+    if (r.checks.rows_above_one > 0)
+      diagnostics_.warn("form factors", std::to_string(r.checks.rows_above_one) +
+                                            " patches have row sums above 1 (max " +
+                                            fmt(r.checks.row_sum_max, 4) + ")");
+    r.stages.push_back(timer.finish());
+  }
+  r.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+}  // namespace bounce

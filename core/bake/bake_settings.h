@@ -1,0 +1,44 @@
+#pragma once
+// Every knob of a bake, with the defaults a user gets when they say nothing.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "base/error.h"
+#include "scene/scene.h"
+
+namespace bounce {
+
+enum class PatchMode { Virtual, Voxel };
+
+struct BakeSettings {
+  class InvalidSetting : public Error {
+   public:
+    using Error::Error;
+  };
+
+  // Exactly one of these two decides the grid; with neither, the scene's
+  // defaults apply, then `kDefaultVoxelResolution`.
+  std::optional<int> voxel_resolution;
+  std::optional<int> patches_total;
+  // 3: a voxel at a box corner holds three orientations, and clustering merges
+  // by normal first, so three patches keep every corner's faces apart; on a
+  // flat wall the three subdivide the surface instead.
+  int patches_per_voxel = 3;
+  PatchMode patch_mode = PatchMode::Virtual;
+  int samples_per_face = 4;  // 4x4 rays per voxel face: 96 rays per voxel
+  int visibility_rays = 8;   // rays per patch pair
+  std::uint64_t seed = 1;
+  bool dump_matrices = false;
+
+  static constexpr int kDefaultVoxelResolution = 16;
+
+  // Fills unset values from the scene's bake block.
+  void apply_scene_defaults(const BakeDefaults& defaults);
+  // Throws InvalidSetting naming the option for absurd values.
+  void validate() const;
+};
+
+std::string to_string(PatchMode mode);
+
+}  // namespace bounce

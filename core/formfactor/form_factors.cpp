@@ -1,0 +1,331 @@
+#include "formfactor/form_factors.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <limits>
+#include <map>
+#include <numbers>
+
+#include "formfactor/kernel.h"
+#include "voxel/polygon.h"
+
+namespace bounce {
+
+namespace {
+
+using Point = SurfacePoint;
+
+// A receiving surface element: (a share of) one side of one triangle part.
+struct Receiver {
+  const glm::vec3* polygon;
+  int vertex_count;
+  glm::vec3 centroid;
+  glm::vec3 normal;  // of the receiving side
+  float area;
+};
+
+struct PatchGeometry {
+  std::vector<std::vector<Point>> pieces;      // one point per piece of surface
+  std::vector<std::vector<Point>> far;         // a few points carrying the patch's area
+  std::vector<std::vector<Receiver>> surface;  // the pieces of surface it stands for
+};
+
+// Reduces a patch's samples to at most k points for far-field sums: seeds by
+// farthest-point sampling, every sample assigned to its nearest seed, each
+// representative the area-weighted mean of its group. Areas add up to the
+// patch's, so this is a quadrature of the patch, not a subsample.
+std::vector<Point> representatives(const std::vector<Point>& all, std::size_t k) {
+  if (all.size() <= k) return all;
+  std::vector<std::size_t> seeds{0};
+  std::vector<float> dist(all.size(), std::numeric_limits<float>::infinity());
+  while (seeds.size() < k) {
+    const glm::vec3 s = all[seeds.back()].position;
+    std::size_t farthest = 0;
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      const glm::vec3 d = all[i].position - s;
+      dist[i] = std::min(dist[i], glm::dot(d, d));
+      if (dist[i] > dist[farthest]) farthest = i;
+    }
+    if (dist[farthest] <= 0.0f) break;  // all remaining samples coincide with seeds
+    seeds.push_back(farthest);
+  }
+  std::vector<Point> reps(seeds.size(), Point{glm::vec3(0.0f), glm::vec3(0.0f), 0.0f});
+  for (const Point& x : all) {
+    std::size_t best = 0;
+    float best_d = std::numeric_limits<float>::infinity();
+    for (std::size_t r = 0; r < seeds.size(); ++r) {
+      const glm::vec3 d = x.position - all[seeds[r]].position;
+      if (glm::dot(d, d) < best_d) {
+        best_d = glm::dot(d, d);
+        best = r;
+      }
+    }
+    reps[best].position += x.area * x.position;
+    reps[best].normal += x.area * x.normal;
+    reps[best].area += x.area;
+  }
+  for (Point& r : reps) {
+    r.position /= r.area;
+    const float len = glm::length(r.normal);
+    r.normal = len > 0.0f ? r.normal / len : glm::vec3(0.0f, 0.0f, 1.0f);
+  }
+  return reps;
+}
+
+PatchGeometry gather(const Scene& scene, const Voxelization& vox, const SampleSet& set,
+                     const PatchSet& patches, int far_count) {
+  PatchGeometry g;
+  const std::size_t n = patches.size();
+  g.far.resize(n);
+  g.pieces.resize(n);
+  g.surface.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    std::vector<Point> members;
+    for (std::uint32_t k = patches.member_first[p]; k < patches.member_first[p + 1]; ++k) {
+      const std::uint32_t si = patches.member_samples[k];
+      for (std::uint32_t c = set.carried_first[si]; c < set.carried_first[si + 1]; ++c) {
+        const CarriedArea& piece = set.carried[c];
+        Receiver r;
+        r.polygon = &set.carried_vertices[piece.first_vertex];
+        r.vertex_count = static_cast<int>(piece.vertex_count);
+        r.centroid = polygon_centroid(r.polygon, piece.vertex_count);
+        const std::uint32_t tri = vox.parts[piece.part].triangle;
+        r.normal = glm::normalize(scene.triangle_cross(tri)) * (piece.back ? -1.0f : 1.0f);
+        r.area = piece.area;
+        g.surface[p].push_back(r);
+        // Far-field points sit at the pieces' centroids, not at the samples
+        // (a sample need not be at the centre of the surface it stands for).
+        members.push_back({r.centroid, r.normal, r.area});
+      }
+    }
+    g.far[p] = representatives(members, static_cast<std::size_t>(std::max(1, far_count)));
+    g.pieces[p] = std::move(members);
+  }
+  return g;
+}
+
+// Far-field exchange between two points: A_i A_j cos_i cos_j / (pi r^2).
+float far_exchange(const Point& a, const Point& b) {
+  const glm::vec3 d = b.position - a.position;
+  const float r2 = glm::dot(d, d);
+  const float fa = glm::dot(a.normal, d), fb = -glm::dot(b.normal, d);
+  if (fa <= 0.0f || fb <= 0.0f || !(r2 > 0.0f)) return 0.0f;
+  return a.area * b.area * fa * fb / (std::numbers::pi_v<float> * r2 * r2);
+}
+
+// Form factor from a point (normal n) to a receiver: exact point-to-polygon
+// where the receiver is large against its distance, differential otherwise.
+double point_to_receiver(const glm::vec3& x, const glm::vec3& n, const Receiver& r) {
+  const glm::vec3 d = r.centroid - x;
+  const float in_front = -glm::dot(r.normal, d);  // > 0: x is in front of the receiver
+  if (in_front <= 0.0f) return 0.0;
+  const float r2 = glm::dot(d, d);
+  if (r2 < kNearFactor * kNearFactor * r.area)
+    return point_to_polygon_form_factor(x, n, r.polygon, r.vertex_count);
+  const float cos_x = glm::dot(n, d);
+  if (cos_x <= 0.0f) return 0.0;
+  return r.area * cos_x * in_front / (std::numbers::pi_v<float> * r2 * r2);
+}
+
+// Integral over the triangle (a,b,c) of the form factor from its points to
+// the receiver, by the centroid rule on a subdivision that refines where the
+// triangle is large against its distance to the receiver (up to 4^depth
+// pieces), so edges and corners are integrated, not point-sampled.
+double integrate_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c,
+                          const glm::vec3& n, const Receiver& r, int depth) {
+  const glm::vec3 m = (a + b + c) / 3.0f;
+  const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
+  const glm::vec3 d = r.centroid - m;
+  const float r2 = glm::dot(d, d);
+  if (depth == 0 || area * kNearFactor * kNearFactor < r2) return area * point_to_receiver(m, n, r);
+  const glm::vec3 ab = 0.5f * (a + b), bc = 0.5f * (b + c), ca = 0.5f * (c + a);
+  return integrate_triangle(a, ab, ca, n, r, depth - 1) +
+         integrate_triangle(ab, b, bc, n, r, depth - 1) +
+         integrate_triangle(ca, bc, c, n, r, depth - 1) +
+         integrate_triangle(ab, bc, ca, n, r, depth - 1);
+}
+
+// Energy leaving the surface one patch stands for that reaches the surface
+// another stands for: sum over source pieces s and receiver pieces r of the
+// integral over s of F(x -> r) dx.
+float near_transfer(const std::vector<Receiver>& from, const std::vector<Receiver>& to) {
+  constexpr int kMaxDepth = 4;
+  double sum = 0.0;
+  for (const Receiver& s : from) {
+    for (const Receiver& r : to) {
+      if (&s == &r) continue;
+      double part = 0.0;
+      for (int v = 1; v + 1 < s.vertex_count; ++v)
+        part += integrate_triangle(s.polygon[0], s.polygon[v], s.polygon[v + 1], s.normal, r,
+                                   kMaxDepth);
+      sum += part;
+    }
+  }
+  return static_cast<float>(sum);
+}
+
+struct PairSum {
+  float unoccluded_pq = 0.0f;  // energy P -> Q without visibility
+  float unoccluded_qp = 0.0f;  // energy Q -> P without visibility
+  std::uint32_t first_ray = 0, ray_count = 0;
+  std::uint32_t q = 0;
+};
+
+}  // namespace
+
+FormFactorMatrix compute_form_factors(const Scene& scene, const RayTracer& tracer,
+                                      const Voxelization& vox, const SampleSet& set,
+                                      const PatchSet& patches, const FormFactorSettings& settings,
+                                      Progress* progress) {
+  const std::size_t n = patches.size();
+  FormFactorMatrix f;
+  f.n = n;
+  f.values.assign(n * n, 0.0f);
+  const PatchGeometry geo = gather(scene, vox, set, patches, settings.far_representatives);
+  const float cell = vox.grid.cell_size();
+  const float near2 = settings.near_cells * settings.near_cells * cell * cell;
+  const float mid2 = settings.mid_cells * settings.mid_cells * cell * cell;
+  const float eps = 10.0f * tracer.epsilon();
+  const auto rays_per_pair = static_cast<std::size_t>(std::max(1, settings.visibility_rays));
+
+  // Rows are uneven (row p handles q >= p), so hand them out dynamically, and
+  // report progress in pair units.
+  if (progress) progress->begin_stage("form factors", n * (n + 1) / 2);
+#pragma omp parallel
+  {
+    std::vector<PairSum> pairs;
+    std::vector<ShadowRay> rays;
+    std::vector<float> ray_weight;
+    std::vector<std::uint8_t> blocked;
+    struct Candidate {
+      std::uint32_t i, j;
+      float w;
+    };
+    std::vector<Candidate> facing;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(n); ++pi) {
+      if (progress && progress->should_stop()) continue;
+      const auto p = static_cast<std::size_t>(pi);
+      pairs.clear();
+      rays.clear();
+      ray_weight.clear();
+      for (std::size_t q = p; q < n; ++q) {
+        const glm::vec3 d = patches.patches[q].position - patches.patches[p].position;
+        const bool near = q == p || glm::dot(d, d) < near2;
+        const bool mid = glm::dot(d, d) < mid2;
+        const auto& P = mid ? geo.pieces[p] : geo.far[p];
+        const auto& Q = mid ? geo.pieces[q] : geo.far[q];
+        // Member pairs that face each other: the far-field sum, and the
+        // candidates for visibility rays.
+        facing.clear();
+        float far_sum = 0.0f;
+        for (std::size_t i = 0; i < P.size(); ++i)
+          for (std::size_t j = 0; j < Q.size(); ++j) {
+            if (q == p && i == j) continue;
+            const float w = far_exchange(P[i], Q[j]);
+            if (w <= 0.0f) continue;
+            far_sum += w;
+            facing.push_back({static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(j), w});
+          }
+        float g_pq = far_sum, g_qp = far_sum;
+        if (near) {
+          // Each direction integrated over both surfaces; not averaged, so
+          // that each row keeps its own closure (the two agree to the
+          // quadrature error, reported as the reciprocity error).
+          g_pq = near_transfer(geo.surface[p], geo.surface[q]);
+          g_qp = q == p ? g_pq : near_transfer(geo.surface[q], geo.surface[p]);
+        }
+        if (g_pq <= 0.0f && g_qp <= 0.0f) continue;
+        // Near surfaces can face each other where their representative
+        // points do not (around an edge): trace between those points anyway.
+        if (facing.empty()) facing.push_back({0, 0, 1.0f});
+        PairSum ps;
+        ps.unoccluded_pq = g_pq;
+        ps.unoccluded_qp = g_qp;
+        ps.q = static_cast<std::uint32_t>(q);
+        ps.first_ray = static_cast<std::uint32_t>(rays.size());
+        // Evenly spaced picks over the facing pairs (stored in member order,
+        // so they spread over both patches), weighted by their kernel.
+        const std::size_t picks = std::min(rays_per_pair, facing.size());
+        for (std::size_t k = 0; k < picks; ++k) {
+          const Candidate& c = facing[(2 * k + 1) * facing.size() / (2 * picks)];
+          const glm::vec3 from = P[c.i].position + eps * P[c.i].normal;
+          const glm::vec3 to = Q[c.j].position + eps * Q[c.j].normal;
+          rays.push_back({from, to - from, 0.0f, 1.0f - 1e-4f});
+          ray_weight.push_back(c.w);
+        }
+        ps.ray_count = static_cast<std::uint32_t>(picks);
+        pairs.push_back(ps);
+      }
+      blocked.resize(rays.size());
+      tracer.occluded(rays.data(), rays.size(), blocked.data());
+      const float area_p = patches.patches[p].area;
+      for (const PairSum& ps : pairs) {
+        float seen = 0.0f, total = 0.0f;
+        for (std::uint32_t k = ps.first_ray; k < ps.first_ray + ps.ray_count; ++k) {
+          total += ray_weight[k];
+          if (!blocked[k]) seen += ray_weight[k];
+        }
+        const float v = total > 0.0f ? seen / total : 0.0f;
+        f.values[p * n + ps.q] = ps.unoccluded_pq * v / area_p;
+        if (ps.q != p) f.values[ps.q * n + p] = ps.unoccluded_qp * v / patches.patches[ps.q].area;
+      }
+      if (progress) progress->advance(n - p);
+    }
+  }
+  if (progress) progress->check();
+  if (progress) progress->end_stage();
+  return f;
+}
+
+FormFactorChecks check_form_factors(const FormFactorMatrix& f, const PatchSet& patches) {
+  FormFactorChecks c;
+  const std::size_t n = f.n;
+  double sum_of_sums = 0.0, asym2 = 0.0, norm2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double row = 0.0, row_max = 0.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const float v = f(i, j);
+      if (!std::isfinite(v)) {
+        c.non_finite++;
+        continue;
+      }
+      row += v;
+      row_max = std::max(row_max, static_cast<double>(v));
+    }
+    c.value_max = std::max(c.value_max, row_max);
+    sum_of_sums += row;
+    c.row_sum_max = std::max(c.row_sum_max, row);
+    if (row > 1.0 + 1e-3) c.rows_above_one++;
+    if (row <= 0.0) c.patches_seeing_nothing++;
+    const double ai = patches.patches[i].area;
+    for (std::size_t j = 0; j < n; ++j) {
+      const double aj = patches.patches[j].area;
+      const double diff = ai * f(i, j) - aj * f(j, i);
+      if (!std::isfinite(diff)) continue;
+      asym2 += 0.5 * diff * diff;  // each unordered pair is visited twice
+      norm2 += ai * f(i, j) * ai * f(i, j);
+      if (row_max > 0.0)
+        c.reciprocity_error_max =
+            std::max(c.reciprocity_error_max, std::abs(diff) / (ai * row_max));
+    }
+  }
+  c.reciprocity_error_rel = norm2 > 0.0 ? std::sqrt(asym2 / norm2) : 0.0;
+  c.row_sum_mean = n ? sum_of_sums / static_cast<double>(n) : 0.0;
+  return c;
+}
+
+FormFactorMatrix remove_patches(const FormFactorMatrix& f, const std::vector<bool>& keep) {
+  std::vector<std::size_t> index;
+  for (std::size_t i = 0; i < f.n; ++i)
+    if (keep[i]) index.push_back(i);
+  FormFactorMatrix out;
+  out.n = index.size();
+  out.values.resize(out.n * out.n);
+  for (std::size_t a = 0; a < out.n; ++a)
+    for (std::size_t b = 0; b < out.n; ++b) out.values[a * out.n + b] = f(index[a], index[b]);
+  return out;
+}
+
+}  // namespace bounce

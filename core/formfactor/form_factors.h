@@ -1,0 +1,68 @@
+#pragma once
+// Patch-to-patch form factors F_PQ = G_PQ V_PQ / A_P, with G_PQ the energy
+// leaving P that reaches Q and V_PQ the visible fraction. Each unordered pair
+// is computed once (both directions, one set of visibility rays).
+//
+// Far pairs (centroids `near_cells` voxels apart or more): the differential
+// kernel summed over the pieces of surface the patches stand for (one point
+// per piece, at its centroid); beyond `mid_cells` over at most
+// `far_representatives` points per patch, each carrying a group of pieces,
+// because the kernel is smooth enough there.
+// Near pairs: every member sample of one patch against the surface the other
+// patch stands for -- the triangle parts (clipped polygons) its samples carry
+// -- with the exact point-to-polygon form factor where a part is large
+// against its distance. A sample's form factors to the surrounding polygons
+// then add up to at most 1, as they must: this is what keeps rows near edges
+// and corners closed (row sums <= 1). The far field is reciprocal exactly;
+// near pairs up to the point quadrature of the source side, which the
+// manifest reports as the reciprocity error.
+// Visibility V_PQ: `visibility_rays` rays between member pairs picked evenly
+// from the pairs that face each other, weighted by their kernel value, traced
+// in batches with Embree's stream API.
+#include <cstdint>
+#include <vector>
+
+#include "base/progress.h"
+#include "patches/patch_set.h"
+#include "raytrace/ray_tracer.h"
+#include "voxel/voxelization.h"
+
+namespace bounce {
+
+struct FormFactorSettings {
+  int visibility_rays = 8;
+  int far_representatives = 8;
+  float near_cells = 2.5f;
+  float mid_cells = 6.0f;
+};
+
+// Dense row-major N x N, float32: F[p * n + q] = F_pq.
+struct FormFactorMatrix {
+  std::size_t n = 0;
+  std::vector<float> values;
+  float operator()(std::size_t p, std::size_t q) const { return values[p * n + q]; }
+};
+
+FormFactorMatrix compute_form_factors(const Scene& scene, const RayTracer& tracer,
+                                      const Voxelization& vox, const SampleSet& samples,
+                                      const PatchSet& patches, const FormFactorSettings& settings,
+                                      Progress* progress = nullptr);
+
+// The checks every bake reports (DESIGN.md, numerics).
+struct FormFactorChecks {
+  double row_sum_max = 0.0;
+  double row_sum_mean = 0.0;
+  std::size_t rows_above_one = 0;      // row sum > 1 + 1e-3
+  double reciprocity_error_max = 0.0;  // max |A_i F_ij - A_j F_ji| / (A_i * max_j F_ij)
+  double reciprocity_error_rel = 0.0;  // ||AF - (AF)^T||_F / ||AF||_F over the whole matrix
+  std::size_t non_finite = 0;          // NaN or Inf entries
+  std::size_t patches_seeing_nothing = 0;
+  double value_max = 0.0;
+};
+
+FormFactorChecks check_form_factors(const FormFactorMatrix& f, const PatchSet& patches);
+
+// Drops the rows and columns of the patches with keep[p] == false.
+FormFactorMatrix remove_patches(const FormFactorMatrix& f, const std::vector<bool>& keep);
+
+}  // namespace bounce

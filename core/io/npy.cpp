@@ -1,0 +1,136 @@
+#include "io/npy.h"
+
+#include <bit>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "io/atomic_file.h"
+
+namespace bounce {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "npy writer assumes little-endian");
+
+std::string shape_string(const std::vector<std::size_t>& shape) {
+  std::string s = "(";
+  for (std::size_t k = 0; k < shape.size(); ++k) {
+    s += std::to_string(shape[k]);
+    if (shape.size() == 1 || k + 1 < shape.size()) s += ",";
+    if (k + 1 < shape.size()) s += " ";
+  }
+  return s + ")";
+}
+
+std::size_t element_count(const std::vector<std::size_t>& shape) {
+  std::size_t n = 1;
+  for (std::size_t d : shape) n *= d;
+  return n;
+}
+
+void write_raw(const fs::path& path, const char* descr, const void* data, std::size_t bytes,
+               std::size_t elements, const std::vector<std::size_t>& shape) {
+  if (element_count(shape) != elements)
+    throw NpyError(path.string(), "shape " + shape_string(shape) + " does not match " +
+                                      std::to_string(elements) + " elements");
+  std::string header = std::string("{'descr': '") + descr +
+                       "', 'fortran_order': False, 'shape': " + shape_string(shape) + ", }";
+  // Magic (6) + version (2) + header length (2) + header, padded with spaces
+  // and ending in '\n' so the data starts on a 64-byte boundary.
+  const std::size_t unpadded = 10 + header.size() + 1;
+  header.append((64 - unpadded % 64) % 64, ' ');
+  header.push_back('\n');
+  AtomicFile file(path);
+  auto& out = file.stream();
+  out.write("\x93NUMPY\x01\x00", 8);
+  const auto len = static_cast<std::uint16_t>(header.size());
+  out.write(reinterpret_cast<const char*>(&len), 2);
+  out.write(header.data(), static_cast<std::streamsize>(header.size()));
+  out.write(static_cast<const char*>(data), static_cast<std::streamsize>(bytes));
+  file.commit();
+}
+
+template <typename T>
+NpyArray<T> read_typed(const fs::path& path, const char* want) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw NpyError(path.string(), "cannot open file");
+  char magic[8];
+  in.read(magic, 8);
+  if (!in || std::memcmp(magic, "\x93NUMPY", 6) != 0)
+    throw NpyError(path.string(), "not a .npy file (bad magic)");
+  std::size_t header_len = 0;
+  if (magic[6] == 1) {
+    std::uint16_t l = 0;
+    in.read(reinterpret_cast<char*>(&l), 2);
+    header_len = l;
+  } else if (magic[6] == 2 || magic[6] == 3) {
+    std::uint32_t l = 0;
+    in.read(reinterpret_cast<char*>(&l), 4);
+    header_len = l;
+  } else {
+    throw NpyError(path.string(), "unsupported .npy version " + std::to_string(magic[6]));
+  }
+  std::string header(header_len, '\0');
+  in.read(header.data(), static_cast<std::streamsize>(header_len));
+  if (!in) throw NpyError(path.string(), "truncated header");
+  if (header.find(std::string("'descr': '") + want + "'") == std::string::npos)
+    throw NpyError(path.string(),
+                   std::string("wrong dtype, expected ") + want + " in header " + header);
+  if (header.find("'fortran_order': False") == std::string::npos)
+    throw NpyError(path.string(), "Fortran-order arrays are not supported");
+  const auto open = header.find("'shape': (");
+  const auto close = header.find(')', open);
+  if (open == std::string::npos || close == std::string::npos)
+    throw NpyError(path.string(), "header has no shape");
+  NpyArray<T> a;
+  std::stringstream dims(header.substr(open + 10, close - open - 10));
+  std::string item;
+  while (std::getline(dims, item, ',')) {
+    if (item.find_first_not_of(' ') == std::string::npos) continue;
+    try {
+      a.shape.push_back(static_cast<std::size_t>(std::stoull(item)));
+    } catch (const std::exception&) {
+      throw NpyError(path.string(), "bad shape in header " + header);
+    }
+  }
+  const std::size_t n = element_count(a.shape);
+  const auto data_start = in.tellg();
+  in.seekg(0, std::ios::end);
+  const auto available = static_cast<std::size_t>(in.tellg() - data_start);
+  if (available < n * sizeof(T))
+    throw NpyError(path.string(), "truncated: shape " + shape_string(a.shape) + " needs " +
+                                      std::to_string(n * sizeof(T)) + " bytes of data, file has " +
+                                      std::to_string(available));
+  in.seekg(data_start);
+  a.data.resize(n);
+  in.read(reinterpret_cast<char*>(a.data.data()), static_cast<std::streamsize>(n * sizeof(T)));
+  if (!in) throw NpyError(path.string(), "read failed");
+  return a;
+}
+
+}  // namespace
+
+void write_npy(const fs::path& path, std::span<const float> data, std::vector<std::size_t> shape) {
+  write_raw(path, "<f4", data.data(), data.size_bytes(), data.size(), shape);
+}
+void write_npy(const fs::path& path, std::span<const std::uint32_t> data,
+               std::vector<std::size_t> shape) {
+  write_raw(path, "<u4", data.data(), data.size_bytes(), data.size(), shape);
+}
+void write_npy(const fs::path& path, std::span<const std::int32_t> data,
+               std::vector<std::size_t> shape) {
+  write_raw(path, "<i4", data.data(), data.size_bytes(), data.size(), shape);
+}
+
+NpyArray<float> read_npy_f32(const fs::path& path) { return read_typed<float>(path, "<f4"); }
+NpyArray<std::uint32_t> read_npy_u32(const fs::path& path) {
+  return read_typed<std::uint32_t>(path, "<u4");
+}
+NpyArray<std::int32_t> read_npy_i32(const fs::path& path) {
+  return read_typed<std::int32_t>(path, "<i4");
+}
+
+}  // namespace bounce

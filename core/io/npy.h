@@ -1,0 +1,39 @@
+#pragma once
+// NumPy .npy files (format version 1.0, little-endian, C order), the format
+// of every dense array in a bake folder. Written through AtomicFile so a
+// reader never sees half a file.
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "base/error.h"
+
+namespace bounce {
+
+class NpyError : public Error {
+ public:
+  using Error::Error;
+};
+
+void write_npy(const std::filesystem::path& path, std::span<const float> data,
+               std::vector<std::size_t> shape);
+void write_npy(const std::filesystem::path& path, std::span<const std::uint32_t> data,
+               std::vector<std::size_t> shape);
+void write_npy(const std::filesystem::path& path, std::span<const std::int32_t> data,
+               std::vector<std::size_t> shape);
+
+template <typename T>
+struct NpyArray {
+  std::vector<std::size_t> shape;
+  std::vector<T> data;
+};
+
+// Reads a file written as above; throws NpyError naming the file when the
+// dtype (must be '<f4', '<u4' or '<i4' to match T), order or size is wrong.
+NpyArray<float> read_npy_f32(const std::filesystem::path& path);
+NpyArray<std::uint32_t> read_npy_u32(const std::filesystem::path& path);
+NpyArray<std::int32_t> read_npy_i32(const std::filesystem::path& path);
+
+}  // namespace bounce

@@ -1,0 +1,236 @@
+#include "patches/clustering.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+#include "formfactor/kernel.h"
+
+namespace bounce {
+
+namespace {
+
+struct Targets {
+  std::vector<std::uint32_t> of_voxel;  // target index of each occupied voxel
+  std::vector<std::vector<std::uint32_t>> samples;
+  std::vector<float> area;
+  std::vector<std::uint32_t> representative;  // sample index
+  std::uint32_t block = 1;
+};
+
+Targets make_targets(const Voxelization& vox, const SampleSet& set, std::size_t max_targets) {
+  Targets t;
+  // Coarsen voxels into blocks until the number of targets fits.
+  for (t.block = 1;; t.block *= 2) {
+    std::unordered_map<std::uint64_t, std::uint32_t> index;
+    t.of_voxel.assign(vox.voxels.size(), 0);
+    for (std::size_t v = 0; v < vox.voxels.size(); ++v) {
+      const glm::ivec3 c = vox.voxels[v].coord / static_cast<int>(t.block);
+      const std::uint64_t key = (static_cast<std::uint64_t>(c.z) << 42) |
+                                (static_cast<std::uint64_t>(c.y) << 21) |
+                                static_cast<std::uint64_t>(c.x);
+      auto [it, inserted] = index.emplace(key, static_cast<std::uint32_t>(index.size()));
+      t.of_voxel[v] = it->second;
+    }
+    if (index.size() <= max_targets || t.block >= 1u << 20) {
+      t.samples.assign(index.size(), {});
+      break;
+    }
+  }
+  for (std::size_t s = 0; s < set.samples.size(); ++s)
+    t.samples[t.of_voxel[set.samples[s].voxel]].push_back(static_cast<std::uint32_t>(s));
+  t.area.assign(t.samples.size(), 0.0f);
+  t.representative.assign(t.samples.size(), 0);
+  for (std::size_t k = 0; k < t.samples.size(); ++k) {
+    glm::vec3 centroid(0.0f);
+    for (std::uint32_t s : t.samples[k]) {
+      t.area[k] += set.samples[s].area;
+      centroid += set.samples[s].area * set.samples[s].position;
+    }
+    if (t.area[k] > 0.0f) centroid /= t.area[k];
+    float best = std::numeric_limits<float>::infinity();
+    for (std::uint32_t s : t.samples[k]) {
+      const glm::vec3 d = set.samples[s].position - centroid;
+      if (glm::dot(d, d) < best) {
+        best = glm::dot(d, d);
+        t.representative[k] = s;
+      }
+    }
+  }
+  return t;
+}
+
+// F from each sample to each target, with one visibility ray per pair.
+std::vector<float> sample_target_form_factors(const RayTracer& tracer, const SampleSet& set,
+                                              const Targets& targets, Progress* progress) {
+  const std::size_t ns = set.samples.size(), nt = targets.samples.size();
+  std::vector<float> f(ns * nt, 0.0f);
+  const float eps = 10.0f * tracer.epsilon();
+  if (progress) progress->begin_stage("cluster: form factors to targets", ns);
+#pragma omp parallel
+  {
+    std::vector<ShadowRay> rays;
+    std::vector<std::uint32_t> ray_target;
+    std::vector<std::uint8_t> blocked;
+#pragma omp for schedule(dynamic, 16)
+    for (std::int64_t si = 0; si < static_cast<std::int64_t>(ns); ++si) {
+      if (progress && progress->should_stop()) continue;
+      const Sample& a = set.samples[static_cast<std::size_t>(si)];
+      float* row = &f[static_cast<std::size_t>(si) * nt];
+      rays.clear();
+      ray_target.clear();
+      for (std::size_t t = 0; t < nt; ++t) {
+        float sum = 0.0f;
+        for (std::uint32_t j : targets.samples[t]) {
+          const Sample& b = set.samples[j];
+          sum += exchange({a.position, a.normal, a.area}, {b.position, b.normal, b.area});
+        }
+        if (sum <= 0.0f) continue;
+        row[t] = sum / a.area;
+        const Sample& rep = set.samples[targets.representative[t]];
+        const glm::vec3 from = a.position + eps * a.normal;
+        const glm::vec3 to = rep.position + eps * rep.normal;
+        rays.push_back({from, to - from, 0.0f, 1.0f - 1e-4f});
+        ray_target.push_back(static_cast<std::uint32_t>(t));
+      }
+      blocked.resize(rays.size());
+      tracer.occluded(rays.data(), rays.size(), blocked.data());
+      for (std::size_t k = 0; k < rays.size(); ++k)
+        if (blocked[k]) row[ray_target[k]] = 0.0f;
+      if (progress) progress->advance();
+    }
+  }
+  if (progress) progress->check();
+  return f;
+}
+
+struct Cluster {
+  std::vector<std::uint32_t> members;
+  float area = 0.0f;
+  glm::vec3 color{0.0f};       // area-weighted mean albedo
+  glm::vec3 normal_sum{0.0f};  // area-weighted
+  std::vector<float> f;        // F to each target, as a source (area-weighted mean)
+  glm::vec3 normal() const {
+    const float len = glm::length(normal_sum);
+    return len > 0.0f ? normal_sum / len : glm::vec3(0.0f);
+  }
+};
+
+float metric(const Cluster& a, const Cluster& b, const std::vector<float>& target_area) {
+  float ff = 0.0f;
+  for (std::size_t t = 0; t < a.f.size(); ++t) {
+    const float d_row = a.f[t] - b.f[t];
+    const float d_col = (a.area * a.f[t] - b.area * b.f[t]) / target_area[t];
+    ff += d_row * d_row + d_col * d_col;
+  }
+  return (1.0f + glm::length(a.color - b.color)) * (2.0f - glm::dot(a.normal(), b.normal())) *
+         (1.0f + std::sqrt(ff));
+}
+
+}  // namespace
+
+PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vox,
+                                 const SampleSet& set, const ClusteringSettings& settings,
+                                 ClusteringStats& stats, Progress* progress) {
+  const Targets targets = make_targets(vox, set, settings.max_targets);
+  stats.feature_targets = targets.samples.size();
+  stats.target_block = targets.block;
+  const std::vector<float> f = sample_target_form_factors(tracer, set, targets, progress);
+  const std::size_t nt = targets.samples.size();
+  const std::size_t nv = vox.voxels.size();
+  const auto keep = static_cast<std::size_t>(std::max(1, settings.patches_per_voxel));
+
+  if (progress) progress->begin_stage("cluster: merge samples", nv);
+  std::vector<std::vector<std::vector<std::uint32_t>>> clusters_of_voxel(nv);
+#pragma omp parallel for schedule(dynamic, 4)
+  for (std::int64_t vi = 0; vi < static_cast<std::int64_t>(nv); ++vi) {
+    if (progress && progress->should_stop()) continue;
+    const auto v = static_cast<std::size_t>(vi);
+    std::vector<Cluster> cl;
+    for (std::uint32_t s = set.first[v]; s < set.first[v + 1]; ++s) {
+      const Sample& x = set.samples[s];
+      Cluster c;
+      c.members = {s};
+      c.area = x.area;
+      c.color = x.albedo;
+      c.normal_sum = x.area * x.normal;
+      c.f.assign(f.begin() + static_cast<std::ptrdiff_t>(s * nt),
+                 f.begin() + static_cast<std::ptrdiff_t>((s + 1) * nt));
+      cl.push_back(std::move(c));
+    }
+    const std::size_t n = cl.size();
+    // Pairwise metric, kept up to date as clusters merge. Pairs facing more
+    // than 90 degrees apart are never merged (infinite distance).
+    constexpr float kNever = std::numeric_limits<float>::infinity();
+    std::vector<float> m(n * n, kNever);
+    std::vector<bool> alive(n, true);
+    auto update = [&](std::size_t a, std::size_t b) {
+      const float d = glm::dot(cl[a].normal(), cl[b].normal()) < 0.0f
+                          ? kNever
+                          : metric(cl[a], cl[b], targets.area);
+      m[a * n + b] = m[b * n + a] = d;
+    };
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = a + 1; b < n; ++b) update(a, b);
+    std::size_t remaining = n;
+    while (remaining > keep) {
+      float best = kNever;
+      std::size_t ba = 0, bb = 0;
+      for (std::size_t a = 0; a < n; ++a) {
+        if (!alive[a]) continue;
+        for (std::size_t b = a + 1; b < n; ++b)
+          if (alive[b] && m[a * n + b] < best) {
+            best = m[a * n + b];
+            ba = a;
+            bb = b;
+          }
+      }
+      if (best == kNever) break;  // only opposite-facing clusters left
+      Cluster& A = cl[ba];
+      Cluster& B = cl[bb];
+      const float area = A.area + B.area;
+      const float wa = area > 0.0f ? A.area / area : 0.5f, wb = 1.0f - wa;
+      for (std::size_t t = 0; t < nt; ++t) A.f[t] = wa * A.f[t] + wb * B.f[t];
+      A.color = wa * A.color + wb * B.color;
+      A.normal_sum += B.normal_sum;
+      A.area = area;
+      A.members.insert(A.members.end(), B.members.begin(), B.members.end());
+      alive[bb] = false;
+      --remaining;
+      for (std::size_t c = 0; c < n; ++c)
+        if (alive[c] && c != ba) update(ba, c);
+    }
+    for (std::size_t c = 0; c < n; ++c)
+      if (alive[c]) clusters_of_voxel[v].push_back(std::move(cl[c].members));
+    if (progress) progress->advance();
+  }
+  if (progress) progress->check();
+
+  PatchSet patches;
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (clusters_of_voxel[v].size() > keep) stats.voxels_above_target++;
+    for (const auto& members : clusters_of_voxel[v]) patches.add_patch(set.samples, members);
+  }
+  if (progress) progress->end_stage();
+  return patches;
+}
+
+PatchSet voxel_patches(const SampleSet& set) {
+  PatchSet patches;
+  const std::size_t nv = set.first.size() - 1;
+  for (std::size_t v = 0; v < nv; ++v) {
+    std::vector<std::uint32_t> bins[6];
+    for (std::uint32_t s = set.first[v]; s < set.first[v + 1]; ++s) {
+      const glm::vec3 n = set.samples[s].normal;
+      const glm::vec3 a = glm::abs(n);
+      const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+      bins[2 * axis + (n[axis] < 0.0f ? 1 : 0)].push_back(s);
+    }
+    for (const auto& bin : bins)
+      if (!bin.empty()) patches.add_patch(set.samples, bin);
+  }
+  return patches;
+}
+
+}  // namespace bounce

@@ -1,0 +1,48 @@
+#pragma once
+// Virtual patches: greedy clustering of the samples inside each voxel with the
+// metric of paper 001,
+//   M(i,j) = (1 + |C_i - C_j|) (2 - n_i.n_j) (1 + sqrt(sum_h (F_ih - F_jh)^2 + (F_hi - F_hj)^2)),
+// merging the closest pair until `patches_per_voxel` remain.
+//
+// The form-factor term needs each sample's form factors to everything else.
+// Sample-to-sample F is S x S (S = tens of thousands), so the sum over h runs
+// over *targets*: the occupied voxels (or blocks of voxels when there are more
+// than `max_targets`), with F from a sample to a target summed over the
+// target's samples and visibility from one ray to the target's most central
+// sample. By reciprocity the column term is F_{t,i} = A_i F_{i,t} / A_t, so
+// one vector per sample serves both terms. Merges follow the paper's rules:
+// as a source F_{(i+j),t} = (A_i F_it + A_j F_jt)/(A_i + A_j); as a receiver
+// columns add.
+//
+// Two clusters whose normals are more than 90 degrees apart are never merged
+// (their merged normal would be meaningless, e.g. the two sides of a thin
+// wall); such a voxel keeps more than `patches_per_voxel` patches and the
+// count is reported.
+#include <cstdint>
+
+#include "base/progress.h"
+#include "patches/patch_set.h"
+#include "raytrace/ray_tracer.h"
+
+namespace bounce {
+
+struct ClusteringSettings {
+  int patches_per_voxel = 3;
+  std::size_t max_targets = 2048;
+};
+
+struct ClusteringStats {
+  std::size_t feature_targets = 0;
+  std::uint32_t target_block = 1;         // voxels per target along each axis
+  std::uint32_t voxels_above_target = 0;  // voxels that kept more patches than asked
+};
+
+PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vox,
+                                 const SampleSet& samples, const ClusteringSettings& settings,
+                                 ClusteringStats& stats, Progress* progress = nullptr);
+
+// The baseline of paper 000 ref [1]: one patch per occupied voxel and dominant
+// normal direction (+x, -x, +y, -y, +z, -z).
+PatchSet voxel_patches(const SampleSet& samples);
+
+}  // namespace bounce

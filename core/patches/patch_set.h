@@ -1,0 +1,42 @@
+#pragma once
+// Patches: clusters of samples inside one voxel, with no geometry of their
+// own (paper 001): a position (area-weighted centroid, for display and
+// transfer), a normal, an albedo, an emission and an area. Each keeps the list
+// of its member samples, from which form factors are computed.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "patches/samples.h"
+
+namespace bounce {
+
+struct Patch {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec3 albedo;
+  glm::vec3 emission;
+  float area;
+  std::uint32_t voxel;
+  std::uint32_t mesh;  // mesh of the member carrying the most area
+};
+
+struct PatchSet {
+  std::vector<Patch> patches;
+  // Members of patch p: member_samples[member_first[p] .. member_first[p+1]).
+  std::vector<std::uint32_t> member_first;
+  std::vector<std::uint32_t> member_samples;
+
+  std::size_t size() const { return patches.size(); }
+  std::size_t member_count(std::size_t p) const { return member_first[p + 1] - member_first[p]; }
+
+  // Builds a patch from the given samples with the merge rules of paper 001:
+  // area-weighted normal (normalised), colour and emission; areas add.
+  void add_patch(const std::vector<Sample>& samples, const std::vector<std::uint32_t>& members);
+  // Keeps only the patches for which keep[p] is true, in order.
+  void keep_only(const std::vector<bool>& keep);
+};
+
+}  // namespace bounce

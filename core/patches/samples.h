@@ -1,0 +1,74 @@
+#pragma once
+// Surface samples inside each occupied voxel (paper 001, section 3): points
+// spread evenly over the voxel's six faces, rays traced into the voxel, hits
+// inside the voxel kept with the hit triangle's normal and material.
+//
+// Directions are cosine-distributed about each face's inward normal: rays
+// entering a convex cell uniformly over its boundary with cosine-weighted
+// directions are isotropic random lines (Crofton), so every surface in the
+// cell is hit with a density proportional to its area whatever its
+// orientation; every hit along a ray inside the cell is kept, not just the first.
+//
+// Area of a sample: paper 001 gives each of the K samples on a triangle part
+// S = S_tri∩voxel / K. We split the part into the Voronoi cells of its K
+// samples instead: the same areas on average (they add up to S exactly), but
+// each sample now stands for the piece of surface around it, a polygon the
+// form factors integrate over near edges and corners. Triangle parts that no
+// ray hit (tiny triangles) go whole to the nearest sample of the same voxel
+// facing the same way, so a voxel's sample areas add up to its surface area;
+// area that has no such sample is counted as unsampled, never hidden.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "base/progress.h"
+#include "raytrace/ray_tracer.h"
+#include "voxel/voxelization.h"
+
+namespace bounce {
+
+struct Sample {
+  glm::vec3 position;
+  glm::vec3 normal;  // unit; the side of the triangle the sample lies on
+  glm::vec3 albedo;
+  glm::vec3 emission;
+  float area;
+  std::uint32_t voxel;  // index into Voxelization::voxels
+  std::uint32_t triangle;
+  std::uint32_t mesh;
+};
+
+// A piece of surface a sample stands for: its Voronoi cell within one side of
+// one triangle part (or a whole part no ray hit), as a planar polygon.
+struct CarriedArea {
+  std::uint32_t part;  // index into Voxelization::parts
+  bool back;           // the back side of a two-sided triangle
+  float area;
+  std::uint32_t first_vertex;  // into SampleSet::carried_vertices
+  std::uint32_t vertex_count;
+};
+
+struct SampleSet {
+  std::vector<Sample> samples;  // grouped by voxel, in voxel order
+  // What surface each sample stands for: carried[carried_first[s] .. carried_first[s+1]).
+  std::vector<CarriedArea> carried;
+  std::vector<std::uint32_t> carried_first;
+  std::vector<glm::vec3> carried_vertices;
+  std::vector<std::uint32_t> first;  // samples of voxel v: [first[v], first[v+1])
+  double sampled_area = 0.0;         // total area carried by samples
+  double surface_area = 0.0;         // total area of the sampled sides of all triangles
+  double unsampled_area = 0.0;       // area that found no sample to carry it
+  std::uint32_t voxels_without_samples = 0;
+};
+
+struct SamplingSettings {
+  int samples_per_face = 4;  // a g x g jittered grid of ray origins on each face
+  std::uint64_t seed = 1;
+  std::size_t max_hits_per_ray = 16;
+};
+
+SampleSet generate_samples(const Scene& scene, const RayTracer& tracer, const Voxelization& vox,
+                           const SamplingSettings& settings, Progress* progress = nullptr);
+
+}  // namespace bounce

@@ -1,0 +1,72 @@
+#pragma once
+// One Embree 3 BVH over the whole scene: closest-hit and occlusion queries.
+// The device error callback is set once, here, and turns every Embree error
+// into a RayTracer::EmbreeError (after the call that caused it returns).
+// Queries are thread-safe; callers parallelise over their own work.
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "base/error.h"
+#include "scene/scene.h"
+
+namespace bounce {
+
+struct Hit {
+  bool hit = false;
+  float t = std::numeric_limits<float>::infinity();
+  std::uint32_t triangle = 0;
+  glm::vec3 geometric_normal{0.0f};  // unit length, as the triangle's winding gives it
+};
+
+struct ShadowRay {
+  glm::vec3 origin;
+  glm::vec3 direction;  // need not be unit length: t is in units of it
+  float t_near = 0.0f;
+  float t_far = 1.0f;
+};
+
+class RayTracer {
+ public:
+  class EmbreeError : public Error {
+   public:
+    using Error::Error;
+  };
+
+  explicit RayTracer(const Scene& scene);
+  ~RayTracer();
+  RayTracer(const RayTracer&) = delete;
+  RayTracer& operator=(const RayTracer&) = delete;
+
+  // Closest hit along origin + t*direction for t in [t_near, t_far].
+  Hit intersect(const glm::vec3& origin, const glm::vec3& direction, float t_near = 0.0f,
+                float t_far = std::numeric_limits<float>::infinity()) const;
+
+  // All hits along the segment, sorted by t (at most max_hits).
+  std::vector<Hit> intersect_all(const glm::vec3& origin, const glm::vec3& direction, float t_near,
+                                 float t_far, std::size_t max_hits) const;
+
+  bool occluded(const glm::vec3& origin, const glm::vec3& direction, float t_near,
+                float t_far) const;
+
+  // Batched occlusion: writes 1 for blocked rays, 0 for free ones. Uses Embree's
+  // stream API (rtcOccluded1M), which pays for incoherent batches.
+  void occluded(const ShadowRay* rays, std::size_t count, std::uint8_t* blocked) const;
+
+  const Scene& scene() const { return scene_; }
+  // A distance that is small against the scene (1e-6 of its diagonal): used to
+  // step past a surface without skipping anything of the scene's own scale.
+  float epsilon() const { return epsilon_; }
+
+ private:
+  void throw_pending_error() const;
+  struct Impl;
+  const Scene& scene_;
+  float epsilon_ = 0.0f;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace bounce

@@ -1,0 +1,240 @@
+#include "scene/mesh_import.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+
+#include <assimp/material.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <assimp/Importer.hpp>
+
+#include "scene/mtl_scan.h"
+#include "scene/scene_loader.h"
+
+namespace bounce::scene_internal {
+
+namespace {
+
+// Triangulate polygons and merge the per-corner copies Assimp makes for OBJ.
+// Deliberately not FindDegenerates/FindInvalidData: they drop or alter
+// geometry without saying so; the builder reports degenerate triangles instead.
+constexpr unsigned kImportFlags =
+    aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure;
+
+// Assimp's OBJ importer puts geometry outside any `o`/`g` into this object.
+constexpr const char* kObjDefaultObject = "defaultobject";
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+glm::dmat4 to_glm(const aiMatrix4x4& a) {
+  glm::dmat4 m;
+  // aiMatrix4x4 is row-major (a[row][col]); glm indexes m[col][row].
+  for (unsigned row = 0; row < 4; ++row)
+    for (unsigned col = 0; col < 4; ++col)
+      m[static_cast<glm::length_t>(col)][static_cast<glm::length_t>(row)] =
+          static_cast<double>(a[row][col]);
+  return m;
+}
+
+std::string format_vec(const glm::vec3& v) {
+  std::ostringstream s;
+  s << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+  return s.str();
+}
+
+bool finite(const glm::vec3& v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+class FileImporter {
+ public:
+  FileImporter(const std::filesystem::path& file, const glm::dmat4& transform,
+               Diagnostics& diagnostics)
+      : file_(file), where_(file.string()), transform_(transform), diagnostics_(diagnostics) {}
+
+  ImportedFile run(const std::string& name) {
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile(where_, kImportFlags);
+    if (!scene)
+      throw SceneLoader::LoadError(
+          where_, std::string("Assimp cannot read this file: ") + importer.GetErrorString());
+    if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode)
+      throw SceneLoader::LoadError(where_,
+                                   "Assimp read this file only partially (scene incomplete); "
+                                   "it holds no usable meshes");
+    scene_ = scene;
+    out_.path = file_;
+    read_materials();
+    walk(scene->mRootNode, glm::dmat4(1.0));
+    name_pieces(name);
+    check_vertices();
+    report_ignored_attributes();
+    return std::move(out_);
+  }
+
+ private:
+  void read_materials() {
+    const bool is_obj = lower(file_.extension().string()) == ".obj";
+    MtlScan scan;
+    if (is_obj) {
+      scan = scan_obj_materials(file_);
+      for (const std::string& lib : scan.missing_libraries)
+        diagnostics_.warn(where_, "material library '" + lib +
+                                      "' not found; its materials get the default albedo");
+    }
+    for (unsigned i = 0; i < scene_->mNumMaterials; ++i) {
+      const aiMaterial& m = *scene_->mMaterials[i];
+      ImportedMaterial mat;
+      aiString ai_name;
+      if (m.Get(AI_MATKEY_NAME, ai_name) == AI_SUCCESS) mat.name = ai_name.C_Str();
+      // Loaders invent unnamed or "DefaultMaterial" materials (with made-up
+      // colours) when a file has none; treat those as stating no colour.
+      const bool invented = mat.name.empty() || mat.name == AI_DEFAULT_MATERIAL_NAME;
+      if (mat.name.empty()) mat.name = file_.filename().string() + "#" + std::to_string(i);
+
+      aiColor3D diffuse;
+      const bool has_diffuse = m.Get(AI_MATKEY_COLOR_DIFFUSE, diffuse) == AI_SUCCESS;
+      const bool stated = is_obj ? scan.with_diffuse.count(mat.name) > 0 : !invented;
+      if (has_diffuse && stated) mat.albedo = glm::vec3(diffuse.r, diffuse.g, diffuse.b);
+
+      aiColor3D emissive(0.f, 0.f, 0.f);
+      if (m.Get(AI_MATKEY_COLOR_EMISSIVE, emissive) == AI_SUCCESS)
+        mat.emission = glm::vec3(emissive.r, emissive.g, emissive.b);
+      float strength = 1.f;  // glTF KHR_materials_emissive_strength
+      if (m.Get(AI_MATKEY_EMISSIVE_INTENSITY, strength) == AI_SUCCESS) mat.emission *= strength;
+
+      if (mat.albedo && !finite(*mat.albedo))
+        throw SceneLoader::LoadError(
+            where_,
+            "material '" + mat.name + "': diffuse colour is not finite " + format_vec(*mat.albedo));
+      if (!finite(mat.emission))
+        throw SceneLoader::LoadError(where_, "material '" + mat.name +
+                                                 "': emissive colour is not finite " +
+                                                 format_vec(mat.emission));
+      out_.materials.push_back(std::move(mat));
+    }
+  }
+
+  void walk(const aiNode* node, const glm::dmat4& parent) {
+    const glm::dmat4 node_global = parent * to_glm(node->mTransformation);
+    const glm::dmat4 full = transform_ * node_global;
+    // A mirroring transform turns counter-clockwise into clockwise; swap two
+    // corners so the front side stays the side the file meant.
+    const bool mirror = glm::determinant(glm::dmat3(full)) < 0.0;
+    std::string node_name = node->mName.C_Str();
+    if (node_name.empty() || node_name == kObjDefaultObject) node_name = file_.stem().string();
+
+    for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+      const aiMesh& mesh = *scene_->mMeshes[node->mMeshes[k]];
+      ImportedPiece piece;
+      piece.material = mesh.mMaterialIndex;
+      piece.name = node_name;
+      if (node->mNumMeshes > 1 && mesh.mMaterialIndex < out_.materials.size())
+        piece.name += "/" + out_.materials[mesh.mMaterialIndex].name;
+      piece.positions.reserve(mesh.mNumVertices);
+      for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+        const aiVector3D& p = mesh.mVertices[v];
+        const glm::dvec4 q = full * glm::dvec4(p.x, p.y, p.z, 1.0);
+        piece.positions.emplace_back(static_cast<float>(q.x), static_cast<float>(q.y),
+                                     static_cast<float>(q.z));
+      }
+      piece.triangles.reserve(mesh.mNumFaces);
+      for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+        const aiFace& face = mesh.mFaces[f];
+        if (face.mNumIndices != 3) {
+          ++piece.non_triangles;
+          continue;
+        }
+        const unsigned* i = face.mIndices;
+        piece.triangles.emplace_back(i[0], mirror ? i[2] : i[1], mirror ? i[1] : i[2]);
+      }
+      if (mesh.HasVertexColors(0)) with_vertex_colours_.push_back(piece.name);
+      out_.pieces.push_back(std::move(piece));
+    }
+    for (unsigned c = 0; c < node->mNumChildren; ++c) walk(node->mChildren[c], node_global);
+  }
+
+  void name_pieces(const std::string& name) {
+    if (name.empty()) return;
+    if (out_.pieces.size() == 1) {
+      out_.pieces.front().name = name;
+      return;
+    }
+    for (ImportedPiece& piece : out_.pieces) piece.name = name + "/" + piece.name;
+  }
+
+  // Only vertices that triangles use: scanned point clouds often carry NaN
+  // placeholders for unused vertices, which do no harm.
+  void check_vertices() const {
+    for (const ImportedPiece& piece : out_.pieces) {
+      std::vector<bool> bad(piece.positions.size(), false);
+      std::size_t count = 0;
+      for (const glm::uvec3& t : piece.triangles)
+        for (glm::length_t c = 0; c < 3; ++c)
+          if (!bad[t[c]] && !finite(piece.positions[t[c]])) {
+            bad[t[c]] = true;
+            ++count;
+          }
+      if (count == 0) continue;
+      const std::size_t first =
+          static_cast<std::size_t>(std::find(bad.begin(), bad.end(), true) - bad.begin());
+      throw SceneLoader::LoadError(
+          where_, "mesh '" + piece.name + "': " + std::to_string(count) +
+                      (count == 1 ? " vertex has" : " vertices have") +
+                      " non-finite coordinates (NaN or Inf) after the transform; the first is "
+                      "vertex " +
+                      std::to_string(first) + " " + format_vec(piece.positions[first]) + " of " +
+                      std::to_string(piece.positions.size()));
+    }
+  }
+
+  // Bounce lights with one albedo per material; say what else the file had.
+  void report_ignored_attributes() {
+    std::vector<bool> used(out_.materials.size(), false);
+    for (const ImportedPiece& piece : out_.pieces)
+      if (piece.material < used.size()) used[piece.material] = true;
+    std::string textured;
+    for (unsigned i = 0; i < scene_->mNumMaterials; ++i) {
+      const aiMaterial& m = *scene_->mMaterials[i];
+      if (used[i] && (m.GetTextureCount(aiTextureType_DIFFUSE) > 0 ||
+                      m.GetTextureCount(aiTextureType_BASE_COLOR) > 0))
+        textured += (textured.empty() ? "" : ", ") + out_.materials[i].name;
+    }
+    if (!textured.empty())
+      diagnostics_.warn(where_,
+                        "colour textures are ignored (albedo is the material's diffuse colour) "
+                        "for materials: " +
+                            textured);
+    if (!with_vertex_colours_.empty()) {
+      std::string names;
+      for (const std::string& n : with_vertex_colours_) names += (names.empty() ? "" : ", ") + n;
+      diagnostics_.warn(where_,
+                        "per-vertex colours are ignored (albedo is the material's diffuse "
+                        "colour) for meshes: " +
+                            names);
+    }
+  }
+
+  const std::filesystem::path& file_;
+  std::string where_;
+  glm::dmat4 transform_;
+  Diagnostics& diagnostics_;
+  const aiScene* scene_ = nullptr;
+  ImportedFile out_;
+  std::vector<std::string> with_vertex_colours_;
+};
+
+}  // namespace
+
+ImportedFile import_mesh_file(const std::filesystem::path& file, const glm::dmat4& transform,
+                              const std::string& name, Diagnostics& diagnostics) {
+  return FileImporter(file, transform, diagnostics).run(name);
+}
+
+}  // namespace bounce::scene_internal

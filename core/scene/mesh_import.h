@@ -1,0 +1,48 @@
+#pragma once
+// One mesh file through Assimp: every (node, mesh) pair becomes a piece with
+// its vertices moved into scene space (node transforms, then the scene.json
+// transform), its triangles (winding kept front-facing under mirroring) and
+// its material's stated diffuse and emissive colours as exact floats.
+// Degenerate triangles are kept here; the scene builder counts and skips
+// them once the scene's size is known. Internal to the scene module.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "base/diagnostics.h"
+
+namespace bounce::scene_internal {
+
+struct ImportedMaterial {
+  std::string name;
+  std::optional<glm::vec3> albedo;  // nullopt when the file does not state one
+  glm::vec3 emission{0.0f};
+};
+
+struct ImportedPiece {
+  std::string name;
+  std::uint32_t material = 0;        // index into ImportedFile::materials
+  std::vector<glm::vec3> positions;  // scene space; all finite where referenced
+  std::vector<glm::uvec3> triangles;
+  std::size_t non_triangles = 0;  // point and line primitives, which have no area
+};
+
+struct ImportedFile {
+  std::filesystem::path path;
+  std::vector<ImportedMaterial> materials;
+  std::vector<ImportedPiece> pieces;
+};
+
+// `name` (may be empty) is the scene.json name for the file's pieces: a lone
+// piece takes it as is, several become "<name>/<piece>". Throws
+// SceneLoader::LoadError when Assimp cannot read the file, when a colour is
+// not finite, or when a referenced vertex is NaN/Inf after the transform.
+ImportedFile import_mesh_file(const std::filesystem::path& file, const glm::dmat4& transform,
+                              const std::string& name, Diagnostics& diagnostics);
+
+}  // namespace bounce::scene_internal
