@@ -41,8 +41,8 @@ void print_bake_report(std::FILE* out, const json& m) {
                f["row_sum_max"].get<double>(), f["row_sum_mean"].get<double>(),
                f["rows_above_one"].get<std::size_t>());
   std::fprintf(out, "  largest F    %.4f\n", f["value_max"].get<double>());
-  std::fprintf(out, "  reciprocity  max |A_i F_ij - A_j F_ji| / (A_i max F_i.) = %.2e\n",
-               f["reciprocity_error_max"].get<double>());
+  std::fprintf(out, "  reciprocity  worst row %.2e, whole matrix %.2e (unreciprocated share)\n",
+               f["reciprocity_error_max"].get<double>(), f["reciprocity_error_rel"].get<double>());
   std::fprintf(out, "  NaN/Inf      %zu\n", f["non_finite"].get<std::size_t>());
   std::fprintf(out, "\nStages\n");
   print_stage_table(out, m);

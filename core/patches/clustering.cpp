@@ -40,6 +40,16 @@ Targets make_targets(const Voxelization& vox, const SampleSet& set, std::size_t 
   }
   for (std::size_t s = 0; s < set.samples.size(); ++s)
     t.samples[t.of_voxel[set.samples[s].voxel]].push_back(static_cast<std::uint32_t>(s));
+  // Voxels whose surface no ray hit leave targets without samples: drop them
+  // (their zero area would divide the column term by zero).
+  std::vector<std::uint32_t> renumber(t.samples.size(), 0);
+  std::vector<std::vector<std::uint32_t>> kept;
+  for (std::size_t k = 0; k < t.samples.size(); ++k) {
+    renumber[k] = static_cast<std::uint32_t>(kept.size());
+    if (!t.samples[k].empty()) kept.push_back(std::move(t.samples[k]));
+  }
+  t.samples = std::move(kept);
+  for (auto& target : t.of_voxel) target = renumber[target];
   t.area.assign(t.samples.size(), 0.0f);
   t.representative.assign(t.samples.size(), 0);
   for (std::size_t k = 0; k < t.samples.size(); ++k) {

@@ -151,6 +151,24 @@ void SceneBuilder::build(Scene& scene) {
 
   std::vector<std::uint32_t> material_slot(uses_.size(), kUnmapped);
   std::size_t skipped_total = 0;
+  // Exact copies of a triangle already in the scene (same corners, same
+  // winding) would count the same surface twice: it would receive and send
+  // twice the light. A copy with the opposite winding is the other side of a
+  // thin wall and is kept.
+  std::set<std::array<float, 9>> seen;
+  auto canonical = [](const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+    const glm::vec3 v[3] = {a, b, c};
+    auto less = [](const glm::vec3& x, const glm::vec3& y) {
+      return std::tie(x.x, x.y, x.z) < std::tie(y.x, y.y, y.z);
+    };
+    int first = 0;
+    for (int k = 1; k < 3; ++k)
+      if (less(v[k], v[first])) first = k;
+    std::array<float, 9> key{};
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 3; ++d) key[static_cast<std::size_t>(3 * k + d)] = v[(first + k) % 3][d];
+    return key;
+  };
   for (std::size_t e = 0; e < entries_.size(); ++e) {
     const Entry& entry = entries_[e];
     const std::string where = entry.file.path.string();
@@ -169,12 +187,18 @@ void SceneBuilder::build(Scene& scene) {
       info.first_triangle = static_cast<std::uint32_t>(scene.triangles.size());
 
       std::vector<std::uint32_t> remap(piece.positions.size(), kUnmapped);
-      std::size_t skipped = 0;
+      std::size_t skipped = 0, duplicates = 0;
       for (const glm::uvec3& t : piece.triangles) {
         const glm::dvec3 a(piece.positions[t.x]), b(piece.positions[t.y]), c(piece.positions[t.z]);
         const double area = 0.5 * glm::length(glm::cross(b - a, c - a));
         if (t.x == t.y || t.y == t.z || t.x == t.z || !(area > min_area)) {
           ++skipped;
+          continue;
+        }
+        if (!seen.insert(
+                     canonical(piece.positions[t.x], piece.positions[t.y], piece.positions[t.z]))
+                 .second) {
+          ++duplicates;
           continue;
         }
         glm::uvec3 out;
@@ -190,7 +214,13 @@ void SceneBuilder::build(Scene& scene) {
         }
         scene.triangles.push_back(out);
       }
-      skipped_total += skipped;
+      skipped_total += skipped + duplicates;
+      if (duplicates > 0)
+        diagnostics_.warn(where,
+                          "mesh '" + piece.name + "'" + label + ": skipped " +
+                              plural(duplicates, "duplicate triangle", "duplicate triangles") +
+                              " (exact copies of triangles already in the scene, same "
+                              "winding: they would count the same surface twice)");
       info.triangle_count =
           static_cast<std::uint32_t>(scene.triangles.size()) - info.first_triangle;
       if (skipped > 0)
