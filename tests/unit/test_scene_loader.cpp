@@ -73,12 +73,16 @@ std::size_t count_warnings(const Diagnostics& d, std::initializer_list<std::stri
 TEST(SceneLoaderShipped, CornellBoxHasExactMtlColoursAndAnAreaLight) {
   Diagnostics d;
   const Scene s = load_quietly(kScenes / "cornell-box", d);
-  EXPECT_EQ(d.warnings().size(), 0u) << all_warnings(d);
+  // Each box's "Bottom Face" in the OBJ repeats its right face (same corners,
+  // same winding): both copies are skipped with one warning per mesh.
+  EXPECT_EQ(d.warnings().size(), 2u) << all_warnings(d);
+  EXPECT_EQ(count_warnings(d, {"skipped 2 duplicate triangles"}), 2u) << all_warnings(d);
   EXPECT_EQ(s.name, "cornell-box");
-  // 18 quads in the OBJ (5 walls, 6 + 6 box faces, 1 light), 2 triangles each.
-  EXPECT_EQ(s.triangle_count(), 36u);
-  EXPECT_EQ(s.triangle_material.size(), 36u);
-  EXPECT_EQ(s.triangle_mesh.size(), 36u);
+  // 18 quads in the OBJ (5 walls, 6 + 6 box faces, 1 light), 2 triangles
+  // each, less the two duplicated quads.
+  EXPECT_EQ(s.triangle_count(), 32u);
+  EXPECT_EQ(s.triangle_material.size(), 32u);
+  EXPECT_EQ(s.triangle_mesh.size(), 32u);
   EXPECT_EQ(s.materials.size(), 8u);
 
   const Material* left = find_material(s, "leftWall");
@@ -122,7 +126,7 @@ TEST(SceneLoaderShipped, CornellBoxHasExactMtlColoursAndAnAreaLight) {
       EXPECT_EQ(s.triangle_mesh[next + t], m);
     next += s.meshes[m].triangle_count;
   }
-  EXPECT_EQ(next, 36u);
+  EXPECT_EQ(next, 32u);
 
   // The floor faces up into the box.
   const MeshInfo* floor = find_mesh(s, "floor");
@@ -133,11 +137,11 @@ TEST(SceneLoaderShipped, CornellBoxHasExactMtlColoursAndAnAreaLight) {
 TEST(SceneLoaderShipped, CornellBunnyStandsOnTheFloor) {
   Diagnostics d;
   const Scene s = load_quietly(kScenes / "cornell-bunny", d);
-  EXPECT_EQ(d.warnings().size(), 0u) << all_warnings(d);
+  EXPECT_EQ(d.warnings().size(), 2u) << all_warnings(d);  // the box's duplicated faces
   const MeshInfo* bunny = find_mesh(s, "bunny");
   ASSERT_NE(bunny, nullptr);
   EXPECT_EQ(bunny->triangle_count, 69451u);  // bun_zipper: no degenerate triangles
-  EXPECT_EQ(s.triangle_count(), 36u + 69451u);
+  EXPECT_EQ(s.triangle_count(), 32u + 69451u);
 
   Bounds b;
   for (std::uint32_t t = bunny->first_triangle; t < bunny->first_triangle + bunny->triangle_count;
@@ -261,14 +265,16 @@ TEST(SceneLoaderShipped, FurnaceIsAClosedCubeFacingInward) {
   EXPECT_TRUE(s.lights.empty());  // emissive walls are the light
 }
 
-TEST(SceneLoaderShipped, EveryShippedSceneLoadsWithoutWarnings) {
+TEST(SceneLoaderShipped, EveryShippedSceneLoadsWithoutOtherWarnings) {
   std::size_t scenes = 0;
   for (const auto& entry : fs::directory_iterator(kScenes)) {
     if (!entry.is_directory()) continue;
     Diagnostics d;
     const Scene s = load_quietly(entry.path(), d);
     EXPECT_GT(s.triangle_count(), 0u) << entry.path();
-    EXPECT_EQ(d.warnings().size(), 0u) << entry.path() << "\n" << all_warnings(d);
+    // The Cornell OBJ's duplicated box faces are the one known, reported flaw.
+    EXPECT_EQ(d.warnings().size(), count_warnings(d, {"duplicate triangles"}))
+        << entry.path() << "\n" << all_warnings(d);
     EXPECT_EQ(s.name, entry.path().filename().string());
     for (const Material& m : s.materials) {
       for (int c = 0; c < 3; ++c) {
@@ -665,7 +671,8 @@ TEST_F(SceneLoaderInput, SceneJsonOverridesMaterialsByName) {
   ASSERT_NE(light, nullptr);
   EXPECT_EQ(light->emission, glm::vec3(5.0f));
   EXPECT_EQ(light->albedo, glm::vec3(0.78f));  // not overridden: from the MTL
-  EXPECT_EQ(diagnostics.warnings().size(), 0u) << all_warnings(diagnostics);
+  EXPECT_EQ(count_warnings(diagnostics, {"duplicate"}), diagnostics.warnings().size())
+      << all_warnings(diagnostics);
 }
 
 TEST_F(SceneLoaderInput, MeshMaterialOverridesAndInlineMaterials) {
