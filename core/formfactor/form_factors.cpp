@@ -78,7 +78,6 @@ PatchGeometry gather(const Scene& scene, const Voxelization& vox, const SampleSe
   PatchGeometry g;
   const std::size_t n = patches.size();
   g.far.resize(n);
-  g.pieces.resize(n);
   g.surface.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
     std::vector<Point> members;
@@ -100,7 +99,6 @@ PatchGeometry gather(const Scene& scene, const Voxelization& vox, const SampleSe
       }
     }
     g.far[p] = representatives(members, static_cast<std::size_t>(std::max(1, far_count)));
-    g.pieces[p] = std::move(members);
   }
   return g;
 }
@@ -151,15 +149,25 @@ double integrate_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec
 // integral over s of F(x -> r) dx.
 float near_transfer(const std::vector<Receiver>& from, const std::vector<Receiver>& to) {
   constexpr int kMaxDepth = 4;
+  constexpr float kSeparated = kNearFactor * kNearFactor;
   double sum = 0.0;
   for (const Receiver& s : from) {
     for (const Receiver& r : to) {
       if (&s == &r) continue;
-      double part = 0.0;
+      const glm::vec3 d = r.centroid - s.centroid;
+      const float r2 = glm::dot(d, d);
+      if (r2 >= kSeparated * std::max(s.area, r.area)) {
+        // Both pieces small against their distance: the differential kernel
+        // between their centroids (most pairs on finely meshed surfaces).
+        const float cs = glm::dot(s.normal, d), cr = -glm::dot(r.normal, d);
+        if (cs > 0.0f && cr > 0.0f)
+          sum += static_cast<double>(s.area) * r.area * cs * cr /
+                 (std::numbers::pi_v<float> * r2 * r2);
+        continue;
+      }
       for (int v = 1; v + 1 < s.vertex_count; ++v)
-        part += integrate_triangle(s.polygon[0], s.polygon[v], s.polygon[v + 1], s.normal, r,
-                                   kMaxDepth);
-      sum += part;
+        sum += integrate_triangle(s.polygon[0], s.polygon[v], s.polygon[v + 1], s.normal, r,
+                                  kMaxDepth);
     }
   }
   return static_cast<float>(sum);
@@ -185,7 +193,6 @@ FormFactorMatrix compute_form_factors(const Scene& scene, const RayTracer& trace
   const PatchGeometry geo = gather(scene, vox, set, patches, settings.far_representatives);
   const float cell = vox.grid.cell_size();
   const float near2 = settings.near_cells * settings.near_cells * cell * cell;
-  const float mid2 = settings.mid_cells * settings.mid_cells * cell * cell;
   const float eps = 10.0f * tracer.epsilon();
   const auto rays_per_pair = static_cast<std::size_t>(std::max(1, settings.visibility_rays));
 
@@ -213,9 +220,8 @@ FormFactorMatrix compute_form_factors(const Scene& scene, const RayTracer& trace
       for (std::size_t q = p; q < n; ++q) {
         const glm::vec3 d = patches.patches[q].position - patches.patches[p].position;
         const bool near = q == p || glm::dot(d, d) < near2;
-        const bool mid = glm::dot(d, d) < mid2;
-        const auto& P = mid ? geo.pieces[p] : geo.far[p];
-        const auto& Q = mid ? geo.pieces[q] : geo.far[q];
+        const auto& P = geo.far[p];
+        const auto& Q = geo.far[q];
         // Member pairs that face each other: the far-field sum, and the
         // candidates for visibility rays.
         facing.clear();

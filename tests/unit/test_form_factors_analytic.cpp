@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "bake/bake.h"
@@ -54,6 +55,7 @@ TEST(AnalyticFormFactors, ParallelUnitSquaresAtDistanceOne) {
   const Scene s = load("parallel-squares");
   const BakeResult r = bake(s, 8);
   const double f = surface_form_factor(r, mesh_index(s, "bottom"), mesh_index(s, "top"));
+  std::printf("parallel squares: F = %.6f (reference 0.199825)\n", f);
   EXPECT_NEAR(f, 0.199825, 0.02 * 0.199825) << "F = " << f;
   EXPECT_NEAR(surface_form_factor(r, mesh_index(s, "top"), mesh_index(s, "bottom")), 0.199825,
               0.02 * 0.199825);
@@ -63,6 +65,7 @@ TEST(AnalyticFormFactors, PerpendicularUnitSquaresSharingAnEdge) {
   const Scene s = load("perpendicular-squares");
   const BakeResult r = bake(s, 8);
   const double f = surface_form_factor(r, mesh_index(s, "floor"), mesh_index(s, "wall"));
+  std::printf("perpendicular squares: F = %.6f (reference 0.200044)\n", f);
   EXPECT_NEAR(f, 0.200044, 0.02 * 0.200044) << "F = " << f;
 }
 
@@ -76,6 +79,7 @@ TEST(AnalyticFormFactors, CoaxialDisks) {
   const Scene s = load("coaxial-disks");
   const BakeResult r = bake(s, 16);
   const double f = surface_form_factor(r, mesh_index(s, "small"), mesh_index(s, "large"));
+  std::printf("coaxial disks: F = %.6f (reference %.6f)\n", f, expected);
   EXPECT_NEAR(f, expected, 0.03 * expected) << "F = " << f;
 }
 
