@@ -25,10 +25,20 @@ struct Receiver {
   float area;
 };
 
+// The pieces one sample carries, with a bounding sphere, so that two clumps
+// far apart against their sizes can be summed as two points.
+struct Clump {
+  glm::vec3 centroid;
+  glm::vec3 normal;  // normalised area-weighted sum
+  float area;
+  float radius2;               // squared radius of a sphere about the centroid holding every piece
+  std::uint32_t first, count;  // pieces in PatchGeometry::surface[p]
+};
+
 struct PatchGeometry {
-  std::vector<std::vector<Point>> pieces;      // one point per piece of surface
   std::vector<std::vector<Point>> far;         // a few points carrying the patch's area
   std::vector<std::vector<Receiver>> surface;  // the pieces of surface it stands for
+  std::vector<std::vector<Clump>> clumps;      // the pieces grouped by sample
 };
 
 // Reduces a patch's samples to at most k points for far-field sums: seeds by
@@ -79,10 +89,17 @@ PatchGeometry gather(const Scene& scene, const Voxelization& vox, const SampleSe
   const std::size_t n = patches.size();
   g.far.resize(n);
   g.surface.resize(n);
+  g.clumps.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
     std::vector<Point> members;
     for (std::uint32_t k = patches.member_first[p]; k < patches.member_first[p + 1]; ++k) {
       const std::uint32_t si = patches.member_samples[k];
+      Clump clump{glm::vec3(0.0f),
+                  glm::vec3(0.0f),
+                  0.0f,
+                  0.0f,
+                  static_cast<std::uint32_t>(g.surface[p].size()),
+                  0};
       for (std::uint32_t c = set.carried_first[si]; c < set.carried_first[si + 1]; ++c) {
         const CarriedArea& piece = set.carried[c];
         Receiver r;
@@ -96,7 +113,23 @@ PatchGeometry gather(const Scene& scene, const Voxelization& vox, const SampleSe
         // Far-field points sit at the pieces' centroids, not at the samples
         // (a sample need not be at the centre of the surface it stands for).
         members.push_back({r.centroid, r.normal, r.area});
+        clump.centroid += r.area * r.centroid;
+        clump.normal += r.area * r.normal;
+        clump.area += r.area;
+        clump.count++;
       }
+      if (clump.count == 0 || !(clump.area > 0.0f)) continue;
+      clump.centroid /= clump.area;
+      const float len = glm::length(clump.normal);
+      clump.normal = len > 0.0f ? clump.normal / len : glm::vec3(0.0f);
+      for (std::uint32_t r = clump.first; r < clump.first + clump.count; ++r) {
+        const Receiver& piece = g.surface[p][r];
+        for (int v = 0; v < piece.vertex_count; ++v) {
+          const glm::vec3 d = piece.polygon[v] - clump.centroid;
+          clump.radius2 = std::max(clump.radius2, glm::dot(d, d));
+        }
+      }
+      g.clumps[p].push_back(clump);
     }
     g.far[p] = representatives(members, static_cast<std::size_t>(std::max(1, far_count)));
   }
@@ -147,27 +180,44 @@ double integrate_triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec
 // Energy leaving the surface one patch stands for that reaches the surface
 // another stands for: sum over source pieces s and receiver pieces r of the
 // integral over s of F(x -> r) dx.
-float near_transfer(const std::vector<Receiver>& from, const std::vector<Receiver>& to) {
+float near_transfer(const std::vector<Receiver>& from_pieces, const std::vector<Clump>& from,
+                    const std::vector<Receiver>& to_pieces, const std::vector<Clump>& to) {
   constexpr int kMaxDepth = 4;
   constexpr float kSeparated = kNearFactor * kNearFactor;
+  auto point_pair = [](const glm::vec3& d, float r2, const glm::vec3& ns, float as,
+                       const glm::vec3& nr, float ar) {
+    const float cs = glm::dot(ns, d), cr = -glm::dot(nr, d);
+    if (cs <= 0.0f || cr <= 0.0f) return 0.0;
+    return static_cast<double>(as) * ar * cs * cr / (std::numbers::pi_v<float> * r2 * r2);
+  };
   double sum = 0.0;
-  for (const Receiver& s : from) {
-    for (const Receiver& r : to) {
-      if (&s == &r) continue;
-      const glm::vec3 d = r.centroid - s.centroid;
-      const float r2 = glm::dot(d, d);
-      if (r2 >= kSeparated * std::max(s.area, r.area)) {
-        // Both pieces small against their distance: the differential kernel
-        // between their centroids (most pairs on finely meshed surfaces).
-        const float cs = glm::dot(s.normal, d), cr = -glm::dot(r.normal, d);
-        if (cs > 0.0f && cr > 0.0f)
-          sum += static_cast<double>(s.area) * r.area * cs * cr /
-                 (std::numbers::pi_v<float> * r2 * r2);
+  for (const Clump& cs : from) {
+    for (const Clump& cr : to) {
+      const glm::vec3 dc = cr.centroid - cs.centroid;
+      const float rc2 = glm::dot(dc, dc);
+      if (rc2 >= kSeparated * std::max(cs.radius2, cr.radius2)) {
+        // Two clumps small against their distance: two points.
+        sum += point_pair(dc, rc2, cs.normal, cs.area, cr.normal, cr.area);
         continue;
       }
-      for (int v = 1; v + 1 < s.vertex_count; ++v)
-        sum += integrate_triangle(s.polygon[0], s.polygon[v], s.polygon[v + 1], s.normal, r,
-                                  kMaxDepth);
+      for (std::uint32_t a = cs.first; a < cs.first + cs.count; ++a) {
+        const Receiver& s = from_pieces[a];
+        for (std::uint32_t b = cr.first; b < cr.first + cr.count; ++b) {
+          const Receiver& r = to_pieces[b];
+          if (&s == &r) continue;
+          const glm::vec3 d = r.centroid - s.centroid;
+          const float r2 = glm::dot(d, d);
+          if (r2 >= kSeparated * std::max(s.area, r.area)) {
+            // Both pieces small against their distance: the differential
+            // kernel between their centroids.
+            sum += point_pair(d, r2, s.normal, s.area, r.normal, r.area);
+            continue;
+          }
+          for (int v = 1; v + 1 < s.vertex_count; ++v)
+            sum += integrate_triangle(s.polygon[0], s.polygon[v], s.polygon[v + 1], s.normal, r,
+                                      kMaxDepth);
+        }
+      }
     }
   }
   return static_cast<float>(sum);
@@ -239,8 +289,10 @@ FormFactorMatrix compute_form_factors(const Scene& scene, const RayTracer& trace
           // Each direction integrated over both surfaces; not averaged, so
           // that each row keeps its own closure (the two agree to the
           // quadrature error, reported as the reciprocity error).
-          g_pq = near_transfer(geo.surface[p], geo.surface[q]);
-          g_qp = q == p ? g_pq : near_transfer(geo.surface[q], geo.surface[p]);
+          g_pq = near_transfer(geo.surface[p], geo.clumps[p], geo.surface[q], geo.clumps[q]);
+          g_qp = q == p
+                     ? g_pq
+                     : near_transfer(geo.surface[q], geo.clumps[q], geo.surface[p], geo.clumps[p]);
         }
         if (g_pq <= 0.0f && g_qp <= 0.0f) continue;
         // Near surfaces can face each other where their representative

@@ -94,7 +94,7 @@ std::vector<float> sample_target_form_factors(const RayTracer& tracer, const Sam
         float sum = 0.0f;
         for (std::uint32_t j : targets.samples[t]) {
           const Sample& b = set.samples[j];
-          sum += exchange({a.position, a.normal, a.area}, {b.position, b.normal, b.area});
+          sum += bounded_exchange({a.position, a.normal, a.area}, {b.position, b.normal, b.area});
         }
         if (sum <= 0.0f) continue;
         row[t] = sum / a.area;
