@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -15,27 +16,56 @@ namespace {
 
 void run_bench_bake(const BakeOptions& opt) {
   ConsoleProgress console(opt.quiet || opt.json);
+  nlohmann::json all = nlohmann::json::array();
   for (const std::string& path : expand_globs(opt.scenes)) {
     Diagnostics diagnostics;
     const Scene scene = SceneLoader(diagnostics).load(path);
-    const BakeResult r = Baker(scene, opt.settings(), diagnostics).run(console.progress());
-    const nlohmann::json m = make_manifest(scene, r, diagnostics);
+    const BakeResult ours = Baker(scene, opt.settings(), diagnostics).run(console.progress());
+    const nlohmann::json m = make_manifest(scene, ours, diagnostics);
+    // Baseline in the same run: the other patch mode on the same grid (the
+    // voxel approximation of paper 000 ref. [1] when we bake virtual patches).
+    BakeSettings other = ours.settings;
+    other.patch_mode =
+        ours.settings.patch_mode == PatchMode::Virtual ? PatchMode::Voxel : PatchMode::Virtual;
+    Diagnostics baseline_diagnostics;
+    const BakeResult base = Baker(scene, other, baseline_diagnostics).run(console.progress());
+    const nlohmann::json b = make_manifest(scene, base, baseline_diagnostics);
     if (opt.json) {
-      std::cout << nlohmann::json{{"scene", scene.name},
-                                  {"counts", m["counts"]},
-                                  {"stages", m["stages"]},
-                                  {"total_seconds", m["total_seconds"]},
-                                  {"settings", m["settings"]}}
-                       .dump(2)
-                << '\n';
+      all.push_back({{"scene", scene.name},
+                     {"settings", m["settings"]},
+                     {"counts", m["counts"]},
+                     {"stages", m["stages"]},
+                     {"total_seconds", m["total_seconds"]},
+                     {"baseline", {{"settings", b["settings"]},
+                                   {"counts", b["counts"]},
+                                   {"stages", b["stages"]},
+                                   {"total_seconds", b["total_seconds"]}}}});
       continue;
     }
-    std::printf("\nbench bake: %s, %zu triangles -> %zu patches (%s), %zu samples, grid %d\n",
-                scene.name.c_str(), scene.triangle_count(), r.patches.size(),
-                to_string(r.settings.patch_mode).c_str(), r.samples.samples.size(),
-                r.settings.voxel_resolution.value_or(0));
-    print_stage_table(stdout, m);
+    std::printf("\nbench bake: %s, %zu triangles, grid %d, %d x %d rays per voxel face\n",
+                scene.name.c_str(), scene.triangle_count(), ours.settings.voxel_resolution.value_or(0),
+                ours.settings.samples_per_face, ours.settings.samples_per_face);
+    std::printf("  (ratio = first column / second; peak RSS of the first)\n");
+    std::printf("  %-24s %14s %14s %14s %8s\n", "stage", to_string(ours.settings.patch_mode).c_str(),
+                to_string(other.patch_mode).c_str(), "peak RSS (MiB)", "ratio");
+    for (std::size_t k = 0; k < ours.stages.size() && k < base.stages.size(); ++k) {
+      const double a = ours.stages[k].seconds, c = base.stages[k].seconds;
+      char ratio[32] = "-";
+      if (c > 1e-3) std::snprintf(ratio, sizeof ratio, "%.2fx", a / c);
+      std::printf("  %-24s %13.3fs %13.3fs %14.1f %8s\n", ours.stages[k].name.c_str(), a, c,
+                  static_cast<double>(ours.stages[k].peak_rss_bytes) / (1024.0 * 1024.0), ratio);
+    }
+    std::printf("  %-24s %13.3fs %13.3fs %14s %7.2fx\n", "total", ours.total_seconds,
+                base.total_seconds, "", ours.total_seconds / std::max(1e-9, base.total_seconds));
+    std::printf("  %-24s %14zu %14zu\n", "patches", ours.patches.size(), base.patches.size());
+    std::printf("  %-24s %14zu %14zu\n", "samples", ours.samples.samples.size(),
+                base.samples.samples.size());
+    std::printf("  %-24s %14.4f %14.4f\n", "row sum max", ours.checks.row_sum_max,
+                base.checks.row_sum_max);
+    std::printf("  %-24s %14.2e %14.2e\n", "reciprocity (matrix)",
+                ours.checks.reciprocity_error_rel, base.checks.reciprocity_error_rel);
   }
+  if (opt.json) std::cout << all.dump(2) << '\n';
 }
 
 }  // namespace
