@@ -8,3 +8,6 @@ find_package(assimp REQUIRED)
 find_package(glm REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 REQUIRED)
+# OpenImageIO's CMake config is broken on Debian 12 (it references
+# /usr/bin/iconvert and /usr/include/opencv4): use its pkg-config file.
+pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)

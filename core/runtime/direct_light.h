@@ -1,0 +1,29 @@
+#pragma once
+// Direct irradiance on patches from the scene's point, spot and directional
+// lights, with Embree shadow rays from every member sample of a patch
+// (area-weighted), so a patch half in shadow gets half the light.
+// b_c = albedo_c * E_c is the light leaving each patch after the first hit,
+// the vector the multi-bounce matrix multiplies.
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "patches/patch_set.h"
+#include "raytrace/ray_tracer.h"
+#include "scene/scene.h"
+
+namespace bounce {
+
+// Irradiance (per colour channel) at each patch.
+std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
+                                         const PatchSet& patches, const std::vector<Light>& lights);
+
+// b = albedo * E per patch and channel.
+std::vector<glm::vec3> first_bounce(const PatchSet& patches, const std::vector<glm::vec3>& irradiance);
+
+// A fixed set of test lights for error figures that do not depend on the
+// scene's own lights: the scene's lights plus four unit point lights at
+// centre + extent * (+-0.2, 0.2, +-0.2).
+std::vector<Light> evaluation_lights(const Scene& scene);
+
+}  // namespace bounce
