@@ -14,8 +14,8 @@
 namespace bounce {
 
 struct LogQuantizer {
-  float vmax = 0.0f;      // largest value of the dense remainder
-  float range = 25.0f;    // R: natural-log decades covered by codes 1..255
+  float vmax = 0.0f;    // largest value of the dense remainder
+  float range = 25.0f;  // R: natural-log decades covered by codes 1..255
 
   std::uint8_t encode(float v) const {
     if (!(v > 0.0f) || !(vmax > 0.0f)) return 0;

@@ -14,7 +14,8 @@ void colormap(double t, std::uint8_t rgb[3]) {
   const int k = std::min(7, static_cast<int>(t));
   const double f = t - k;
   for (int c = 0; c < 3; ++c)
-    rgb[c] = static_cast<std::uint8_t>(std::lround((1.0 - f) * kStops[k][c] + f * kStops[k + 1][c]));
+    rgb[c] =
+        static_cast<std::uint8_t>(std::lround((1.0 - f) * kStops[k][c] + f * kStops[k + 1][c]));
 }
 
 Rgb8Image matrix_picture(const float* values, std::size_t n, const MatrixPictureSettings& s,
@@ -31,18 +32,22 @@ Rgb8Image matrix_picture(const float* values, std::size_t n, const MatrixPicture
 #pragma omp parallel for reduction(max : vmax) schedule(static)
   for (int y = 0; y < size; ++y) {
     const std::size_t i0 = static_cast<std::size_t>(y) * n / static_cast<std::size_t>(size);
-    const std::size_t i1 = std::max(i0 + 1, static_cast<std::size_t>(y + 1) * n / static_cast<std::size_t>(size));
+    const std::size_t i1 =
+        std::max(i0 + 1, static_cast<std::size_t>(y + 1) * n / static_cast<std::size_t>(size));
     for (std::size_t i = i0; i < i1; ++i) {
       const std::size_t row = perm ? (*perm)[i] : i;
       for (int x = 0; x < size; ++x) {
         const std::size_t j0 = static_cast<std::size_t>(x) * n / static_cast<std::size_t>(size);
-        const std::size_t j1 = std::max(j0 + 1, static_cast<std::size_t>(x + 1) * n / static_cast<std::size_t>(size));
-        float m = pix[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)];
+        const std::size_t j1 =
+            std::max(j0 + 1, static_cast<std::size_t>(x + 1) * n / static_cast<std::size_t>(size));
+        float m = pix[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) +
+                      static_cast<std::size_t>(x)];
         for (std::size_t j = j0; j < j1; ++j) {
           const std::size_t col = perm ? (*perm)[j] : j;
           m = std::max(m, std::abs(values[row * n + col]));
         }
-        pix[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)] = m;
+        pix[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) +
+            static_cast<std::size_t>(x)] = m;
         vmax = std::max(vmax, m);
       }
     }
@@ -51,7 +56,8 @@ Rgb8Image matrix_picture(const float* values, std::size_t n, const MatrixPicture
   const double bottom = top - s.decades;
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
-      const float m = pix[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)];
+      const float m = pix[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) +
+                          static_cast<std::size_t>(x)];
       std::uint8_t* px = img.at(margin + x, margin + y);
       if (!(m > 0.0f)) {
         px[0] = px[1] = px[2] = 0;
@@ -79,7 +85,8 @@ std::vector<float> block_error_sums(const float* abs_error, std::size_t n, std::
   blocks = (n + 3) / 4;
   std::vector<float> sums(blocks * blocks, 0.0f);
   for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j) sums[(i / 4) * blocks + j / 4] += std::abs(abs_error[i * n + j]);
+    for (std::size_t j = 0; j < n; ++j)
+      sums[(i / 4) * blocks + j / 4] += std::abs(abs_error[i * n + j]);
   return sums;
 }
 

@@ -14,8 +14,8 @@
 namespace bounce {
 
 struct MatrixPictureSettings {
-  int max_size = 1024;    // pixels along a side of the matrix area
-  double decades = 6.0;   // colour range: [max / 10^decades, max]
+  int max_size = 1024;   // pixels along a side of the matrix area
+  double decades = 6.0;  // colour range: [max / 10^decades, max]
 };
 
 // Viridis-like perceptual colour map, t in [0, 1].

@@ -18,9 +18,9 @@ namespace fs = std::filesystem;
 void write_png(const fs::path& path, const Rgb8Image& image) {
   static std::atomic<unsigned> counter{0};
   // OIIO picks the format from the extension: keep ".png" at the end.
-  const fs::path temp = path.parent_path() / ("." + path.stem().string() + ".tmp-" +
-                                              std::to_string(::getpid()) + "-" +
-                                              std::to_string(counter++) + ".png");
+  const fs::path temp =
+      path.parent_path() / ("." + path.stem().string() + ".tmp-" + std::to_string(::getpid()) +
+                            "-" + std::to_string(counter++) + ".png");
   auto out = OIIO::ImageOutput::create(temp.string());
   if (!out) throw IoError(path.string(), "cannot write PNG: " + OIIO::geterror());
   const OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
@@ -42,7 +42,8 @@ Rgb8Image read_png(const fs::path& path) {
   if (!in) throw IoError(path.string(), "cannot read image: " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();
   Rgb8Image image(spec.width, spec.height);
-  std::vector<std::uint8_t> all(static_cast<std::size_t>(spec.width * spec.height * spec.nchannels));
+  std::vector<std::uint8_t> all(
+      static_cast<std::size_t>(spec.width * spec.height * spec.nchannels));
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, all.data()))
     throw IoError(path.string(), "cannot read image: " + in->geterror());
   for (std::size_t p = 0; p < static_cast<std::size_t>(spec.width * spec.height); ++p)

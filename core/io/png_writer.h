@@ -14,7 +14,8 @@ struct Rgb8Image {
   Rgb8Image(int w, int h) : width(w), height(h), pixels(static_cast<std::size_t>(w * h) * 3, 0) {}
   std::uint8_t* at(int x, int y) {
     return &pixels[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                    static_cast<std::size_t>(x)) * 3];
+                    static_cast<std::size_t>(x)) *
+                   3];
   }
 };
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <string>
 #include <numbers>
+#include <string>
 
 namespace bounce {
 
@@ -44,7 +44,8 @@ glm::vec3 from_light(const RayTracer& tracer, const glm::vec3& p, const glm::vec
 }  // namespace
 
 std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
-                                         const PatchSet& patches, const std::vector<Light>& lights) {
+                                         const PatchSet& patches,
+                                         const std::vector<Light>& lights) {
   std::vector<glm::vec3> e(patches.size(), glm::vec3(0.0f));
   const float eps = 10.0f * tracer.epsilon();
 #pragma omp parallel for schedule(dynamic, 16)

@@ -19,7 +19,8 @@ std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSe
                                          const PatchSet& patches, const std::vector<Light>& lights);
 
 // b = albedo * E per patch and channel.
-std::vector<glm::vec3> first_bounce(const PatchSet& patches, const std::vector<glm::vec3>& irradiance);
+std::vector<glm::vec3> first_bounce(const PatchSet& patches,
+                                    const std::vector<glm::vec3>& irradiance);
 
 // A fixed set of test lights for error figures that do not depend on the
 // scene's own lights: the scene's lights plus four unit point lights at

@@ -1,0 +1,103 @@
+// The pieces of the compression pipeline that do not depend on a block
+// format: the log quantiser, the kept-entry split, the error figures and the
+// matrix pictures.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include "compress/log_quantizer.h"
+#include "compress/matrix_error.h"
+#include "compress/matrix_picture.h"
+#include "compress/sparse_split.h"
+
+namespace bounce {
+
+TEST(LogQuantizer, RoundTripWithinHalfACodeStep) {
+  const LogQuantizer q{2.0f, 25.0f};
+  // Half a code step is a relative error of exp(R / 510) - 1 = 5.0%.
+  const double half_step = std::exp(25.0 / 510.0) - 1.0;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> exponent(-25.0, 0.0);
+  for (int k = 0; k < 10000; ++k) {
+    const auto v = static_cast<float>(2.0 * std::exp(exponent(rng)));
+    const float back = q.decode(q.encode(v));
+    if (v < 2.0f * std::exp(-25.0f + 25.0f / 510.0f)) continue;  // rounds to code 0
+    EXPECT_NEAR(back / v, 1.0, half_step * 1.001) << v;
+  }
+  EXPECT_EQ(q.encode(0.0f), 0);
+  EXPECT_EQ(q.decode(0), 0.0f);
+  EXPECT_EQ(q.encode(2.0f), 255);
+  EXPECT_FLOAT_EQ(q.decode(255), 2.0f);
+  EXPECT_EQ(q.encode(1e-30f), 0);  // below vmax e^-25
+}
+
+TEST(SparseSplit, KeepsTheLargestFractionExactly) {
+  const std::size_t n = 50;
+  std::vector<float> m(n * n);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (auto& v : m) v = u(rng);
+  m[7] = 0.0f;
+  const float t = kept_threshold(m.data(), n, 0.04);
+  const CsrMatrix kept = extract_kept(m.data(), n, t);
+  EXPECT_EQ(kept.value.size(), 100u);  // 4% of 2500, no ties in random floats
+  std::vector<float> sorted(m);
+  std::sort(sorted.begin(), sorted.end(), std::greater<float>());
+  EXPECT_EQ(t, sorted[99]);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint32_t k = kept.row_ptr[i]; k < kept.row_ptr[i + 1]; ++k)
+      EXPECT_EQ(kept.value[k], m[i * n + kept.col[k]]);  // exact, bit for bit
+  EXPECT_EQ(extract_kept(m.data(), n, kept_threshold(m.data(), n, 0.0)).value.size(), 0u);
+}
+
+TEST(MatrixError, FiguresMatchADirectComputation) {
+  const std::vector<float> exact = {1.0f, 2.0f, 0.0f, 4.0f};
+  const std::vector<float> approx = {1.5f, 2.0f, 0.25f, 3.0f};
+  MatrixErrorAccumulator acc;
+  acc.add(exact.data(), approx.data(), 2);
+  acc.add(exact.data() + 2, approx.data() + 2, 2);
+  const MatrixError e = acc.result();
+  EXPECT_DOUBLE_EQ(e.sum_abs, 0.5 + 0.0 + 0.25 + 1.0);
+  EXPECT_DOUBLE_EQ(e.mean_abs, 1.75 / 4.0);
+  EXPECT_DOUBLE_EQ(e.max_abs, 1.0);
+  EXPECT_NEAR(e.rel_frobenius, std::sqrt((0.25 + 0.0625 + 1.0) / (1.0 + 4.0 + 16.0)), 1e-12);
+}
+
+TEST(MatrixPicture, LogColoursZerosBlackAndAColourBar) {
+  const std::size_t n = 64;
+  std::vector<float> m(n * n, 0.0f);
+  for (std::size_t i = 0; i < n; ++i) m[i * n + i] = 1.0f;           // diagonal: max
+  for (std::size_t i = 0; i + 1 < n; ++i) m[i * n + i + 1] = 1e-3f;  // 3 decades down
+  MatrixPictureSettings s;
+  s.decades = 6.0;
+  const Rgb8Image img = matrix_picture(m.data(), n, s);
+  const int margin = 4;
+  std::uint8_t top[3], mid[3];
+  colormap(1.0, top);
+  colormap(0.5, mid);
+  const std::uint8_t* diag = const_cast<Rgb8Image&>(img).at(margin + 10, margin + 10);
+  const std::uint8_t* upper = const_cast<Rgb8Image&>(img).at(margin + 11, margin + 10);
+  const std::uint8_t* zero = const_cast<Rgb8Image&>(img).at(margin + 40, margin + 10);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(diag[c], top[c]);
+    EXPECT_EQ(upper[c], mid[c]);
+    EXPECT_EQ(zero[c], 0);
+  }
+  // Permuted picture: reversing the order keeps the diagonal on the diagonal.
+  std::vector<std::uint32_t> reverse(n);
+  for (std::size_t i = 0; i < n; ++i) reverse[i] = static_cast<std::uint32_t>(n - 1 - i);
+  const Rgb8Image flipped = matrix_picture(m.data(), n, s, &reverse);
+  const std::uint8_t* d2 = const_cast<Rgb8Image&>(flipped).at(margin + 10, margin + 10);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(d2[c], top[c]);
+  // And it survives a PNG round trip.
+  const auto path = std::filesystem::temp_directory_path() / "bounce-matrix-picture-test.png";
+  write_png(path, img);
+  const Rgb8Image back = read_png(path);
+  EXPECT_EQ(back.width, img.width);
+  EXPECT_EQ(back.pixels, img.pixels);
+  std::filesystem::remove(path);
+}
+
+}  // namespace bounce
