@@ -23,18 +23,18 @@ void BakeOptions::add_to(CLI::App& cmd, bool with_output) {
       cmd.add_option("--patches-total", patches_total,
                      "Aim for about this many patches; picks the voxel resolution for you")
           ->excludes(voxel_option);
-  cmd.add_option("--patches-per-voxel", patches_per_voxel,
-                 "Virtual patches kept per voxel after clustering (default 3: a box corner "
-                 "holds three orientations)")
-      ->capture_default_str();
+  patches_per_voxel_option = cmd.add_option(
+      "--patches-per-voxel", patches_per_voxel,
+      "Virtual patches kept per voxel after clustering (default: the scene's, else 3: a box "
+      "corner holds three orientations)");
   cmd.add_option("--patches", patch_mode,
                  "virtual: cluster samples into virtual patches (paper 001, default); voxel: one "
                  "patch per voxel and normal direction (the baseline)")
       ->check(CLI::IsMember({"virtual", "voxel"}))
       ->capture_default_str();
-  cmd.add_option("--samples-per-face", samples_per_face,
-                 "Rays per voxel face are N x N (default 4: 96 rays per voxel)")
-      ->capture_default_str();
+  samples_per_face_option = cmd.add_option(
+      "--samples-per-face", samples_per_face,
+      "Rays per voxel face are N x N (default: the scene's, else 4: 96 rays per voxel)");
   cmd.add_option("--visibility-rays", visibility_rays,
                  "Shadow rays per patch pair for form-factor visibility")
       ->capture_default_str();
@@ -44,7 +44,7 @@ void BakeOptions::add_to(CLI::App& cmd, bool with_output) {
     cmd.add_flag("--dump-matrices", dump_matrices,
                  "Also write the N x N form-factor matrix as F.npy");
   cmd.add_flag("--json", json, "Print a machine-readable summary on stdout");
-  cmd.add_flag("--quiet,-q", quiet, "No progress bars");
+  cmd.add_flag("--quiet,-q", quiet, "No progress bars (warnings and errors still print)");
 }
 
 BakeSettings BakeOptions::settings() const {
@@ -53,9 +53,9 @@ BakeSettings BakeOptions::settings() const {
   // absurd ones included, go to validate(), which names the option.
   if (voxel_option->count() > 0) s.voxel_resolution = voxel;
   if (patches_total_option->count() > 0) s.patches_total = patches_total;
-  s.patches_per_voxel = patches_per_voxel;
+  if (patches_per_voxel_option->count() > 0) s.patches_per_voxel = patches_per_voxel;
   s.patch_mode = patch_mode == "voxel" ? PatchMode::Voxel : PatchMode::Virtual;
-  s.samples_per_face = samples_per_face;
+  if (samples_per_face_option->count() > 0) s.samples_per_face = samples_per_face;
   s.visibility_rays = visibility_rays;
   s.seed = seed;
   s.dump_matrices = dump_matrices;

@@ -2,6 +2,8 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <set>
+#include <string>
 
 #include "bake/bake.h"
 #include "bake/bake_writer.h"
@@ -26,21 +28,28 @@ struct Outcome {
 };
 
 // `out` is the bake folder itself, or with `nest` the parent of one folder
-// per scene (batch mode).
+// per scene (batch mode); `taken` holds the folder names a batch has used.
 Outcome bake_one(const std::string& path, const fs::path& out, bool nest, const BakeOptions& opt,
-                 ConsoleProgress& console) {
+                 ConsoleProgress& console, std::set<std::string>& taken) {
   Outcome o;
   o.scene = path;
   Diagnostics diagnostics;
   diagnostics.set_listener([&](const Diagnostic& d) {
-    if (d.kind == Diagnostic::Kind::Warning && !opt.quiet)
+    if (d.kind == Diagnostic::Kind::Warning)
       std::fprintf(stderr, "bounce: warning: %s: %s\n", d.where.c_str(), d.message.c_str());
   });
   const Scene scene = SceneLoader(diagnostics).load(path);
   o.scene = scene.name;
-  const fs::path target = nest          ? out / scene.name
-                          : out.empty() ? fs::path("bakes") / scene.name
-                                        : out;
+  std::string folder = scene.name;
+  // Two scenes of a batch with one name (scans/a/mesh.ply, scans/b/mesh.ply)
+  // must not share a folder: number the later ones and say so.
+  for (int k = 2; nest && taken.count(folder); ++k) folder = scene.name + "-" + std::to_string(k);
+  if (folder != scene.name)
+    diagnostics.warn(path, "another scene of this batch is also named '" + scene.name +
+                               "': baked into '" + folder + "'");
+  taken.insert(folder);
+  const fs::path target =
+      nest ? out / folder : out.empty() ? fs::path("bakes") / scene.name : out;
   if (!opt.quiet)
     std::fprintf(stderr, "Baking %s (%zu triangles) into %s\n", path.c_str(),
                  scene.triangle_count(), target.string().c_str());
@@ -55,11 +64,13 @@ Outcome bake_one(const std::string& path, const fs::path& out, bool nest, const 
 }
 
 int run_bake(const BakeOptions& opt) {
+  opt.settings().validate();  // absurd options fail before any scene is read
   const std::vector<std::string> scenes = expand_globs(opt.scenes);
   ConsoleProgress console(opt.quiet || opt.json);
   if (scenes.size() == 1) {
     // One scene: errors propagate to main(), which prints one line and exits 1.
-    Outcome o = bake_one(scenes[0], opt.out, false, opt, console);
+    std::set<std::string> taken;
+    Outcome o = bake_one(scenes[0], opt.out, false, opt, console, taken);
     if (opt.json)
       std::cout << o.manifest.dump(2) << '\n';
     else
@@ -68,11 +79,12 @@ int run_bake(const BakeOptions& opt) {
   }
   // Batch: one folder per scene; a failing scene does not stop the others.
   std::vector<Outcome> outcomes;
+  std::set<std::string> taken;
   const fs::path root = opt.out.empty() ? fs::path("bakes") : fs::path(opt.out);
   for (const std::string& path : scenes) {
     Outcome o;
     try {
-      o = bake_one(path, root, true, opt, console);
+      o = bake_one(path, root, true, opt, console, taken);
     } catch (const Cancelled&) {
       throw;
     } catch (const std::exception& e) {
@@ -98,7 +110,7 @@ int run_bake(const BakeOptions& opt) {
     std::printf("\n%zu of %zu scenes baked into %s\n", outcomes.size() - failed, outcomes.size(),
                 root.string().c_str());
   }
-  return failed == 0 ? 0 : 2;
+  return failed == 0 ? 0 : failed == outcomes.size() ? 1 : 2;
 }
 
 }  // namespace
@@ -108,8 +120,8 @@ void register_bake(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "bake",
       "Bake scenes: voxel grid, virtual patches and form factors, written to a bake folder "
-      "(manifest.json + .npy arrays, see docs/bake-format.md). Exit codes: 0 ok, 1 error, "
-      "2 some scenes of a batch failed, 130 cancelled.");
+      "(manifest.json + .npy arrays, see docs/bake-format.md). Exit codes: 0 ok, 1 error "
+      "(or every scene of a batch failed), 2 some scenes of a batch failed, 130 cancelled.");
   opt->add_to(*cmd, true);
   cmd->callback([opt]() {
     const int code = run_bake(*opt);

@@ -44,7 +44,7 @@ void run_bench_bake(const BakeOptions& opt) {
     }
     std::printf("\nbench bake: %s, %zu triangles, grid %d, %d x %d rays per voxel face\n",
                 scene.name.c_str(), scene.triangle_count(), ours.settings.voxel_resolution.value_or(0),
-                ours.settings.samples_per_face, ours.settings.samples_per_face);
+                *ours.settings.samples_per_face, *ours.settings.samples_per_face);
     std::printf("  (ratio = first column / second; peak RSS of the first)\n");
     std::printf("  %-24s %14s %14s %14s %8s\n", "stage", to_string(ours.settings.patch_mode).c_str(),
                 to_string(other.patch_mode).c_str(), "peak RSS (MiB)", "ratio");

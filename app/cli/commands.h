@@ -31,6 +31,8 @@ struct BakeOptions {
   bool quiet = false;
   CLI::Option* voxel_option = nullptr;
   CLI::Option* patches_total_option = nullptr;
+  CLI::Option* patches_per_voxel_option = nullptr;
+  CLI::Option* samples_per_face_option = nullptr;
 
   void add_to(CLI::App& cmd, bool with_output);
   BakeSettings settings() const;

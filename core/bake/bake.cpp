@@ -82,7 +82,7 @@ BakeResult Baker::run(Progress& progress) const {
     } else if (r.settings.patches_total) {
       progress.begin_stage("choose grid resolution", 1);
       resolution = resolution_for_patch_count(scene_, *r.settings.patches_total,
-                                              r.settings.patches_per_voxel, r.settings.patch_mode);
+                                              *r.settings.patches_per_voxel, r.settings.patch_mode);
       progress.end_stage();
     }
     r.settings.voxel_resolution = resolution;
@@ -102,7 +102,7 @@ BakeResult Baker::run(Progress& progress) const {
   {
     StageTimer timer("sample");
     SamplingSettings s;
-    s.samples_per_face = r.settings.samples_per_face;
+    s.samples_per_face = *r.settings.samples_per_face;
     s.seed = r.settings.seed;
     r.samples = generate_samples(scene_, tracer, r.voxels, s, &progress);
     if (r.samples.samples.empty())
@@ -119,12 +119,12 @@ BakeResult Baker::run(Progress& progress) const {
     StageTimer timer("patches");
     if (r.settings.patch_mode == PatchMode::Virtual) {
       ClusteringSettings c;
-      c.patches_per_voxel = r.settings.patches_per_voxel;
+      c.patches_per_voxel = *r.settings.patches_per_voxel;
       r.patches = cluster_virtual_patches(tracer, r.voxels, r.samples, c, r.clustering, &progress);
       if (r.clustering.voxels_above_target > 0)
         diagnostics_.warn("patches", std::to_string(r.clustering.voxels_above_target) +
                                          " voxels kept more than " +
-                                         std::to_string(r.settings.patches_per_voxel) +
+                                         std::to_string(*r.settings.patches_per_voxel) +
                                          " patches: their samples face opposite ways and are "
                                          "never merged");
     } else {

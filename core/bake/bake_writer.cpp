@@ -98,9 +98,9 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
   const BakeSettings& s = r.settings;
   m["settings"] = {{"voxel_resolution", s.voxel_resolution.value_or(0)},
                    {"patches_total_target", s.patches_total ? json(*s.patches_total) : json()},
-                   {"patches_per_voxel", s.patches_per_voxel},
+                   {"patches_per_voxel", s.patches_per_voxel.value_or(0)},
                    {"patch_mode", to_string(s.patch_mode)},
-                   {"samples_per_face", s.samples_per_face},
+                   {"samples_per_face", s.samples_per_face.value_or(0)},
                    {"visibility_rays", s.visibility_rays},
                    {"seed", s.seed},
                    {"dump_matrices", s.dump_matrices}};

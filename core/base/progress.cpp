@@ -21,7 +21,8 @@ void Progress::begin_stage(const std::string& name, std::size_t total) {
 
 void Progress::advance(std::size_t units) {
   const std::size_t done = done_.fetch_add(units) + units;
-  check();
+  // No check() here: advance() runs inside OpenMP loops, which an exception
+  // must not leave. Loops poll should_stop() and the caller check()s after.
   report(std::min(1.0, static_cast<double>(done) / static_cast<double>(total_)));
 }
 

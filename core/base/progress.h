@@ -23,7 +23,8 @@ class Progress {
 
   // Starts a stage of `total` work units (>= 1).
   void begin_stage(const std::string& name, std::size_t total);
-  // Adds finished work units; thread-safe. Throws Cancelled when a stop was asked.
+  // Adds finished work units; thread-safe, never throws (it is called inside
+  // parallel loops): poll should_stop() in the loop and check() after it.
   void advance(std::size_t units = 1);
   // Marks the stage complete (reports 1.0).
   void end_stage();

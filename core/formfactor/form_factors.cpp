@@ -16,9 +16,13 @@ namespace {
 
 using Point = SurfacePoint;
 
-// A receiving surface element: (a share of) one side of one triangle part.
+// A piece of surface a patch stands for: the Voronoi cell of one of its
+// samples (a polygon), or the parts no ray hit that a sample carries, lumped
+// into one point (polygon == nullptr): on finely meshed surfaces those are
+// many tiny triangles, and integrating each exactly costs far more than the
+// accuracy it buys.
 struct Receiver {
-  const glm::vec3* polygon;
+  const glm::vec3* polygon;  // nullptr: a point piece
   int vertex_count;
   glm::vec3 centroid;
   glm::vec3 normal;  // of the receiving side
@@ -41,23 +45,31 @@ struct PatchGeometry {
   std::vector<std::vector<Clump>> clumps;      // the pieces grouped by sample
 };
 
-// Reduces a patch's samples to at most k points for far-field sums: seeds by
-// farthest-point sampling, every sample assigned to its nearest seed, each
-// representative the area-weighted mean of its group. Areas add up to the
-// patch's, so this is a quadrature of the patch, not a subsample.
+// Reduces a patch's pieces of surface to at most k points for far-field sums:
+// seeds by farthest-point sampling, every piece assigned to its nearest seed,
+// each representative the area-weighted mean of its group. Areas add up to
+// the patch's, so this is a quadrature of the patch, not a subsample.
 std::vector<Point> representatives(const std::vector<Point>& all, std::size_t k) {
   if (all.size() <= k) return all;
+  // Distance in position and orientation: a patch may hold pieces of several
+  // faces (a box corner with one patch per voxel), and a representative that
+  // averaged a floor piece with a wall piece would have a normal neither has.
+  float area = 0.0f;
+  for (const Point& x : all) area += x.area;
+  const float normal_weight = 4.0f * area;
+  auto distance2 = [&](const Point& a, const Point& b) {
+    const glm::vec3 dp = a.position - b.position, dn = a.normal - b.normal;
+    return glm::dot(dp, dp) + normal_weight * glm::dot(dn, dn);
+  };
   std::vector<std::size_t> seeds{0};
   std::vector<float> dist(all.size(), std::numeric_limits<float>::infinity());
   while (seeds.size() < k) {
-    const glm::vec3 s = all[seeds.back()].position;
     std::size_t farthest = 0;
     for (std::size_t i = 0; i < all.size(); ++i) {
-      const glm::vec3 d = all[i].position - s;
-      dist[i] = std::min(dist[i], glm::dot(d, d));
+      dist[i] = std::min(dist[i], distance2(all[i], all[seeds.back()]));
       if (dist[i] > dist[farthest]) farthest = i;
     }
-    if (dist[farthest] <= 0.0f) break;  // all remaining samples coincide with seeds
+    if (dist[farthest] <= 0.0f) break;  // all remaining pieces coincide with seeds
     seeds.push_back(farthest);
   }
   std::vector<Point> reps(seeds.size(), Point{glm::vec3(0.0f), glm::vec3(0.0f), 0.0f});
@@ -65,9 +77,9 @@ std::vector<Point> representatives(const std::vector<Point>& all, std::size_t k)
     std::size_t best = 0;
     float best_d = std::numeric_limits<float>::infinity();
     for (std::size_t r = 0; r < seeds.size(); ++r) {
-      const glm::vec3 d = x.position - all[seeds[r]].position;
-      if (glm::dot(d, d) < best_d) {
-        best_d = glm::dot(d, d);
+      const float d = distance2(x, all[seeds[r]]);
+      if (d < best_d) {
+        best_d = d;
         best = r;
       }
     }
@@ -100,15 +112,8 @@ PatchGeometry gather(const Scene& scene, const Voxelization& vox, const SampleSe
                   0.0f,
                   static_cast<std::uint32_t>(g.surface[p].size()),
                   0};
-      for (std::uint32_t c = set.carried_first[si]; c < set.carried_first[si + 1]; ++c) {
-        const CarriedArea& piece = set.carried[c];
-        Receiver r;
-        r.polygon = &set.carried_vertices[piece.first_vertex];
-        r.vertex_count = static_cast<int>(piece.vertex_count);
-        r.centroid = polygon_centroid(r.polygon, piece.vertex_count);
-        const std::uint32_t tri = vox.parts[piece.part].triangle;
-        r.normal = glm::normalize(scene.triangle_cross(tri)) * (piece.back ? -1.0f : 1.0f);
-        r.area = piece.area;
+      Receiver lumped{nullptr, 0, glm::vec3(0.0f), glm::vec3(0.0f), 0.0f};
+      auto add_piece = [&](const Receiver& r) {
         g.surface[p].push_back(r);
         // Far-field points sit at the pieces' centroids, not at the samples
         // (a sample need not be at the centre of the surface it stands for).
@@ -117,6 +122,32 @@ PatchGeometry gather(const Scene& scene, const Voxelization& vox, const SampleSe
         clump.normal += r.area * r.normal;
         clump.area += r.area;
         clump.count++;
+      };
+      for (std::uint32_t c = set.carried_first[si]; c < set.carried_first[si + 1]; ++c) {
+        const CarriedArea& piece = set.carried[c];
+        if (piece.whole_part) {
+          const glm::vec3* poly = &set.carried_vertices[piece.first_vertex];
+          const std::uint32_t tri = vox.parts[piece.part].triangle;
+          lumped.centroid += piece.area * polygon_centroid(poly, piece.vertex_count);
+          lumped.normal += piece.area * glm::normalize(scene.triangle_cross(tri)) *
+                           (piece.back ? -1.0f : 1.0f);
+          lumped.area += piece.area;
+          continue;
+        }
+        Receiver r;
+        r.polygon = &set.carried_vertices[piece.first_vertex];
+        r.vertex_count = static_cast<int>(piece.vertex_count);
+        r.centroid = polygon_centroid(r.polygon, piece.vertex_count);
+        const std::uint32_t tri = vox.parts[piece.part].triangle;
+        r.normal = glm::normalize(scene.triangle_cross(tri)) * (piece.back ? -1.0f : 1.0f);
+        r.area = piece.area;
+        add_piece(r);
+      }
+      if (lumped.area > 0.0f) {
+        lumped.centroid /= lumped.area;
+        const float len = glm::length(lumped.normal);
+        lumped.normal = len > 0.0f ? lumped.normal / len : glm::vec3(0.0f, 0.0f, 1.0f);
+        add_piece(lumped);
       }
       if (clump.count == 0 || !(clump.area > 0.0f)) continue;
       clump.centroid /= clump.area;
@@ -127,6 +158,11 @@ PatchGeometry gather(const Scene& scene, const Voxelization& vox, const SampleSe
         for (int v = 0; v < piece.vertex_count; ++v) {
           const glm::vec3 d = piece.polygon[v] - clump.centroid;
           clump.radius2 = std::max(clump.radius2, glm::dot(d, d));
+        }
+        if (!piece.polygon) {  // a lumped point: its distance plus a disk of its area
+          const float reach = glm::length(piece.centroid - clump.centroid) +
+                              std::sqrt(piece.area / std::numbers::pi_v<float>);
+          clump.radius2 = std::max(clump.radius2, reach * reach);
         }
       }
       g.clumps[p].push_back(clump);
@@ -207,6 +243,12 @@ float near_transfer(const std::vector<Receiver>& from_pieces, const std::vector<
           if (&s == &r) continue;
           const glm::vec3 d = r.centroid - s.centroid;
           const float r2 = glm::dot(d, d);
+          if (!s.polygon || !r.polygon) {
+            // A lumped point on either side: the disk-bounded kernel, the same
+            // both ways so the pair stays reciprocal.
+            sum += bounded_exchange({s.centroid, s.normal, s.area}, {r.centroid, r.normal, r.area});
+            continue;
+          }
           if (r2 >= kSeparated * std::max(s.area, r.area)) {
             // Both pieces small against their distance: the differential
             // kernel between their centroids.

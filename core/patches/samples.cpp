@@ -113,10 +113,10 @@ VoxelSamples sample_voxel(const Scene& scene, const RayTracer& tracer, const Vox
   std::vector<std::vector<CarriedArea>> carried(samples.size());
   std::vector<glm::vec3> vertices;
   auto carry = [&](std::size_t s, std::uint32_t part_index, bool back,
-                   const std::vector<glm::vec3>& poly, float area) {
+                   const std::vector<glm::vec3>& poly, float area, bool whole) {
     samples[s].area += area;
     carried[s].push_back({part_index, back, area, static_cast<std::uint32_t>(vertices.size()),
-                          static_cast<std::uint32_t>(poly.size())});
+                          static_cast<std::uint32_t>(poly.size()), whole});
     vertices.insert(vertices.end(), poly.begin(), poly.end());
   };
   for (std::uint32_t k = 0; k < voxel.part_count; ++k) {
@@ -149,7 +149,8 @@ VoxelSamples sample_voxel(const Scene& scene, const RayTracer& tracer, const Vox
           const float area = total > 0.0f ? areas[c] * part.area / total
                                           : part.area / static_cast<float>(cells.size());
           if (area > 0.0f)
-            carry(it->second[c], part_index, !front, areas[c] > 0.0f ? cells[c] : polygon, area);
+            carry(it->second[c], part_index, !front, areas[c] > 0.0f ? cells[c] : polygon, area,
+                  false);
         }
         continue;
       }
@@ -166,7 +167,7 @@ VoxelSamples sample_voxel(const Scene& scene, const RayTracer& tracer, const Vox
         }
       }
       if (best_index >= 0)
-        carry(static_cast<std::size_t>(best_index), part_index, !front, polygon, part.area);
+        carry(static_cast<std::size_t>(best_index), part_index, !front, polygon, part.area, true);
       else
         unsampled += part.area;
     }

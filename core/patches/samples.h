@@ -47,6 +47,7 @@ struct CarriedArea {
   float area;
   std::uint32_t first_vertex;  // into SampleSet::carried_vertices
   std::uint32_t vertex_count;
+  bool whole_part;  // a part no ray hit, given whole to this sample
 };
 
 struct SampleSet {

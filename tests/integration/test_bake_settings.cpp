@@ -1,0 +1,225 @@
+// Each bake option changes the bake the way its help text says, and the same
+// seed reproduces the same bytes.
+#include <map>
+
+#include "cli_harness.h"
+
+namespace bounce::itest {
+namespace {
+
+struct Bake {
+  RunResult run;
+  json manifest;
+  fs::path dir;
+  std::size_t patches() const { return manifest["counts"]["patches"].get<std::size_t>(); }
+};
+
+// Bakes `scene_path` with `options` into <tmp>/<name>.
+Bake bake(const TempDir& tmp, const std::string& name, const std::string& scene_path,
+          const std::vector<std::string>& options, RunOptions run_options = {}) {
+  Bake b;
+  b.dir = tmp / name;
+  std::vector<std::string> args{"bake", scene_path, "--quiet", "--out", b.dir.string()};
+  args.insert(args.end(), options.begin(), options.end());
+  if (run_options.cwd.empty()) run_options.cwd = tmp.path();
+  b.run = run(args, run_options);
+  EXPECT_EQ(b.run.exit_code, 0) << b.run;
+  if (b.run.exit_code == 0) b.manifest = read_manifest(b.dir);
+  return b;
+}
+
+// Patches per voxel as patches.npy counts them, against voxels.npy's column.
+std::vector<std::size_t> patches_per_voxel(const Bake& b) {
+  const auto p = read_npy_f32(b.dir / "patches.npy");
+  const auto v = read_npy_f32(b.dir / "voxels.npy");
+  std::vector<std::size_t> count(v.shape[0], 0);
+  for (std::size_t i = 0; i < p.shape[0]; ++i)
+    count.at(static_cast<std::size_t>(at(p, i, patch_col::kVoxel)))++;
+  for (std::size_t k = 0; k < v.shape[0]; ++k)
+    EXPECT_EQ(static_cast<float>(count[k]), at(v, k, voxel_col::kPatches)) << "voxel " << k;
+  return count;
+}
+
+TEST(BakeSettings, FinerVoxelGridGivesMorePatches) {
+  TempDir tmp;
+  const Bake coarse = bake(tmp, "v6", scene("cornell-box"), {"--voxel", "6"});
+  const Bake fine = bake(tmp, "v10", scene("cornell-box"), {"--voxel", "10"});
+  ASSERT_FALSE(coarse.manifest.is_null());
+  ASSERT_FALSE(fine.manifest.is_null());
+  EXPECT_LT(coarse.patches(), fine.patches());
+  EXPECT_LT(coarse.manifest["counts"]["occupied_voxels"],
+            fine.manifest["counts"]["occupied_voxels"]);
+  // The resolution counts cells along the longest axis.
+  for (const Bake* b : {&coarse, &fine}) {
+    const int res = b->manifest["settings"]["voxel_resolution"].get<int>();
+    const json& dims = b->manifest["grid"]["dims"];
+    EXPECT_EQ(std::max({dims[0].get<int>(), dims[1].get<int>(), dims[2].get<int>()}), res);
+    EXPECT_EQ(read_npy_f32(b->dir / "patches.npy").shape[0], b->patches());
+  }
+  EXPECT_EQ(coarse.manifest["settings"]["voxel_resolution"], 6);
+  EXPECT_EQ(fine.manifest["settings"]["voxel_resolution"], 10);
+}
+
+TEST(BakeSettings, PatchesPerVoxelCapsThePatchesInEachVoxel) {
+  TempDir tmp;
+  const Bake one =
+      bake(tmp, "k1", scene("cornell-box"), {"--voxel", "6", "--patches-per-voxel", "1"});
+  const Bake three =
+      bake(tmp, "k3", scene("cornell-box"), {"--voxel", "6", "--patches-per-voxel", "3"});
+  ASSERT_FALSE(one.manifest.is_null());
+  ASSERT_FALSE(three.manifest.is_null());
+  EXPECT_LT(one.patches(), three.patches());
+  EXPECT_EQ(one.manifest["counts"]["occupied_voxels"], three.manifest["counts"]["occupied_voxels"]);
+  for (const auto& [b, cap] : {std::pair{&one, 1u}, std::pair{&three, 3u}}) {
+    const std::string what = "--patches-per-voxel " + std::to_string(cap);
+    EXPECT_EQ(b->manifest["settings"]["patches_per_voxel"], cap);
+    const auto p = read_npy_f32(b->dir / "patches.npy");
+    expect_valid_patches(p, what);
+    patches_per_voxel(*b);  // checks voxels.npy's patch counts
+    // A voxel may keep more patches than asked only when the rest face more
+    // than 90 degrees apart (two sides of a thin wall); the manifest counts
+    // those voxels.
+    std::map<std::size_t, std::vector<std::size_t>> of_voxel;
+    for (std::size_t i = 0; i < p.shape[0]; ++i)
+      of_voxel[static_cast<std::size_t>(at(p, i, patch_col::kVoxel))].push_back(i);
+    std::size_t above = 0;
+    for (const auto& [voxel, members] : of_voxel) {
+      if (members.size() <= cap) continue;
+      ++above;
+      for (std::size_t a = 0; a < members.size(); ++a)
+        for (std::size_t c = a + 1; c < members.size(); ++c) {
+          double dot = 0.0;
+          for (std::size_t k = 0; k < 3; ++k)
+            dot += at(p, members[a], patch_col::kNormal + k) *
+                   at(p, members[c], patch_col::kNormal + k);
+          EXPECT_LT(dot, 1e-4) << what << ": voxel " << voxel << " keeps " << members.size()
+                               << " patches, two of them less than 90 degrees apart (dot " << dot
+                               << ")";
+        }
+    }
+    EXPECT_LE(above, b->manifest["clustering"]["voxels_above_target"].get<std::size_t>()) << what;
+  }
+}
+
+struct ModeCase {
+  std::string scene;
+  std::string mode;
+  std::vector<std::string> extra;
+};
+
+void PrintTo(const ModeCase& c, std::ostream* os) { *os << c.scene << " --patches " << c.mode; }
+
+class PatchModes : public ::testing::TestWithParam<ModeCase> {};
+
+TEST_P(PatchModes, ProduceValidPatches) {
+  const ModeCase& c = GetParam();
+  TempDir tmp;
+  std::vector<std::string> options{"--voxel", "6", "--patches", c.mode};
+  options.insert(options.end(), c.extra.begin(), c.extra.end());
+  RunOptions o;
+  o.timeout = std::chrono::seconds(180);
+  const Bake b = bake(tmp, "bake", scene(c.scene), options, o);
+  ASSERT_FALSE(b.manifest.is_null());
+  EXPECT_EQ(b.manifest["settings"]["patch_mode"], c.mode);
+  const auto p = read_npy_f32(b.dir / "patches.npy");
+  EXPECT_EQ(p.shape[0], b.patches());
+  expect_valid_patches(p, c.scene + " --patches " + c.mode);
+  const auto per_voxel = patches_per_voxel(b);
+  if (c.mode == "voxel") {
+    // One patch per voxel and normal direction: at most the six axes.
+    EXPECT_LE(*std::max_element(per_voxel.begin(), per_voxel.end()), 6u);
+  }
+  // Patches carry the sampled area (less that of the few patches left out
+  // because they see nothing); sampled and unsampled add up to the surface.
+  const json& sampling = b.manifest["sampling"];
+  const double sampled = sampling["sampled_area"].get<double>();
+  EXPECT_NEAR(sampled + sampling["unsampled_area"].get<double>(),
+              sampling["surface_area"].get<double>(), 1e-3 * sampled);
+  const double area = column_sum(p, patch_col::kArea);
+  EXPECT_LE(area, sampled * 1.001);
+  EXPECT_GT(area, sampled * 0.9);
+  EXPECT_EQ(b.manifest["checks"]["form_factors"]["non_finite"], 0);
+}
+
+// The bunny's form factors are slow (tens of seconds at the default sampling):
+// one ray per voxel face and one visibility ray keep this test short.
+const std::vector<std::string> kFastBunny{"--samples-per-face", "1", "--visibility-rays", "1"};
+
+INSTANTIATE_TEST_SUITE_P(Scenes, PatchModes,
+                         ::testing::Values(ModeCase{"cornell-box", "voxel", {}},
+                                           ModeCase{"cornell-box", "virtual", {}},
+                                           ModeCase{"cornell-bunny", "voxel", kFastBunny},
+                                           ModeCase{"cornell-bunny", "virtual", kFastBunny}),
+                         [](const ::testing::TestParamInfo<ModeCase>& p) {
+                           std::string name = p.param.scene + "_" + p.param.mode;
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
+TEST(BakeSettings, PatchesTotalLandsNearTheTarget) {
+  TempDir tmp;
+  const Bake b = bake(tmp, "total", scene("cornell-box"), {"--patches-total", "600"});
+  ASSERT_FALSE(b.manifest.is_null());
+  EXPECT_EQ(b.manifest["settings"]["patches_total_target"], 600);
+  EXPECT_GE(static_cast<double>(b.patches()), 600.0 / 1.6);
+  EXPECT_LE(static_cast<double>(b.patches()), 600.0 * 1.6);
+  EXPECT_EQ(read_npy_f32(b.dir / "patches.npy").shape[0], b.patches());
+}
+
+TEST(BakeSettings, SameSeedGivesIdenticalBytesWhateverTheThreadCount) {
+  TempDir tmp;
+  RunOptions one_thread, two_threads;
+  one_thread.env["OMP_NUM_THREADS"] = "1";
+  two_threads.env["OMP_NUM_THREADS"] = "2";
+  const std::vector<std::string> options{"--voxel", "6", "--seed", "7", "--dump-matrices"};
+  const Bake a = bake(tmp, "a", scene("cornell-box"), options, two_threads);
+  const Bake b = bake(tmp, "b", scene("cornell-box"), options, one_thread);
+  ASSERT_FALSE(a.manifest.is_null());
+  ASSERT_FALSE(b.manifest.is_null());
+  for (const std::string file : {"patches.npy", "samples.npy", "voxels.npy", "F.npy"})
+    EXPECT_TRUE(read_text(a.dir / file) == read_text(b.dir / file))
+        << file << " differs between two bakes with the same seed";
+}
+
+TEST(BakeSettings, DifferentSeedsGiveDifferentSamples) {
+  TempDir tmp;
+  const Bake a = bake(tmp, "seed1", scene("cornell-box"), {"--voxel", "6", "--seed", "1"});
+  const Bake b = bake(tmp, "seed2", scene("cornell-box"), {"--voxel", "6", "--seed", "2"});
+  ASSERT_FALSE(a.manifest.is_null());
+  ASSERT_FALSE(b.manifest.is_null());
+  EXPECT_EQ(a.manifest["settings"]["seed"], 1);
+  EXPECT_EQ(b.manifest["settings"]["seed"], 2);
+  EXPECT_FALSE(read_text(a.dir / "samples.npy") == read_text(b.dir / "samples.npy"))
+      << "samples.npy is the same for seeds 1 and 2";
+}
+
+TEST(BakeSettings, SceneBakeDefaultsApplyUnlessTheCommandLineOverrides) {
+  TempDir tmp;
+  // The furnace cube with its own bake block.
+  const fs::path dir = tmp / "scene";
+  fs::create_directories(dir);
+  for (const std::string f : {"furnace.obj", "furnace.mtl"})
+    fs::copy_file(kScenes / "furnace" / f, dir / f);
+  write_text(dir / "scene.json", R"({
+  "meshes": [{ "file": "furnace.obj" }],
+  "bake": { "voxel": 5, "patches_per_voxel": 1, "samples_per_face": 2 }
+})");
+  const Bake defaults = bake(tmp, "defaults", dir.string(), {});
+  ASSERT_FALSE(defaults.manifest.is_null());
+  const json& s = defaults.manifest["settings"];
+  EXPECT_EQ(s["voxel_resolution"], 5) << s.dump();
+  EXPECT_EQ(s["patches_per_voxel"], 1) << "scene.json bake.patches_per_voxel ignored: " << s.dump();
+  EXPECT_EQ(s["samples_per_face"], 2) << "scene.json bake.samples_per_face ignored: " << s.dump();
+
+  const Bake overridden =
+      bake(tmp, "overridden", dir.string(),
+           {"--voxel", "4", "--patches-per-voxel", "2", "--samples-per-face", "3"});
+  ASSERT_FALSE(overridden.manifest.is_null());
+  const json& o = overridden.manifest["settings"];
+  EXPECT_EQ(o["voxel_resolution"], 4) << o.dump();
+  EXPECT_EQ(o["patches_per_voxel"], 2) << o.dump();
+  EXPECT_EQ(o["samples_per_face"], 3) << o.dump();
+}
+
+}  // namespace
+}  // namespace bounce::itest
