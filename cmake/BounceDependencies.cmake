@@ -11,3 +11,14 @@ find_package(CLI11 REQUIRED)
 # OpenImageIO's CMake config is broken on Debian 12 (it references
 # /usr/bin/iconvert and /usr/include/opencv4): use its pkg-config file.
 pkg_check_modules(OIIO REQUIRED IMPORTED_TARGET OpenImageIO)
+# Dense linear algebra (core/transport): OpenBLAS for BLAS and LAPACK (its
+# headers live in an arch- and threading-specific folder: ask pkg-config),
+# LAPACKE for the C interface, CLBlast on OpenCL (PoCL's CPU device here).
+pkg_check_modules(OPENBLAS REQUIRED IMPORTED_TARGET openblas)
+find_library(LAPACKE_LIBRARY lapacke REQUIRED)
+find_package(OpenCL REQUIRED)
+find_package(CLBlast REQUIRED)
+# Block compression baselines (core/compress): libsquish's pkg-config file is
+# broken on Debian 12, find the library directly; stb_dxt is header-only.
+find_library(SQUISH_LIB squish REQUIRED)
+find_path(STB_INCLUDE_DIR stb/stb_dxt.h REQUIRED)

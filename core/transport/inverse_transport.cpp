@@ -1,0 +1,203 @@
+#include "transport/inverse_transport.h"
+
+#include <lapacke.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <limits>
+
+#include "base/error.h"
+#include "transport/blas_int.h"
+#include "transport/text_format.h"
+
+static_assert(sizeof(lapack_int) == sizeof(int), "LAPACKE built with 64-bit integers");
+
+namespace bounce {
+
+namespace {
+
+// float64 results with fewer than two correct digits are refused, not shipped.
+constexpr double kFloat64ErrorLimit = 1e-2;
+
+template <class Real>
+struct Lapack;
+
+template <>
+struct Lapack<float> {
+  static lapack_int getrf(int n, float* a, lapack_int* ipiv) {
+    return LAPACKE_sgetrf(LAPACK_COL_MAJOR, n, n, a, n, ipiv);
+  }
+  static lapack_int gecon(int n, const float* a, double anorm, double* rcond) {
+    float r = 0.0f;
+    const lapack_int info =
+        LAPACKE_sgecon(LAPACK_COL_MAJOR, '1', n, a, n, static_cast<float>(anorm), &r);
+    *rcond = r;
+    return info;
+  }
+  static lapack_int getrs(int n, int nrhs, const float* a, const lapack_int* ipiv, float* b) {
+    return LAPACKE_sgetrs(LAPACK_COL_MAJOR, 'N', n, nrhs, a, n, ipiv, b, n);
+  }
+};
+
+template <>
+struct Lapack<double> {
+  static lapack_int getrf(int n, double* a, lapack_int* ipiv) {
+    return LAPACKE_dgetrf(LAPACK_COL_MAJOR, n, n, a, n, ipiv);
+  }
+  static lapack_int gecon(int n, const double* a, double anorm, double* rcond) {
+    return LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', n, a, n, anorm, rcond);
+  }
+  static lapack_int getrs(int n, int nrhs, const double* a, const lapack_int* ipiv, double* b) {
+    return LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', n, nrhs, a, n, ipiv, b, n);
+  }
+};
+
+void check_info(lapack_int info, const char* routine) {
+  if (info < 0)
+    throw Error("transport", text_format("%s rejected argument %d", routine, static_cast<int>(-info)));
+  if (info > 0)
+    throw Error("transport",
+                text_format("%s: I - diag(albedo) F is exactly singular (zero pivot %d): light "
+                            "would grow without bound; check form-factor row sums and albedo",
+                            routine, static_cast<int>(info)));
+}
+
+template <class Real>
+struct Factorisation {
+  std::vector<Real> lu;
+  std::vector<lapack_int> ipiv;
+  double condition = 0.0;
+};
+
+// LU of I - M^T (the row-major I - M read column-major) and its condition.
+template <class Real, class Source>
+Factorisation<Real> factorise(const Source* m, std::size_t n, double anorm) {
+  const int k = blas_dim(n, "LAPACKE_?getrf");
+  Factorisation<Real> f;
+  f.lu.resize(n * n);
+  for (std::size_t i = 0; i < n * n; ++i) f.lu[i] = -static_cast<Real>(m[i]);
+  for (std::size_t d = 0; d < n; ++d) f.lu[d * n + d] += Real(1);
+  f.ipiv.resize(n);
+  check_info(Lapack<Real>::getrf(k, f.lu.data(), f.ipiv.data()), "LAPACKE_?getrf");
+  double rcond = 0.0;
+  check_info(Lapack<Real>::gecon(k, f.lu.data(), anorm, &rcond), "LAPACKE_?gecon");
+  f.condition = rcond > 0.0 ? 1.0 / rcond : std::numeric_limits<double>::infinity();
+  return f;
+}
+
+// Overwrites rhs (column-major n x n, i.e. the row-major M) with the solution,
+// block by block so progress and cancellation are heard during the solve.
+template <class Real>
+void solve(const Factorisation<Real>& f, Real* rhs, std::size_t n, const InverseOptions& options) {
+  const int k = blas_dim(n, "LAPACKE_?getrs");
+  const std::size_t blocks = std::clamp<std::size_t>(options.solve_blocks, 1, n);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const std::size_t first = n * b / blocks, last = n * (b + 1) / blocks;
+    if (last > first)
+      check_info(Lapack<Real>::getrs(k, static_cast<int>(last - first), f.lu.data(), f.ipiv.data(),
+                                     rhs + first * n),
+                 "LAPACKE_?getrs");
+    if (options.tick) options.tick();
+  }
+}
+
+double inf_norm_of_identity_minus(const float* m, std::size_t n) {
+  double norm = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double row = 0.0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const double v = static_cast<double>(m[i * n + j]);
+      row += i == j ? std::abs(1.0 - v) : std::abs(v);
+    }
+    norm = std::max(norm, row);
+  }
+  return norm;
+}
+
+}  // namespace
+
+double condition_lower_bound(const float* m, std::size_t n, double spectral_radius) {
+  if (!(spectral_radius < 1.0)) return std::numeric_limits<double>::infinity();
+  return inf_norm_of_identity_minus(m, n) / (1.0 - spectral_radius);
+}
+
+TransportPrecision predicted_precision(double condition_lower_bound,
+                                       const InverseOptions& options) {
+  if (options.force) return *options.force;
+  return condition_lower_bound * FLT_EPSILON > options.float32_error_limit
+             ? TransportPrecision::Float64
+             : TransportPrecision::Float32;
+}
+
+double lu_cost_in_gemms(TransportPrecision precision) {
+  return precision == TransportPrecision::Float64 ? 3.5 : 1.5;
+}
+
+const char* precision_name(TransportPrecision p) {
+  return p == TransportPrecision::Float64 ? "float64" : "float32";
+}
+
+InverseTransport solve_infinite_bounces(std::vector<float> m, std::size_t n,
+                                        double spectral_radius, const InverseOptions& options) {
+  if (m.size() != n * n) throw Error("transport", "solve_infinite_bounces: size does not match n");
+  InverseTransport r;
+  if (n == 0) return r;
+  // ||I - M||_inf, also the anorm ?gecon needs for the column-major I - M^T.
+  const double anorm = inf_norm_of_identity_minus(m.data(), n);
+  r.condition_lower_bound = spectral_radius < 1.0 ? anorm / (1.0 - spectral_radius)
+                                                  : std::numeric_limits<double>::infinity();
+  const double limit = options.float32_error_limit;
+
+  bool use_float64 = false;
+  if (options.force) {
+    use_float64 = *options.force == TransportPrecision::Float64;
+    r.why = text_format("%s forced", precision_name(*options.force));
+  } else if (r.condition_lower_bound * FLT_EPSILON > limit) {
+    use_float64 = true;
+    r.why = text_format(
+        "float64: condition >= ||I-M|| / (1 - rho) = %.3g before factorising, so float32's "
+        "error estimate kappa * eps >= %.2g exceeds %.0e",
+        r.condition_lower_bound, r.condition_lower_bound * FLT_EPSILON, limit);
+  }
+
+  if (!use_float64) {
+    Factorisation<float> f = factorise<float>(m.data(), n, anorm);
+    r.condition = f.condition;
+    if (!options.force && f.condition * FLT_EPSILON > limit) {
+      use_float64 = true;
+      r.refactorised = true;
+      r.why = text_format(
+          "float64: float32 LU's condition estimate %.3g gives kappa * eps = %.2g > %.0e "
+          "(the lower bound %.3g had allowed float32); refactorised",
+          f.condition, f.condition * FLT_EPSILON, limit, r.condition_lower_bound);
+    } else {
+      if (!options.force)
+        r.why = text_format("float32: condition estimate %.3g gives kappa * eps = %.2g <= %.0e",
+                            f.condition, f.condition * FLT_EPSILON, limit);
+      if (options.tick) options.tick();
+      solve(f, m.data(), n, options);
+      r.precision = TransportPrecision::Float32;
+      r.t = std::move(m);
+      return r;
+    }
+  }
+
+  // float64: the right-hand side first, then M's float copy can go, then the
+  // factorisation is built from the double copy -- at most 4 n^2 floats.
+  std::vector<double> x(m.begin(), m.end());
+  m = {};
+  Factorisation<double> f = factorise<double>(x.data(), n, anorm);
+  r.condition = f.condition;
+  if (f.condition * DBL_EPSILON > kFloat64ErrorLimit)
+    throw Error("transport", text_format("I - diag(albedo) F is numerically singular (condition "
+                                         "%.3g): check form-factor row sums and albedo",
+                                         f.condition));
+  if (options.tick) options.tick();
+  solve(f, x.data(), n, options);
+  r.precision = TransportPrecision::Float64;
+  r.t.assign(x.begin(), x.end());
+  return r;
+}
+
+}  // namespace bounce

@@ -1,0 +1,91 @@
+#include "transport/spectral_radius.h"
+
+#include <cblas.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "transport/blas_int.h"
+
+namespace bounce {
+
+namespace {
+
+// A floor on the iterate keeps it strictly positive (the bounds need v > 0)
+// without moving the estimate: 1e-6 of the largest entry is far below what a
+// few dozen iterations resolve.
+constexpr float kFloor = 1e-6f;
+
+// Whether a geometrically converging sequence has settled: its remaining
+// change, extrapolated as change_k q / (1 - q) with q = change_k / change_(k-1),
+// is below tolerance * value (or it stopped changing).
+struct Settling {
+  double previous = -1.0;
+  double previous_change = -1.0;
+  bool settled(double value, double tolerance) {
+    bool done = false;
+    if (previous >= 0.0) {
+      const double change = std::abs(value - previous);
+      if (change <= tolerance * 1e-3 * value) {
+        done = true;
+      } else if (previous_change > 0.0) {
+        const double q = change / previous_change;
+        done = q < 1.0 && change * q / (1.0 - q) <= tolerance * value;
+      }
+      previous_change = change;
+    }
+    previous = value;
+    return done;
+  }
+};
+
+}  // namespace
+
+SpectralRadius estimate_spectral_radius(const float* m, std::size_t n, int max_iterations,
+                                        double tolerance) {
+  SpectralRadius r;
+  if (n == 0) return r;
+  const int k = blas_dim(n, "cblas_sgemv");
+  std::vector<float> v(n, 1.0f), w(n);
+  Settling upper_track, estimate_track;
+  for (int it = 1; it <= std::max(max_iterations, 1); ++it) {
+    cblas_sgemv(CblasRowMajor, CblasNoTrans, k, k, 1.0f, m, k, v.data(), 1, 0.0f, w.data(), 1);
+    double vv = 0.0, ww = 0.0, lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+    float w_max = 0.0f;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double q = static_cast<double>(w[i]) / static_cast<double>(v[i]);
+      lo = std::min(lo, q);
+      hi = std::max(hi, q);
+      vv += static_cast<double>(v[i]) * v[i];
+      ww += static_cast<double>(w[i]) * w[i];
+      w_max = std::max(w_max, w[i]);
+    }
+    r.iterations = it;
+    r.estimate = std::sqrt(ww / vv);
+    r.lower = lo;
+    r.upper = hi;
+    r.weights = v;
+    if (w_max <= 0.0f || !std::isfinite(w_max)) {
+      r.converged = w_max <= 0.0f;  // M v = 0 for v > 0: M = 0, rho = 0 exactly
+      break;
+    }
+    if (hi - lo <= tolerance * hi) {
+      r.converged = true;
+      break;
+    }
+    // Reducible matrices (rows of zero albedo, parts that do not see each
+    // other) hold the lower bound below rho for good. Then stop when both the
+    // upper bound and the estimate have settled.
+    const bool upper_settled = upper_track.settled(hi, tolerance);
+    const bool estimate_settled = estimate_track.settled(r.estimate, tolerance);
+    if (upper_settled && estimate_settled) {
+      r.converged = true;
+      break;
+    }
+    for (std::size_t i = 0; i < n; ++i) v[i] = w[i] / w_max + kFloor;
+  }
+  return r;
+}
+
+}  // namespace bounce

@@ -1,0 +1,423 @@
+#include "transport/transport.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "base/error.h"
+#include "transport/bounce_series.h"
+#include "transport/gemm_selection.h"
+#include "transport/spectral_radius.h"
+#include "transport/text_format.h"
+
+namespace bounce {
+
+namespace {
+
+// Albedo channels closer than this everywhere are the same channel: albedo
+// comes from 8-bit textures or decimal MTL values, so real differences are
+// far larger, and float rounding of equal inputs far smaller.
+constexpr float kSameAlbedo = 1e-6f;
+
+// Progress units: one product is 12; an LU is 4 for the factorisation (a
+// third of a product's flops) and one per solve block (12 blocks: the solve
+// costs a product's flops).
+constexpr std::size_t kGemmUnits = 12;
+constexpr std::size_t kFactorUnits = 4;
+constexpr int kSolveBlocks = 12;
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string channel_label(const std::vector<int>& rgb) {
+  std::string s;
+  for (int c : rgb) s += "RGB"[c];
+  return s;
+}
+
+void validate_settings(const TransportSettings& s) {
+  if (s.bounces < TransportSettings::kInfiniteBounces || s.bounces > TransportSettings::kMaxBounces)
+    throw Error("transport.bounces",
+                text_format("must be auto (0), infinity (-1) or 1..%d, got %d",
+                            TransportSettings::kMaxBounces, s.bounces));
+  if (!(s.auto_tolerance > 0.0 && s.auto_tolerance < 1.0))
+    throw Error("transport.auto_tolerance",
+                text_format("must be in (0, 1), got %g", s.auto_tolerance));
+  if (s.max_auto_bounces < 1 || s.max_auto_bounces > TransportSettings::kMaxBounces)
+    throw Error("transport.max_auto_bounces", text_format("must be in 1..%d, got %d",
+                                                          TransportSettings::kMaxBounces,
+                                                          s.max_auto_bounces));
+  if (!(s.auto_probe_min_seconds >= 0.0))
+    throw Error("transport.auto_probe_min_seconds",
+                text_format("must be >= 0, got %g", s.auto_probe_min_seconds));
+}
+
+// Rejects what would make the result meaningless; returns the largest row sum.
+double validate_inputs(const FormFactorMatrix& f, const std::vector<glm::vec3>& albedo) {
+  const std::size_t n = f.n;
+  if (f.values.size() != n * n)
+    throw Error("transport", text_format("form-factor matrix holds %zu values, expected %zu x %zu",
+                                         f.values.size(), n, n));
+  if (albedo.size() != n)
+    throw Error("transport", text_format("%zu albedo values for %zu patches", albedo.size(), n));
+  std::size_t non_finite = 0, negative = 0, first_bad = n * n;
+  double max_row = 0.0;
+  for (std::size_t p = 0; p < n; ++p) {
+    double row = 0.0;
+    for (std::size_t q = 0; q < n; ++q) {
+      const float v = f.values[p * n + q];
+      if (!std::isfinite(v)) {
+        ++non_finite;
+        first_bad = std::min(first_bad, p * n + q);
+      } else if (v < 0.0f) {
+        ++negative;
+        first_bad = std::min(first_bad, p * n + q);
+      } else {
+        row += v;
+      }
+    }
+    max_row = std::max(max_row, row);
+  }
+  if (non_finite + negative > 0)
+    throw Error("transport",
+                text_format("form-factor matrix has %zu NaN/Inf and %zu negative entries (first: "
+                            "F[%zu][%zu] = %g); form factors must be finite and >= 0",
+                            non_finite, negative, first_bad / n, first_bad % n,
+                            static_cast<double>(f.values[first_bad])));
+  for (std::size_t p = 0; p < n; ++p)
+    for (int c = 0; c < 3; ++c) {
+      const float a = albedo[p][c];
+      if (!(a >= 0.0f && a <= 1.0f))
+        throw Error("transport", text_format("albedo of patch %zu, channel %c, is %g: must be in "
+                                             "[0, 1]",
+                                             p, "RGB"[c], static_cast<double>(a)));
+    }
+  return max_row;
+}
+
+// Groups channels whose albedo agrees on every patch.
+std::vector<std::vector<int>> channel_groups(const std::vector<glm::vec3>& albedo) {
+  std::vector<std::vector<int>> groups;
+  for (int c = 0; c < 3; ++c) {
+    auto same = [&](int other) {
+      return std::all_of(albedo.begin(), albedo.end(), [&](const glm::vec3& a) {
+        return std::abs(a[c] - a[other]) <= kSameAlbedo;
+      });
+    };
+    auto g = std::find_if(groups.begin(), groups.end(),
+                          [&](const std::vector<int>& group) { return same(group.front()); });
+    if (g != groups.end())
+      g->push_back(c);
+    else
+      groups.push_back({c});
+  }
+  return groups;
+}
+
+// M = diag(rho_c) F: row p scaled by patch p's albedo in channel c.
+std::vector<float> scaled_rows(const FormFactorMatrix& f, const std::vector<glm::vec3>& albedo,
+                               int c) {
+  const std::size_t n = f.n;
+  std::vector<float> m(n * n);
+  for (std::size_t p = 0; p < n; ++p) {
+    const float a = albedo[p][c];
+    for (std::size_t q = 0; q < n; ++q) m[p * n + q] = a * f.values[p * n + q];
+  }
+  return m;
+}
+
+struct ChannelPlan {
+  std::vector<int> rgb;
+  std::string label;
+  SpectralRadius radius;
+  bool infinite = false;
+  SeriesPlan series;          // finite K
+  int auto_bounces = 0;       // auto: where the series converged (0: not auto / not converged)
+  double auto_next_fraction = 0.0;
+  TransportPrecision lu_precision = TransportPrecision::Float32;  // predicted, for costs
+};
+
+// Spectral radius and K for one channel; finite auto K may still become
+// infinity in resolve_auto once the cost of a product is known.
+ChannelPlan plan_channel(const FormFactorMatrix& f, const std::vector<glm::vec3>& albedo,
+                         std::vector<int> rgb, const TransportSettings& settings,
+                         double max_row_sum, Diagnostics& diagnostics,
+                         std::vector<TransportDecision>& decisions) {
+  ChannelPlan plan;
+  plan.rgb = std::move(rgb);
+  plan.label = channel_label(plan.rgb);
+  const std::string who = "channel " + plan.label;
+  const std::vector<float> m = scaled_rows(f, albedo, plan.rgb.front());
+  plan.radius = estimate_spectral_radius(m.data(), f.n);
+  plan.radius.weights = {};
+  const SpectralRadius& r = plan.radius;
+  decisions.push_back(
+      {who + text_format(": spectral radius of diag(albedo) F = %.4f", r.estimate),
+       text_format("power iteration, %d sgemv%s; Collatz-Wielandt bounds [%.4f, %.4f]",
+                   r.iterations, r.converged ? "" : " (not converged)", r.lower, r.upper)});
+  plan.lu_precision = predicted_precision(condition_lower_bound(m.data(), f.n, r.estimate));
+
+  float max_albedo = 0.0f;
+  for (const glm::vec3& a : albedo) max_albedo = std::max(max_albedo, a[plan.rgb.front()]);
+  const std::string divergence = text_format(
+      "spectral radius %.4f >= 1: every bounce returns more light than the one before (form-"
+      "factor rows sum up to %.4f, albedo up to %.4f), so energy is not conserved",
+      r.estimate, max_row_sum, static_cast<double>(max_albedo));
+  const bool diverges = r.estimate >= 1.0;
+
+  if (settings.bounces == TransportSettings::kInfiniteBounces) {
+    if (diverges)
+      throw Error("transport.bounces",
+                  who + ": K = infinity is impossible: " + divergence +
+                      "; fix the form factors or ask for an explicit bounce count");
+    plan.infinite = true;
+    decisions.push_back({who + ": K = infinity", "requested"});
+  } else if (settings.bounces == TransportSettings::kAutoBounces) {
+    if (diverges)
+      throw Error("transport.bounces",
+                  who + ": auto bounces cannot converge: " + divergence +
+                      "; fix the form factors or ask for an explicit bounce count");
+    const AutoBounces a = choose_auto_bounces(m.data(), f.n, settings.auto_tolerance,
+                                              settings.max_auto_bounces);
+    if (a.converged) {
+      plan.auto_bounces = a.bounces;
+      plan.auto_next_fraction = a.next_fraction;
+      plan.series = plan_series(a.bounces);
+      decisions.push_back(
+          {who + text_format(": the series converges at K = %d (auto)", a.bounces),
+           text_format("bounce %d adds %.2e of the light so far (< %.0e; light summed over "
+                       "patches for unit light leaving each)",
+                       a.bounces + 1, a.next_fraction, settings.auto_tolerance)});
+    } else {
+      plan.infinite = true;
+      decisions.push_back(
+          {who + ": K = infinity (auto)",
+           text_format("bounce %d still adds %.2e of the light so far (>= %.0e): the series "
+                       "converges too slowly to truncate, solved exactly by LU instead",
+                       a.bounces + 1, a.next_fraction, settings.auto_tolerance)});
+    }
+  } else {
+    if (diverges)
+      diagnostics.warn("transport.bounces", who + ": " + divergence +
+                                                text_format("; the %d-bounce sum is finite but "
+                                                            "not physical",
+                                                            settings.bounces));
+    plan.series = plan_series(settings.bounces);
+    decisions.push_back({who + text_format(": K = %d", settings.bounces), "requested"});
+  }
+  return plan;
+}
+
+// Auto: the truncated series or the exact K = infinity, whichever costs less.
+// The LU is often the cheaper (on 2 CPU cores one float32 solve costs ~1.5
+// products, and a series converging at K = 11 needs 7), and it leaves out
+// nothing; a fast GEMM backend (a GPU) or a small K favours the series.
+void resolve_auto(ChannelPlan& plan, double gemm_cost, const std::string& gemm_name,
+                  const TransportSettings& settings, Diagnostics& diagnostics,
+                  std::vector<TransportDecision>& decisions) {
+  if (plan.infinite || plan.auto_bounces == 0) return;
+  const std::string who = "channel " + plan.label;
+  const double series_cost = plan.series.gemms * gemm_cost;
+  const double lu_cost = lu_cost_in_gemms(plan.lu_precision);
+  if (lu_cost < series_cost) {
+    plan.infinite = true;
+    decisions.push_back(
+        {who + ": K = infinity (auto)",
+         text_format("cheaper than the series to K = %d: %d products on %s ~ %.2g OpenBLAS "
+                     "products, the %s LU ~ %.2g; the exact sum leaves nothing out",
+                     plan.auto_bounces, plan.series.gemms, gemm_name.c_str(), series_cost,
+                     precision_name(plan.lu_precision), lu_cost)});
+    return;
+  }
+  decisions.push_back(
+      {who + text_format(": K = %d (auto)", plan.auto_bounces),
+       text_format("%d products on %s ~ %.2g OpenBLAS products, cheaper than the %s LU ~ %.2g",
+                   plan.series.gemms, gemm_name.c_str(), series_cost,
+                   precision_name(plan.lu_precision), lu_cost)});
+  diagnostics.left_out(
+      "transport", who + text_format(": bounces after %d (the next adds %.2e of the light so "
+                                     "far, below the auto tolerance %.0e)",
+                                     plan.auto_bounces, plan.auto_next_fraction,
+                                     settings.auto_tolerance));
+}
+
+// The decisions every finite K gets: what the omitted bounces could add, and
+// how the series is summed.
+void record_series(const ChannelPlan& plan, std::vector<TransportDecision>& decisions) {
+  const std::string who = "channel " + plan.label;
+  const int bounces = plan.series.bounces;
+  decisions.push_back(
+      {who + text_format(": bounces after %d could add at most %.3g of the first-hit light",
+                         bounces, truncation_bound(plan.radius.upper, bounces)),
+       text_format("c^(K+1) / (1 - c) with c = %.4f, the norm of diag(albedo) F in the max-norm "
+                   "weighted by its Perron vector estimate",
+                   plan.radius.upper)});
+  if (bounces > 1)
+    decisions.push_back(
+        {who + text_format(": %d bounces by %s", bounces,
+                           plan.series.scheme == SeriesScheme::Doubling ? "doubling" : "Horner"),
+         text_format("%d products (Horner: %d, doubling: %d)", plan.series.gemms,
+                     plan.series.horner_gemms, plan.series.doubling_gemms)});
+}
+
+std::size_t progress_units(const ChannelPlan& plan) {
+  if (plan.infinite) return kFactorUnits + kSolveBlocks;
+  return static_cast<std::size_t>(plan.series.gemms) * kGemmUnits;
+}
+
+void check_finite(const std::vector<float>& t, std::size_t n, const std::string& label) {
+  std::size_t bad = 0, first = t.size();
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (!std::isfinite(t[i])) {
+      ++bad;
+      first = std::min(first, i);
+    }
+  if (bad > 0)
+    throw Error("transport", text_format("channel %s: the transport matrix has %zu NaN/Inf "
+                                         "entries (first T[%zu][%zu]); it is not written",
+                                         label.c_str(), bad, first / n, first % n));
+}
+
+}  // namespace
+
+const ChannelTransport& TransportResult::channel(int rgb) const {
+  for (const ChannelTransport& c : channels)
+    if (std::find(c.rgb.begin(), c.rgb.end(), rgb) != c.rgb.end()) return c;
+  throw Error("transport", text_format("no transport matrix stands for channel %d", rgb));
+}
+
+TransportResult compute_transport(const FormFactorMatrix& form_factors,
+                                  const std::vector<glm::vec3>& albedo,
+                                  const TransportSettings& settings, Progress* progress,
+                                  Diagnostics& diagnostics) {
+  const auto start = Clock::now();
+  validate_settings(settings);
+  const double max_row_sum = validate_inputs(form_factors, albedo);
+  const std::size_t n = form_factors.n;
+  TransportResult result;
+  result.n = n;
+  if (n == 0) {
+    result.backend = "none (no patches)";
+    return result;
+  }
+
+  const std::vector<std::vector<int>> groups = channel_groups(albedo);
+  result.grey = groups.size() == 1;
+  if (result.grey) {
+    result.decisions.push_back({"grey scene: one channel stands for R, G and B",
+                                "every patch's albedo has r = g = b (within 1e-6)"});
+    diagnostics.left_out("transport", "G and B transport matrices: the scene is grey (every "
+                                      "albedo has r = g = b), the R matrix stands for all three");
+  } else {
+    for (const std::vector<int>& g : groups)
+      if (g.size() > 1) {
+        const std::string label = channel_label(g);
+        result.decisions.push_back(
+            {"channels " + label + " share one matrix",
+             "their albedos agree on every patch (within 1e-6)"});
+        diagnostics.left_out("transport", text_format("a separate %c transport matrix: it equals "
+                                                      "%c's (same albedo on every patch)",
+                                                      label[1], label[0]));
+      }
+  }
+
+  std::vector<ChannelPlan> plans;
+  std::size_t gemms = 0;
+  for (const std::vector<int>& g : groups) {
+    if (progress) progress->check();
+    plans.push_back(plan_channel(form_factors, albedo, g, settings, max_row_sum, diagnostics,
+                                 result.decisions));
+    if (!plans.back().infinite) gemms += static_cast<std::size_t>(plans.back().series.gemms);
+  }
+
+  std::unique_ptr<GemmBackend> gemm;
+  if (gemms > 0) {
+    GemmSelection selection =
+        select_gemm_backend(settings, n, gemms, diagnostics, result.decisions);
+    gemm = std::move(selection.backend);
+    result.probe_n = selection.probe_n;
+    result.probe_openblas_seconds = selection.openblas_seconds;
+    result.probe_clblast_seconds = selection.clblast_seconds;
+    // A product's cost in OpenBLAS products: measured when Auto probed,
+    // else taken as 1 (CLBlast requested without a probe).
+    const bool probed_other = gemm->name() != "OpenBLAS" && selection.openblas_seconds > 0.0 &&
+                              selection.clblast_seconds > 0.0;
+    const double gemm_cost =
+        probed_other ? selection.clblast_seconds / selection.openblas_seconds : 1.0;
+    gemms = 0;
+    for (ChannelPlan& plan : plans) {
+      resolve_auto(plan, gemm_cost, gemm->name(), settings, diagnostics, result.decisions);
+      if (plan.infinite) continue;
+      record_series(plan, result.decisions);
+      gemms += static_cast<std::size_t>(plan.series.gemms);
+    }
+  } else {
+    for (const ChannelPlan& plan : plans)
+      if (!plan.infinite) record_series(plan, result.decisions);  // K = 1
+  }
+  if (gemms == 0) {
+    gemm.reset();
+    result.backend = "none (no matrix product needed)";
+  }
+  std::size_t units = 0;
+  for (const ChannelPlan& plan : plans) units += progress_units(plan);
+
+  if (progress) progress->begin_stage("transport", std::max<std::size_t>(units, 1));
+  for (const ChannelPlan& plan : plans) {
+    const auto channel_start = Clock::now();
+    if (progress) progress->check();
+    ChannelTransport ct;
+    ct.rgb = plan.rgb;
+    ct.spectral_radius = plan.radius.estimate;
+    ct.spectral_radius_lower = plan.radius.lower;
+    ct.spectral_radius_upper = plan.radius.upper;
+    std::vector<float> m = scaled_rows(form_factors, albedo, plan.rgb.front());
+    if (plan.infinite) {
+      InverseOptions options;
+      options.solve_blocks = kSolveBlocks;
+      bool factorised = false;
+      options.tick = [&] {
+        if (!progress) return;
+        progress->advance(factorised ? 1 : kFactorUnits);
+        factorised = true;
+      };
+      InverseTransport inv = solve_infinite_bounces(std::move(m), n, plan.radius.estimate, options);
+      ct.t = std::move(inv.t);
+      ct.bounces = TransportSettings::kInfiniteBounces;
+      ct.auto_bounces = plan.auto_bounces;
+      ct.precision = inv.precision;
+      ct.condition_number = inv.condition;
+      ct.method = std::string("LU ") + precision_name(inv.precision);
+      result.decisions.push_back(
+          {"channel " + plan.label + text_format(": K = infinity by LU in %s, condition %.3g",
+                                                 precision_name(inv.precision), inv.condition),
+           inv.why});
+    } else {
+      ct.bounces = plan.series.bounces;
+      ct.gemms = plan.series.gemms;
+      ct.auto_bounces = plan.auto_bounces;
+      ct.method = plan.series.scheme == SeriesScheme::Doubling ? "doubling" : "Horner";
+      ct.truncation_bound = truncation_bound(plan.radius.upper, ct.bounces);
+      if (plan.series.gemms == 0) {
+        ct.t = std::move(m);  // K = 1: T = M
+      } else {
+        ct.t = sum_bounces(m, n, plan.series, *gemm, [&] {
+          if (progress) progress->advance(kGemmUnits);
+        });
+      }
+    }
+    check_finite(ct.t, n, plan.label);
+    ct.seconds = seconds_since(channel_start);
+    result.channels.push_back(std::move(ct));
+  }
+  if (gemm) result.backend = gemm->name();
+  if (progress) progress->end_stage();
+  result.seconds = seconds_since(start);
+  return result;
+}
+
+}  // namespace bounce
