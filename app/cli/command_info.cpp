@@ -16,18 +16,6 @@ struct InfoOptions {
   bool json = false;
 };
 
-const char* type_name(Light::Type t) {
-  switch (t) {
-    case Light::Type::Point:
-      return "point";
-    case Light::Type::Spot:
-      return "spot";
-    case Light::Type::Directional:
-      return "directional";
-  }
-  return "?";
-}
-
 void run_info(const InfoOptions& opt) {
   Diagnostics diagnostics;
   const Scene scene = SceneLoader(diagnostics).load(opt.scene);
@@ -59,7 +47,7 @@ void run_info(const InfoOptions& opt) {
     j["lights"] = nlohmann::json::array();
     for (const Light& l : scene.lights)
       j["lights"].push_back({{"name", l.name},
-                             {"type", type_name(l.type)},
+                             {"type", light_type_name(l.type)},
                              {"position", {l.position.x, l.position.y, l.position.z}}});
     j["warnings"] = nlohmann::json::array();
     for (const Diagnostic& d : diagnostics.warnings())
@@ -83,7 +71,7 @@ void run_info(const InfoOptions& opt) {
                 m.emission.b);
   std::printf("  lights      %zu\n", scene.lights.size());
   for (const Light& l : scene.lights)
-    std::printf("    %-20s %-11s at (%.3g, %.3g, %.3g)\n", l.name.c_str(), type_name(l.type),
+    std::printf("    %-20s %-11s at (%.3g, %.3g, %.3g)\n", l.name.c_str(), light_type_name(l.type),
                 l.position.x, l.position.y, l.position.z);
   const auto warnings = diagnostics.warnings();
   std::printf("  warnings    %zu\n", warnings.size());

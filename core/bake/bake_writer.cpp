@@ -15,18 +15,6 @@ namespace {
 
 json vec(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
 
-const char* light_type(Light::Type t) {
-  switch (t) {
-    case Light::Type::Point:
-      return "point";
-    case Light::Type::Spot:
-      return "spot";
-    case Light::Type::Directional:
-      return "directional";
-  }
-  return "unknown";
-}
-
 // Column layouts, documented in docs/bake-format.md.
 constexpr std::size_t kPatchColumns = 15;
 constexpr std::size_t kVoxelColumns = 9;
@@ -82,7 +70,7 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
   json lights = json::array();
   for (const Light& l : scene.lights)
     lights.push_back({{"name", l.name},
-                      {"type", light_type(l.type)},
+                      {"type", light_type_name(l.type)},
                       {"position", vec(l.position)},
                       {"direction", vec(l.direction)},
                       {"color", vec(l.color)},

@@ -11,6 +11,18 @@ float Scene::triangle_area(std::size_t tri) const {
   return 0.5f * glm::length(triangle_cross(tri));
 }
 
+const char* light_type_name(Light::Type type) {
+  switch (type) {
+    case Light::Type::Point:
+      return "point";
+    case Light::Type::Spot:
+      return "spot";
+    case Light::Type::Directional:
+      return "directional";
+  }
+  return "unknown";
+}
+
 Bounds Scene::bounds() const {
   Bounds b;
   for (const auto& t : triangles)

@@ -41,6 +41,9 @@ struct Light {
   float spot_outer_deg = 45.0f;  // zero beyond this half-angle
 };
 
+// "point", "spot" or "directional", as scene.json spells them.
+const char* light_type_name(Light::Type type);
+
 struct Camera {
   glm::vec3 position{0.0f, 0.0f, 5.0f};
   glm::vec3 target{0.0f};
