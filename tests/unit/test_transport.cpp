@@ -178,8 +178,7 @@ void expect_matches_explicit_products(Backend backend) {
       EXPECT_EQ(ct.bounces, bounces);
       const std::vector<double> expected = explicit_bounces(row_scaled(f, albedo, c), b, bounces);
       const double err = max_rel_diff(matvec(ct.t, b), expected);
-      EXPECT_LT(err, 1e-5 * bounces) << "K = " << bounces << ", channel " << c << ", "
-                                     << ct.method;
+      EXPECT_LT(err, 1e-5 * bounces) << "K = " << bounces << ", channel " << c << ", " << ct.method;
     }
   }
 }
@@ -305,16 +304,17 @@ TEST(TransportInfinite, UniformFurnaceGivesRhoOverOneMinusRho) {
     float rho;
     TransportPrecision precision;
   };
-  for (const Case& k : {Case{0.5f, TransportPrecision::Float32},
-                        Case{0.9f, TransportPrecision::Float32},
-                        Case{0.99f, TransportPrecision::Float64}}) {
+  for (const Case& k :
+       {Case{0.5f, TransportPrecision::Float32}, Case{0.9f, TransportPrecision::Float32},
+        Case{0.99f, TransportPrecision::Float64}}) {
     const std::vector<glm::vec3> albedo(n, glm::vec3(k.rho));
     const TransportResult r = transport(f, albedo, TransportSettings::kInfiniteBounces);
     ASSERT_EQ(r.channels.size(), 1u);
     const ChannelTransport& ct = r.channels[0];
     EXPECT_EQ(ct.precision, k.precision) << "rho " << k.rho;
     EXPECT_NEAR(ct.spectral_radius, k.rho, 1e-5 * k.rho);
-    EXPECT_NEAR(ct.condition_number, (1.0 + k.rho) / (1.0 - k.rho), 0.1 * (1.0 + k.rho) / (1.0 - k.rho));
+    EXPECT_NEAR(ct.condition_number, (1.0 + k.rho) / (1.0 - k.rho),
+                0.1 * (1.0 + k.rho) / (1.0 - k.rho));
     const double expected = k.rho / (1.0 - k.rho);
     const std::vector<double> t1 = matvec(ct.t, std::vector<double>(n, 1.0));
     for (std::size_t p = 0; p < n; ++p)
@@ -332,7 +332,8 @@ TEST(TransportInfinite, RealFurnaceBake) {
   const std::size_t n = bake.patches.size();
   std::vector<glm::vec3> albedo;
   for (const Patch& p : bake.patches.patches) albedo.push_back(p.albedo);
-  const TransportResult r = transport(bake.form_factors, albedo, TransportSettings::kInfiniteBounces);
+  const TransportResult r =
+      transport(bake.form_factors, albedo, TransportSettings::kInfiniteBounces);
   ASSERT_TRUE(r.grey);
   const ChannelTransport& ct = r.channels[0];
   // With row sums s_i and albedo rho, (T 1)_i = rho s_i (1 + (T 1) averaged
@@ -458,7 +459,8 @@ TEST(TransportChannels, GreySceneGivesOneChannelColouredThree) {
   const std::size_t n = 50;
   const FormFactorMatrix f = random_form_factors(n, 17);
   std::vector<glm::vec3> grey(n);
-  for (std::size_t p = 0; p < n; ++p) grey[p] = glm::vec3(0.1f + 0.8f * static_cast<float>(p) / static_cast<float>(n));
+  for (std::size_t p = 0; p < n; ++p)
+    grey[p] = glm::vec3(0.1f + 0.8f * static_cast<float>(p) / static_cast<float>(n));
   TransportSettings s;
   s.bounces = 3;
   Diagnostics d;
@@ -508,8 +510,7 @@ TEST(TransportErrors, RejectsNonFiniteAndDivergentInput) {
     transport(over, bright, TransportSettings::kInfiniteBounces);
     FAIL() << "divergent K = infinity accepted";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("energy is not conserved"), std::string::npos)
-        << e.what();
+    EXPECT_NE(std::string(e.what()).find("energy is not conserved"), std::string::npos) << e.what();
   }
   EXPECT_THROW(transport(over, bright, TransportSettings::kAutoBounces), Error);
   // An explicit K is still finite: computed, with a warning.
