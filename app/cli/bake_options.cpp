@@ -1,6 +1,7 @@
 #include <glob.h>
 
 #include <algorithm>
+#include <string>
 
 #include "commands.h"
 
@@ -40,9 +41,39 @@ void BakeOptions::add_to(CLI::App& cmd, bool with_output) {
       ->capture_default_str();
   cmd.add_option("--seed", seed, "Seed of every random stream (results are reproducible)")
       ->capture_default_str();
-  if (with_output)
+  cmd.add_option("--bounces", bounces,
+                 "Light bounces folded into the transport matrix: auto (stop when the next bounce "
+                 "adds less than 0.1% of the light), inf (the exact limit, by LU), or 1..64")
+      ->capture_default_str();
+  cmd.add_option("--gemm", gemm,
+                 "Matrix products on: auto (time both, keep the faster), openblas (CPU) or "
+                 "clblast (OpenCL)")
+      ->check(CLI::IsMember({"auto", "openblas", "clblast"}))
+      ->capture_default_str();
+  cmd.add_option("--codec", codec,
+                 "How the transport matrix is stored: auto (ours, or dense when it is under "
+                 "1 MiB and compression would not pay), dense (exact float32), paper (the "
+                 "published pipeline: 4% kept, greedy L1 reordering, libsquish BC1), ours "
+                 "(error-weighted BC1/BC4, better reordering, kept fraction from the error "
+                 "budget)")
+      ->check(CLI::IsMember({"auto", "dense", "paper", "ours"}))
+      ->capture_default_str();
+  kept_fraction_option = cmd.add_option(
+      "--kept-fraction", kept_fraction,
+      "Share of each channel's largest entries kept exactly (default: the paper's 0.04 for "
+      "--codec paper; chosen from --error-budget for ours)");
+  error_budget_option =
+      cmd.add_option("--error-budget", error_budget,
+                     "Relative Frobenius error the compressed matrix may have; ours keeps the "
+                     "fewest entries that meet it")
+          ->capture_default_str()
+          ->excludes(kept_fraction_option);
+  if (with_output) {
     cmd.add_flag("--dump-matrices", dump_matrices,
-                 "Also write the N x N form-factor matrix as F.npy");
+                 "Also write the N x N form-factor matrix as F.npy and the exact transport "
+                 "matrix as T.npy");
+    cmd.add_flag("--no-pictures", no_pictures, "Do not write the matrix and error pictures (PNG)");
+  }
   cmd.add_flag("--json", json, "Print a machine-readable summary on stdout");
   cmd.add_flag("--quiet,-q", quiet, "No progress bars (warnings and errors still print)");
 }
@@ -59,6 +90,36 @@ BakeSettings BakeOptions::settings() const {
   s.visibility_rays = visibility_rays;
   s.seed = seed;
   s.dump_matrices = dump_matrices;
+  s.pictures = !no_pictures;
+  if (bounces == "auto") {
+    s.transport.bounces = TransportSettings::kAutoBounces;
+  } else if (bounces == "inf" || bounces == "infinity") {
+    s.transport.bounces = TransportSettings::kInfiniteBounces;
+  } else {
+    // Anything else must be a whole number; validate() checks its range.
+    std::size_t used = 0;
+    int k = 0;
+    try {
+      k = std::stoi(bounces, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != bounces.size() || k < 1)
+      throw BakeSettings::InvalidSetting(
+          "--bounces", "must be auto, inf or a number of bounces 1.." +
+                           std::to_string(TransportSettings::kMaxBounces) + ", got '" + bounces +
+                           "'");
+    s.transport.bounces = k;
+  }
+  s.transport.backend = gemm == "openblas"  ? TransportSettings::Backend::OpenBLAS
+                        : gemm == "clblast" ? TransportSettings::Backend::CLBlast
+                                            : TransportSettings::Backend::Auto;
+  s.codec = codec == "dense"   ? CodecChoice::Dense
+            : codec == "paper" ? CodecChoice::Paper
+            : codec == "ours"  ? CodecChoice::Ours
+                               : CodecChoice::Auto;
+  if (kept_fraction_option->count() > 0) s.kept_fraction = kept_fraction;
+  if (error_budget_option->count() > 0) s.error_budget = error_budget;
   return s;
 }
 

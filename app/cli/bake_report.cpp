@@ -16,6 +16,53 @@ void print_stage_table(std::FILE* out, const json& m) {
   std::fprintf(out, "  %-26s %10.3f\n", "total", m["total_seconds"].get<double>());
 }
 
+static std::string number_or_text(const json& v, const char* fmt) {
+  if (v.is_string()) return v.get<std::string>();
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, v.get<double>());
+  return buf;
+}
+
+void print_transport_report(std::FILE* out, const json& m) {
+  if (!m.contains("transport")) return;
+  const json& t = m["transport"];
+  std::fprintf(out, "\nTransport (%zu patches, %s)\n", t["patches"].get<std::size_t>(),
+               t["backend"].get<std::string>().c_str());
+  for (const json& c : t["channels"]) {
+    std::fprintf(out,
+                 "  %-3s K = %-4s %-12s %-8s spectral radius %.4f  truncation bound %s  "
+                 "condition %s  %.2fs\n",
+                 c["rgb"].get<std::string>().c_str(), number_or_text(c["bounces"], "%g").c_str(),
+                 c["method"].get<std::string>().c_str(), c["precision"].get<std::string>().c_str(),
+                 c["spectral_radius"].get<double>(),
+                 number_or_text(c["truncation_bound"], "%.2e").c_str(),
+                 number_or_text(c["condition_number"], "%.3g").c_str(), c["seconds"].get<double>());
+  }
+  for (const json& d : t["decisions"])
+    std::fprintf(out, "  - %s: %s\n", d["what"].get<std::string>().c_str(),
+                 d["why"].get<std::string>().c_str());
+
+  const json& c = m["compression"];
+  const json& sz = c["sizes"];
+  std::fprintf(out, "\nStorage: %s, %.2f MiB (dense float RGB %.2f MiB, ratio %.1fx)\n",
+               c["codec"].get<std::string>().c_str(), mib(sz["stored_bytes"]),
+               mib(sz["dense_rgb_float32_bytes"]), sz["ratio_to_dense_rgb"].get<double>());
+  for (const json& d : c["decisions"])
+    std::fprintf(out, "  - %s: %s\n", d["what"].get<std::string>().c_str(),
+                 d["why"].get<std::string>().c_str());
+  if (!c.contains("errors")) return;
+  std::fprintf(out, "  parts        kept %.2f MiB, blocks %.2f MiB, permutation %.2f MiB\n",
+               mib(sz["sparse_bytes"]), mib(sz["block_bytes"]), mib(sz["permutation_bytes"]));
+  const json& e = c["errors"];
+  std::fprintf(out, "  |error|      mean %.3e  max %.3e  sum %.4g  (relative Frobenius %.3e)\n",
+               e["mean_abs"].get<double>(), e["max_abs"].get<double>(), e["sum_abs"].get<double>(),
+               e["rel_frobenius"].get<double>());
+  const json& li = e["indirect_light"];
+  std::fprintf(out, "  indirect     relative RMS error mean %.3e, max %.3e over %zu lights\n",
+               li["rel_rms_mean"].get<double>(), li["rel_rms_max"].get<double>(),
+               li["lights"].get<std::size_t>());
+}
+
 void print_bake_report(std::FILE* out, const json& m) {
   const json& c = m["counts"];
   const json& s = m["settings"];
@@ -44,6 +91,7 @@ void print_bake_report(std::FILE* out, const json& m) {
   std::fprintf(out, "  reciprocity  worst row %.2e, whole matrix %.2e (unreciprocated share)\n",
                f["reciprocity_error_max"].get<double>(), f["reciprocity_error_rel"].get<double>());
   std::fprintf(out, "  NaN/Inf      %zu\n", f["non_finite"].get<std::size_t>());
+  print_transport_report(out, m);
   std::fprintf(out, "\nStages\n");
   print_stage_table(out, m);
   if (!m["left_out"].empty()) {

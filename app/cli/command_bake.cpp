@@ -48,8 +48,7 @@ Outcome bake_one(const std::string& path, const fs::path& out, bool nest, const 
     diagnostics.warn(path, "another scene of this batch is also named '" + scene.name +
                                "': baked into '" + folder + "'");
   taken.insert(folder);
-  const fs::path target =
-      nest ? out / folder : out.empty() ? fs::path("bakes") / scene.name : out;
+  const fs::path target = nest ? out / folder : out.empty() ? fs::path("bakes") / scene.name : out;
   if (!opt.quiet)
     std::fprintf(stderr, "Baking %s (%zu triangles) into %s\n", path.c_str(),
                  scene.triangle_count(), target.string().c_str());
@@ -119,7 +118,8 @@ void register_bake(CLI::App& app) {
   auto opt = std::make_shared<BakeOptions>();
   CLI::App* cmd = app.add_subcommand(
       "bake",
-      "Bake scenes: voxel grid, virtual patches and form factors, written to a bake folder "
+      "Bake scenes: voxel grid, virtual patches, form factors, the multi-bounce transport matrix "
+      "and its compression, written to a bake folder "
       "(manifest.json + .npy arrays, see docs/bake-format.md). Exit codes: 0 ok, 1 error "
       "(or every scene of a batch failed), 2 some scenes of a batch failed, 130 cancelled.");
   opt->add_to(*cmd, true);

@@ -27,12 +27,20 @@ struct BakeOptions {
   int visibility_rays = 8;
   std::uint64_t seed = 1;
   bool dump_matrices = false;
+  std::string bounces = "auto";
+  std::string codec = "auto";
+  double kept_fraction = 0.04;
+  double error_budget = BakeSettings::kDefaultErrorBudget;
+  std::string gemm = "auto";
+  bool no_pictures = false;
   bool json = false;
   bool quiet = false;
   CLI::Option* voxel_option = nullptr;
   CLI::Option* patches_total_option = nullptr;
   CLI::Option* patches_per_voxel_option = nullptr;
   CLI::Option* samples_per_face_option = nullptr;
+  CLI::Option* kept_fraction_option = nullptr;
+  CLI::Option* error_budget_option = nullptr;
 
   void add_to(CLI::App& cmd, bool with_output);
   BakeSettings settings() const;

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "raytrace/ray_tracer.h"
+#include "runtime/direct_light.h"
 
 namespace bounce {
 
@@ -183,6 +184,39 @@ BakeResult Baker::run(Progress& progress) const {
       diagnostics_.warn("form factors", std::to_string(r.checks.rows_above_one) +
                                             " patches have row sums above 1 (max " +
                                             fmt(r.checks.row_sum_max, 4) + ")");
+    r.stages.push_back(timer.finish());
+  }
+
+  {
+    StageTimer timer("transport");
+    std::vector<glm::vec3> albedo;
+    albedo.reserve(r.patches.size());
+    for (const Patch& p : r.patches.patches) albedo.push_back(p.albedo);
+    r.transport =
+        compute_transport(r.form_factors, albedo, r.settings.transport, &progress, diagnostics_);
+    r.stages.push_back(timer.finish());
+  }
+
+  {
+    StageTimer timer("evaluation lights");
+    const std::vector<Light> lights = evaluation_lights(scene_);
+    progress.begin_stage("direct light of the evaluation lights", lights.size());
+    r.probe_lights_total = lights.size();
+    r.probe.channel_of_rgb = channel_of_rgb(r.transport);
+    for (const Patch& p : r.patches.patches) r.probe.area.push_back(p.area);
+    for (const Light& light : lights) {
+      progress.check();
+      r.probe.first_hit.push_back(
+          first_bounce(r.patches, direct_irradiance(tracer, r.samples, r.patches, {light})));
+      progress.advance();
+    }
+    progress.end_stage();
+    r.stages.push_back(timer.finish());
+  }
+
+  {
+    StageTimer timer("compress");
+    r.storage = store_transport(r.transport, r.probe, r.settings, &progress, diagnostics_);
     r.stages.push_back(timer.finish());
   }
   r.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

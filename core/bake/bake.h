@@ -1,10 +1,12 @@
 #pragma once
-// The bake pipeline up to the form-factor matrix: voxel grid, samples,
-// patches (virtual or voxel baseline), form factors, checks. The CLI and the
+// The bake pipeline: voxel grid, samples, patches (virtual or voxel
+// baseline), form factors, checks, the multi-bounce transport matrix and its
+// storage (dense or compressed, with errors). The CLI and the
 // studio both call Baker::run.
 #include <vector>
 
 #include "bake/bake_settings.h"
+#include "bake/matrix_storage.h"
 #include "base/diagnostics.h"
 #include "base/progress.h"
 #include "base/stage_stats.h"
@@ -12,6 +14,7 @@
 #include "patches/clustering.h"
 #include "patches/patch_set.h"
 #include "patches/samples.h"
+#include "transport/transport.h"
 #include "voxel/voxelization.h"
 
 namespace bounce {
@@ -27,6 +30,12 @@ struct BakeResult {
   FormFactorChecks checks;
   ClusteringStats clustering;
   std::size_t patches_before_pruning = 0;
+  TransportResult transport;  // multi-bounce matrices, exact
+  // The first-hit light of the evaluation lights (runtime/direct_light.h),
+  // against which the indirect-light error of compression is measured.
+  IndirectLightProbe probe;
+  std::size_t probe_lights_total = 0;  // evaluation lights, dark ones included
+  MatrixStorage storage;               // how T is stored, and its errors
   std::vector<StageStats> stages;
   double total_seconds = 0.0;
 };

@@ -37,8 +37,40 @@ void BakeSettings::validate() const {
             "must be between 1 and 64, got " + std::to_string(*samples_per_face));
   require(visibility_rays >= 1 && visibility_rays <= 1024, "--visibility-rays",
           "must be between 1 and 1024, got " + std::to_string(visibility_rays));
+  require(transport.bounces >= TransportSettings::kInfiniteBounces &&
+              transport.bounces <= TransportSettings::kMaxBounces,
+          "--bounces",
+          "must be auto, inf or 1.." + std::to_string(TransportSettings::kMaxBounces) + ", got " +
+              std::to_string(transport.bounces));
+  if (kept_fraction)
+    require(*kept_fraction >= 0.0 && *kept_fraction <= 1.0, "--kept-fraction",
+            "must be between 0 and 1, got " + std::to_string(*kept_fraction));
+  if (error_budget)
+    require(*error_budget > 0.0 && *error_budget < 1.0, "--error-budget",
+            "must be between 0 and 1 (exclusive), got " + std::to_string(*error_budget));
+  require(!(kept_fraction && error_budget), "--error-budget",
+          "cannot be combined with --kept-fraction: the budget chooses the kept fraction");
+  require(!(codec == CodecChoice::Paper && error_budget), "--error-budget",
+          "does not apply to --codec paper, which keeps the published 4% (use --kept-fraction)");
+  require(!(codec == CodecChoice::Dense && (kept_fraction || error_budget)),
+          kept_fraction ? "--kept-fraction" : "--error-budget",
+          "does not apply to --codec dense, which stores the exact matrix");
 }
 
 std::string to_string(PatchMode mode) { return mode == PatchMode::Virtual ? "virtual" : "voxel"; }
+
+const char* to_string(CodecChoice codec) {
+  switch (codec) {
+    case CodecChoice::Auto:
+      return "auto";
+    case CodecChoice::Dense:
+      return "dense";
+    case CodecChoice::Paper:
+      return "paper";
+    case CodecChoice::Ours:
+      return "ours";
+  }
+  return "?";
+}
 
 }  // namespace bounce

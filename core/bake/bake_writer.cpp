@@ -1,8 +1,11 @@
 #include "bake/bake_writer.h"
 
+#include <cmath>
 #include <string>
 #include <vector>
 
+#include "bake/bake_pictures.h"
+#include "compress/dds.h"
 #include "io/atomic_file.h"
 #include "io/npy.h"
 
@@ -59,6 +62,109 @@ std::vector<float> sample_rows(const BakeResult& r) {
                  static_cast<float>(r.patch_of_sample[k]), static_cast<float>(s.triangle)});
   }
   return rows;
+}
+
+std::string rgb_label(const std::vector<int>& rgb) {
+  std::string s;
+  for (int c : rgb) s += "RGB"[c];
+  return s;
+}
+
+json error_json(const MatrixError& e) {
+  return {{"mean_abs", e.mean_abs},
+          {"max_abs", e.max_abs},
+          {"sum_abs", e.sum_abs},
+          {"rel_frobenius", e.rel_frobenius}};
+}
+
+json transport_json(const TransportResult& t) {
+  json channels = json::array();
+  for (const ChannelTransport& c : t.channels)
+    channels.push_back(
+        {{"rgb", rgb_label(c.rgb)},
+         {"bounces",
+          c.bounces == TransportSettings::kInfiniteBounces ? json("inf") : json(c.bounces)},
+         {"auto_bounces", c.auto_bounces},
+         {"method", c.method},
+         {"gemms", c.gemms},
+         {"precision", precision_name(c.precision)},
+         {"spectral_radius", c.spectral_radius},
+         {"spectral_radius_bounds", {c.spectral_radius_lower, c.spectral_radius_upper}},
+         {"truncation_bound",
+          std::isfinite(c.truncation_bound) ? json(c.truncation_bound) : json("inf")},
+         {"condition_number", c.condition_number},
+         {"seconds", c.seconds}});
+  json decisions = json::array();
+  for (const TransportDecision& d : t.decisions)
+    decisions.push_back({{"what", d.what}, {"why", d.why}});
+  return {{"patches", t.n},
+          {"grey", t.grey},
+          {"channels", channels},
+          {"backend", t.backend},
+          {"backend_probe",
+           {{"n", t.probe_n},
+            {"openblas_seconds", t.probe_openblas_seconds},
+            {"clblast_seconds", t.probe_clblast_seconds}}},
+          {"non_finite", 0},  // compute_transport throws on any
+          {"seconds", t.seconds},
+          {"decisions", decisions}};
+}
+
+json storage_json(const MatrixStorage& s, std::size_t probe_lights_total) {
+  json decisions = json::array();
+  for (const TransportDecision& d : s.decisions)
+    decisions.push_back({{"what", d.what}, {"why", d.why}});
+  json m = {{"codec", s.codec},
+            {"decisions", decisions},
+            {"seconds", s.seconds},
+            {"sizes",
+             {{"dense_rgb_float32_bytes", s.dense_rgb_bytes},
+              {"dense_stored_float32_bytes", s.dense_bytes},
+              {"stored_bytes", s.stored_bytes},
+              {"ratio_to_dense_rgb", s.ratio_to_dense_rgb()}}}};
+  if (!s.compressed) return m;
+  const CompressedMatrix& c = *s.compressed;
+  m["sizes"]["sparse_bytes"] = c.sparse_bytes();
+  m["sizes"]["block_bytes"] = c.block_bytes();
+  m["sizes"]["permutation_bytes"] = c.permutation_bytes();
+  m["format"] = c.format == DdsFormat::kBc4 ? "BC4" : "BC1";
+  m["stored_channels"] = c.channels;
+  m["padded_size"] = c.padded;
+  m["encoder"] = c.encoder;
+  m["ordering"] = c.ordering;
+  m["kept_fraction"] = c.kept_fraction;
+  m["error_budget"] = s.error_budget ? json(*s.error_budget) : json();
+  json trials = json::array();
+  for (const KeptFractionTrial& t : s.trials)
+    trials.push_back({{"kept_fraction", t.kept_fraction},
+                      {"rel_frobenius", t.rel_frobenius},
+                      {"bytes", t.bytes}});
+  m["kept_fraction_trials"] = trials;
+  json quantizers = json::array();
+  for (const LogQuantizer& q : c.quantizers)
+    quantizers.push_back({{"vmax", q.vmax}, {"range", q.range}});
+  m["quantizers"] = quantizers;
+  json per_channel = json::array();
+  for (const MatrixError& e : s.errors.channels) per_channel.push_back(error_json(e));
+  const IndirectLightError& li = s.errors.indirect;
+  m["errors"] = error_json(s.errors.matrix);
+  m["errors"]["per_channel"] = per_channel;
+  m["errors"]["indirect_light"] = {{"lights", li.lights},
+                                   {"lights_total", probe_lights_total},
+                                   {"rel_rms_mean", li.rel_rms_mean},
+                                   {"rel_rms_max", li.rel_rms_max}};
+  m["stage_seconds"] = {{"split", c.seconds_split},
+                        {"ordering", c.seconds_ordering},
+                        {"encoding", c.seconds_encoding}};
+  return m;
+}
+
+// T.npy: every stored channel, float32 [channels x n x n].
+void write_dense_transport(const fs::path& path, const TransportResult& t) {
+  std::vector<float> all;
+  all.reserve(t.channels.size() * t.n * t.n);
+  for (const ChannelTransport& c : t.channels) all.insert(all.end(), c.t.begin(), c.t.end());
+  write_npy(path, all, {t.channels.size(), t.n, t.n});
 }
 
 }  // namespace
@@ -126,6 +232,9 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                                  {"reciprocity_error_rel", c.reciprocity_error_rel},
                                  {"non_finite", c.non_finite},
                                  {"patches_seeing_nothing", c.patches_seeing_nothing}};
+  m["transport"] = transport_json(r.transport);
+  m["transport"]["channel_of_rgb"] = r.probe.channel_of_rgb;
+  m["compression"] = storage_json(r.storage, r.probe_lights_total);
   json warnings = json::array(), left_out = json::array();
   for (const Diagnostic& d : diagnostics.all()) {
     json e = {{"where", d.where}, {"message", d.message}};
@@ -161,6 +270,47 @@ json write_bake(const fs::path& out_dir, const Scene& scene, const BakeResult& r
     write_npy(dir.path() / "F.npy", r.form_factors.values, {n, n});
     record("F.npy", "float32 [patches x patches]: form factors, row = source");
   }
+  if (!r.storage.compressed || r.settings.dump_matrices) {
+    write_dense_transport(dir.path() / "T.npy", r.transport);
+    record("T.npy",
+           "float32 [stored channels x patches x patches]: multi-bounce matrix, exact; "
+           "channel_of_rgb in the manifest maps R, G, B to its channels");
+  }
+  {
+    std::vector<float> b;
+    for (const auto& light : r.probe.first_hit)
+      for (const glm::vec3& v : light) b.insert(b.end(), {v.r, v.g, v.b});
+    write_npy(dir.path() / "lights_first_hit.npy", b, {r.probe.first_hit.size(), n, 3});
+    record("lights_first_hit.npy",
+           "float32 [evaluation lights x patches x 3]: light leaving each patch after the first "
+           "hit (albedo x direct irradiance) for the scene's lights and four unit test lights; "
+           "the indirect-light error is measured with these");
+  }
+  if (r.storage.compressed) {
+    const CompressedMatrix& c = *r.storage.compressed;
+    const auto side = static_cast<std::uint32_t>(c.padded);
+    write_dds(dir.path() / "T.dds", c.format, side, side, c.blocks);
+    record("T.dds", std::string(c.format == DdsFormat::kBc4 ? "BC4" : "BC1") +
+                        " [padded x padded]: log codes of the reordered matrix (row/column k = "
+                        "patch permutation[k]); see compression.quantizers");
+    write_npy(dir.path() / "permutation.npy", c.permutation, {n});
+    record("permutation.npy", "uint32 [patches]: stored row/column k holds patch permutation[k]");
+    for (std::size_t ch = 0; ch < c.kept.size(); ++ch) {
+      const CsrMatrix& k = c.kept[ch];
+      const std::string base = "T_kept_" + std::to_string(ch);
+      write_npy(dir.path() / (base + "_row_ptr.npy"), k.row_ptr, {k.row_ptr.size()});
+      record(base + "_row_ptr.npy",
+             "uint32 [patches + 1]: CSR row starts of the exactly kept "
+             "entries of stored channel " +
+                 std::to_string(ch));
+      write_npy(dir.path() / (base + "_col.npy"), k.col, {k.col.size()});
+      record(base + "_col.npy", "uint32 [kept]: CSR column (patch order)");
+      write_npy(dir.path() / (base + "_value.npy"), k.value, {k.value.size()});
+      record(base + "_value.npy", "float32 [kept]: CSR values, exact");
+    }
+  }
+  if (r.settings.pictures)
+    for (const WrittenPicture& p : write_matrix_pictures(dir.path(), r)) record(p.name, p.content);
   json m = make_manifest(scene, r, diagnostics);
   m["files"] = files;
   {

@@ -10,7 +10,9 @@
 
 namespace bounce {
 
-inline constexpr int kBakeFormatVersion = 1;
+// 2: the multi-bounce matrix (dense T.npy or compressed T.dds + CSR) and
+// its pictures joined the folder.
+inline constexpr int kBakeFormatVersion = 2;
 
 // The manifest without its "files" list: settings, counts, timings, checks,
 // warnings and what was left out.

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <random>
 
+#include "compress/compression_error.h"
 #include "compress/log_quantizer.h"
 #include "compress/matrix_error.h"
 #include "compress/matrix_picture.h"
@@ -98,6 +99,37 @@ TEST(MatrixPicture, LogColoursZerosBlackAndAColourBar) {
   EXPECT_EQ(back.width, img.width);
   EXPECT_EQ(back.pixels, img.pixels);
   std::filesystem::remove(path);
+}
+
+TEST(IndirectLightError, ScaledMatrixGivesTheScaleAsRelativeError) {
+  // T~ = 1.1 T for one channel, 0.8 T for another: I~ - I = 0.1 I or -0.2 I
+  // per channel, so the relative RMS is sqrt((0.01 a + 0.04 b) / (a + b)),
+  // a, b the weighted squared norms of the two channels' indirect light.
+  const std::size_t n = 5;
+  std::vector<float> t(n * n), up(n * n), down(n * n);
+  for (std::size_t k = 0; k < n * n; ++k) {
+    t[k] = 0.01f * static_cast<float>(k % 7 + 1);
+    up[k] = 1.1f * t[k];
+    down[k] = 0.8f * t[k];
+  }
+  IndirectLightProbe probe;
+  probe.channel_of_rgb = {0, 0, 1};  // R and G share matrix 0, B has matrix 1
+  probe.area = {1.0f, 2.0f, 1.0f, 0.5f, 1.0f};
+  probe.first_hit.push_back(std::vector<glm::vec3>(n, glm::vec3(1.0f)));
+  probe.first_hit.push_back(std::vector<glm::vec3>(n, glm::vec3(0.0f)));  // dark: skipped
+  const IndirectLightError e =
+      indirect_light_error({t.data(), t.data()}, {up.data(), down.data()}, n, probe);
+  EXPECT_EQ(e.lights, 1u);
+  // b = 1 everywhere: every channel's indirect light is the row sums of T.
+  double a = 0.0;
+  for (std::size_t p = 0; p < n; ++p) {
+    double row = 0.0;
+    for (std::size_t q = 0; q < n; ++q) row += t[p * n + q];
+    a += probe.area[p] * row * row;
+  }
+  const double expected = std::sqrt((2 * 0.01 * a + 0.04 * a) / (3 * a));
+  EXPECT_NEAR(e.rel_rms_mean, expected, 1e-6);
+  EXPECT_NEAR(e.rel_rms_max, expected, 1e-6);
 }
 
 }  // namespace bounce

@@ -1,0 +1,43 @@
+#include "bake/bake_pictures.h"
+
+#include "compress/matrix_picture.h"
+#include "io/png_writer.h"
+
+namespace bounce {
+
+std::vector<WrittenPicture> write_matrix_pictures(const std::filesystem::path& dir,
+                                                  const BakeResult& r) {
+  std::vector<WrittenPicture> written;
+  const std::size_t n = r.transport.n;
+  if (n == 0) return written;
+  std::vector<float> mean(n * n, 0.0f);
+  const float scale = 1.0f / static_cast<float>(r.transport.channels.size());
+  for (const ChannelTransport& c : r.transport.channels)
+    for (std::size_t k = 0; k < n * n; ++k) mean[k] += c.t[k] * scale;
+  const MatrixPictureSettings settings;
+  write_png(dir / "T.png", matrix_picture(mean.data(), n, settings));
+  written.push_back({"T.png", "picture: multi-bounce matrix, patch order, log colour map"});
+  if (!r.storage.compressed) return written;
+
+  const Permutation& perm = r.storage.compressed->permutation;
+  write_png(dir / "T_reordered.png", matrix_picture(mean.data(), n, settings, &perm));
+  written.push_back(
+      {"T_reordered.png", "picture: multi-bounce matrix after the codec's reordering"});
+  write_png(dir / "T_error.png",
+            matrix_picture(r.storage.abs_error_sum.data(), n, settings, &perm));
+  written.push_back({"T_error.png", "picture: |compressed - exact| per entry, reordered"});
+
+  // Blocks live in the reordered (stored) matrix.
+  std::vector<float> stored(n * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j)
+      stored[i * n + j] = r.storage.abs_error_sum[perm[i] * n + perm[j]];
+  std::size_t blocks = 0;
+  const std::vector<float> sums = block_error_sums(stored.data(), n, blocks);
+  write_png(dir / "T_error_blocks.png", matrix_picture(sums.data(), blocks, settings));
+  written.push_back(
+      {"T_error_blocks.png", "picture: |compressed - exact| summed per 4x4 block of T.dds"});
+  return written;
+}
+
+}  // namespace bounce

@@ -1,0 +1,58 @@
+#pragma once
+// How a bake stores its multi-bounce matrix, and what that costs: decides
+// dense or compressed (BakeSettings::codec), chooses the kept fraction from
+// the error budget (ours), compresses, and measures every error against the
+// exact matrix. Each choice is recorded with its reason.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bake/bake_settings.h"
+#include "base/diagnostics.h"
+#include "base/progress.h"
+#include "compress/codec.h"
+#include "compress/compression_error.h"
+#include "transport/transport.h"
+
+namespace bounce {
+
+struct KeptFractionTrial {
+  double kept_fraction = 0.0;
+  double rel_frobenius = 0.0;
+  std::size_t bytes = 0;
+};
+
+struct MatrixStorage {
+  std::string codec;  // "dense", "paper" or "ours"
+  std::optional<CompressedMatrix> compressed;
+  CompressionErrors errors;               // all zero when dense
+  std::size_t dense_bytes = 0;            // float32, the stored channels
+  std::size_t dense_rgb_bytes = 0;        // float32, three channels: the reference of ratios
+  std::size_t stored_bytes = 0;           // what the bake keeps of the matrix
+  std::vector<KeptFractionTrial> trials;  // ours with an error budget
+  std::optional<double> error_budget;
+  std::vector<TransportDecision> decisions;
+  // Sum over stored channels of |T~ - T| per entry (patch order); empty when dense.
+  std::vector<float> abs_error_sum;
+  double seconds = 0.0;
+
+  double ratio_to_dense_rgb() const {
+    return stored_bytes > 0
+               ? static_cast<double>(dense_rgb_bytes) / static_cast<double>(stored_bytes)
+               : 0.0;
+  }
+};
+
+// Kept fractions tried by the error budget, smallest first.
+inline constexpr double kKeptFractionLadder[] = {0.0025, 0.005, 0.01, 0.02, 0.04, 0.08, 0.16, 0.32};
+
+MatrixStorage store_transport(const TransportResult& transport, const IndirectLightProbe& probe,
+                              const BakeSettings& settings, Progress* progress,
+                              Diagnostics& diagnostics);
+
+// The stored channels of `transport` as matrix pointers, and which of them
+// stands for R, G and B.
+std::vector<const float*> stored_channels(const TransportResult& transport);
+std::array<int, 3> channel_of_rgb(const TransportResult& transport);
+
+}  // namespace bounce

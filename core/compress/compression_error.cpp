@@ -1,0 +1,101 @@
+#include "compress/compression_error.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "base/error.h"
+
+namespace bounce {
+
+namespace {
+
+// y = A x for an n x n row-major A, accumulated in double: a row of 16k
+// products in float loses ~3 digits, more than the errors being measured.
+void multiply(const float* a, std::size_t n, const std::vector<double>& x, std::vector<double>& y) {
+  y.assign(n, 0.0);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < n; ++i) {
+    const float* row = a + i * n;
+    double s = 0.0;
+    for (std::size_t j = 0; j < n; ++j) s += static_cast<double>(row[j]) * x[j];
+    y[i] = s;
+  }
+}
+
+void check_probe(const IndirectLightProbe& probe, std::size_t n, std::size_t channels) {
+  if (probe.area.size() != n)
+    throw Error("indirect-light error", "patch areas do not match the matrix size");
+  for (const auto& b : probe.first_hit)
+    if (b.size() != n) throw Error("indirect-light error", "a light vector has the wrong length");
+  for (int c : probe.channel_of_rgb)
+    if (c < 0 || static_cast<std::size_t>(c) >= channels)
+      throw Error("indirect-light error", "colour channel mapped to a missing matrix");
+}
+
+}  // namespace
+
+IndirectLightError indirect_light_error(const std::vector<const float*>& exact,
+                                        const std::vector<const float*>& approx, std::size_t n,
+                                        const IndirectLightProbe& probe) {
+  check_probe(probe, n, exact.size());
+  IndirectLightError e;
+  std::vector<double> b(n), y_exact, y_approx;
+  double sum = 0.0;
+  for (const auto& light : probe.first_hit) {
+    double err2 = 0.0, ref2 = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      for (std::size_t p = 0; p < n; ++p) b[p] = light[p][k];
+      const auto c = static_cast<std::size_t>(probe.channel_of_rgb[static_cast<std::size_t>(k)]);
+      multiply(exact[c], n, b, y_exact);
+      multiply(approx[c], n, b, y_approx);
+      for (std::size_t p = 0; p < n; ++p) {
+        const double w = probe.area[p], d = y_approx[p] - y_exact[p];
+        err2 += w * d * d;
+        ref2 += w * y_exact[p] * y_exact[p];
+      }
+    }
+    if (!(ref2 > 0.0)) continue;  // this light puts no indirect light anywhere
+    const double rel = std::sqrt(err2 / ref2);
+    ++e.lights;
+    sum += rel;
+    e.rel_rms_max = std::max(e.rel_rms_max, rel);
+  }
+  if (e.lights > 0) e.rel_rms_mean = sum / static_cast<double>(e.lights);
+  return e;
+}
+
+CompressionErrors measure_compression(const std::vector<const float*>& exact,
+                                      const CompressedMatrix& compressed,
+                                      const IndirectLightProbe& probe,
+                                      std::vector<float>* abs_error_sum, Progress* progress) {
+  const std::size_t n = compressed.n;
+  if (exact.size() != static_cast<std::size_t>(compressed.channels))
+    throw Error("compression error", "exact and compressed matrices differ in channel count");
+  CompressionErrors e;
+  if (abs_error_sum) abs_error_sum->assign(n * n, 0.0f);
+  std::vector<std::vector<float>> decoded(exact.size(), std::vector<float>(n * n));
+  MatrixErrorAccumulator all;
+  if (progress) progress->begin_stage("compress: measure errors", exact.size() + 1);
+  for (std::size_t c = 0; c < exact.size(); ++c) {
+    decompress_channel(compressed, static_cast<int>(c), decoded[c].data());
+    MatrixErrorAccumulator one;
+    one.add(exact[c], decoded[c].data(), n * n);
+    all.add(exact[c], decoded[c].data(), n * n);
+    e.channels.push_back(one.result());
+    if (abs_error_sum)
+      for (std::size_t k = 0; k < n * n; ++k)
+        (*abs_error_sum)[k] += std::abs(decoded[c][k] - exact[c][k]);
+    if (progress) progress->advance();
+  }
+  e.matrix = all.result();
+  std::vector<const float*> approx;
+  for (const auto& d : decoded) approx.push_back(d.data());
+  e.indirect = indirect_light_error(exact, approx, n, probe);
+  if (progress) {
+    progress->advance();
+    progress->end_stage();
+  }
+  return e;
+}
+
+}  // namespace bounce

@@ -1,0 +1,242 @@
+// The multi-bounce matrix in a bake folder, checked from the outside: the
+// compressed files are decoded here with independent code (libsquish's BC
+// decoder, the paper's log formula written out, the CSR and permutation read
+// from .npy) and compared with the exact T.npy, so the error figures of the
+// manifest are recomputed rather than trusted; OpenImageIO must open the DDS.
+#include <OpenImageIO/imageio.h>
+#include <squish.h>
+
+#include <numeric>
+#include <set>
+
+#include "cli_harness.h"
+
+namespace bounce::itest {
+namespace {
+
+struct Decoded {
+  std::size_t n = 0;
+  std::vector<std::vector<float>> channels;  // dense n x n per stored channel, patch order
+};
+
+// Rebuilds T~ from T.dds, permutation.npy, T_kept_*.npy and the manifest's
+// quantiser parameters.
+Decoded decode_bake(const fs::path& bake, const json& compression) {
+  Decoded d;
+  const auto perm = read_npy_u32(bake / "permutation.npy");
+  d.n = perm.data.size();
+  const auto padded = compression["padded_size"].get<std::size_t>();
+  const bool bc4 = compression["format"] == "BC4";
+  // DDS: 128-byte header, then the blocks.
+  const std::string file = read_text(bake / "T.dds");
+  const std::size_t blocks = padded / 4 * padded / 4;
+  EXPECT_EQ(file.size(), 128 + 8 * blocks);
+  std::vector<squish::u8> rgba(padded * padded * 4);
+  squish::DecompressImage(rgba.data(), static_cast<int>(padded), static_cast<int>(padded),
+                          file.data() + 128, bc4 ? squish::kBc4 : squish::kDxt1);
+  const int stored = compression["stored_channels"].get<int>();
+  for (int c = 0; c < stored; ++c) {
+    const json& q = compression["quantizers"][static_cast<std::size_t>(c)];
+    const double vmax = q["vmax"].get<double>(), range = q["range"].get<double>();
+    std::vector<float> t(d.n * d.n);
+    // One stored channel lives in R (BC1) or in the single BC4 channel,
+    // which libsquish decodes into R as well.
+    const std::size_t offset = stored == 1 ? 0 : static_cast<std::size_t>(c);
+    for (std::size_t i = 0; i < d.n; ++i)
+      for (std::size_t j = 0; j < d.n; ++j) {
+        const int code = rgba[(i * padded + j) * 4 + offset];
+        // Paper 000: code = 255 (ln(v / vmax) + R) / R, code 0 = zero.
+        const double v = code == 0 ? 0.0 : vmax * std::exp(code * range / 255.0 - range);
+        t[perm.data[i] * d.n + perm.data[j]] = static_cast<float>(v);
+      }
+    const std::string base = "T_kept_" + std::to_string(c);
+    const auto row_ptr = read_npy_u32(bake / (base + "_row_ptr.npy"));
+    const auto col = read_npy_u32(bake / (base + "_col.npy"));
+    const auto value = read_npy_f32(bake / (base + "_value.npy"));
+    EXPECT_EQ(row_ptr.data.size(), d.n + 1);
+    for (std::size_t i = 0; i < d.n; ++i)
+      for (std::uint32_t k = row_ptr.data[i]; k < row_ptr.data[i + 1]; ++k)
+        t[i * d.n + col.data[k]] = value.data[k];
+    d.channels.push_back(std::move(t));
+  }
+  return d;
+}
+
+class CompressedBake : public ::testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override {
+    out = tmp.path() / "bake";
+    const RunResult r = run({"bake", scene("cornell-box"), "--voxel", "6", "--codec", GetParam(),
+                             "--dump-matrices", "--quiet", "--out", out.string()},
+                            tmp.path());
+    ASSERT_EQ(r.exit_code, 0) << r;
+    manifest = read_manifest(out);
+    compression = manifest["compression"];
+    exact = read_npy_f32(out / "T.npy");
+  }
+  TempDir tmp;
+  fs::path out;
+  json manifest, compression;
+  NpyArray<float> exact;
+};
+
+TEST_P(CompressedBake, ManifestErrorsMatchAnIndependentDecodeOfTheFiles) {
+  ASSERT_EQ(compression["codec"], GetParam());
+  const Decoded d = decode_bake(out, compression);
+  ASSERT_EQ(exact.shape, (std::vector<std::size_t>{d.channels.size(), d.n, d.n}));
+  double sum = 0.0, max = 0.0, diff2 = 0.0, ref2 = 0.0;
+  for (std::size_t c = 0; c < d.channels.size(); ++c)
+    for (std::size_t k = 0; k < d.n * d.n; ++k) {
+      const double e =
+          std::abs(static_cast<double>(d.channels[c][k]) - exact.data[c * d.n * d.n + k]);
+      sum += e;
+      max = std::max(max, e);
+      diff2 += e * e;
+      ref2 += static_cast<double>(exact.data[c * d.n * d.n + k]) * exact.data[c * d.n * d.n + k];
+    }
+  const double count = static_cast<double>(d.channels.size() * d.n * d.n);
+  const json& e = compression["errors"];
+  // libsquish and our decoder agree bit for bit (unit tests); what remains is
+  // float rounding of the log formula: well under 1e-4 relative.
+  EXPECT_NEAR(e["sum_abs"].get<double>(), sum, 1e-4 * sum);
+  EXPECT_NEAR(e["mean_abs"].get<double>(), sum / count, 1e-4 * sum / count);
+  EXPECT_NEAR(e["max_abs"].get<double>(), max, 1e-4 * max);
+  EXPECT_NEAR(e["rel_frobenius"].get<double>(), std::sqrt(diff2 / ref2),
+              1e-4 * std::sqrt(diff2 / ref2));
+  EXPECT_GT(sum, 0.0) << "compression that loses nothing is suspicious";
+}
+
+TEST_P(CompressedBake, KeptEntriesAreExactAndTheLargest) {
+  const auto n = manifest["counts"]["patches"].get<std::size_t>();
+  const int stored = compression["stored_channels"].get<int>();
+  for (int c = 0; c < stored; ++c) {
+    const std::string base = "T_kept_" + std::to_string(c);
+    const auto row_ptr = read_npy_u32(out / (base + "_row_ptr.npy"));
+    const auto col = read_npy_u32(out / (base + "_col.npy"));
+    const auto value = read_npy_f32(out / (base + "_value.npy"));
+    const float* t = exact.data.data() + static_cast<std::size_t>(c) * n * n;
+    std::vector<bool> kept(n * n, false);
+    float smallest_kept = std::numeric_limits<float>::infinity();
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::uint32_t k = row_ptr.data[i]; k < row_ptr.data[i + 1]; ++k) {
+        ASSERT_LT(col.data[k], n);
+        ASSERT_EQ(value.data[k], t[i * n + col.data[k]]) << "kept entry not exact";
+        kept[i * n + col.data[k]] = true;
+        smallest_kept = std::min(smallest_kept, value.data[k]);
+      }
+    for (std::size_t k = 0; k < n * n; ++k) {
+      if (kept[k]) continue;
+      ASSERT_LT(t[k], smallest_kept) << "a larger entry was not kept";
+    }
+    const double fraction = static_cast<double>(value.data.size()) / static_cast<double>(n * n);
+    EXPECT_NEAR(fraction, compression["kept_fraction"].get<double>(), 0.01);
+  }
+}
+
+TEST_P(CompressedBake, PermutationIsABijection) {
+  const auto perm = read_npy_u32(out / "permutation.npy");
+  const auto n = manifest["counts"]["patches"].get<std::size_t>();
+  ASSERT_EQ(perm.data.size(), n);
+  std::set<std::uint32_t> seen(perm.data.begin(), perm.data.end());
+  EXPECT_EQ(seen.size(), n);
+  EXPECT_EQ(*seen.rbegin(), n - 1);
+}
+
+TEST_P(CompressedBake, OpenImageIoOpensTheDds) {
+  auto in = OIIO::ImageInput::open((out / "T.dds").string());
+  ASSERT_TRUE(in) << OIIO::geterror();
+  const OIIO::ImageSpec& spec = in->spec();
+  const auto padded = compression["padded_size"].get<int>();
+  EXPECT_EQ(spec.width, padded);
+  EXPECT_EQ(spec.height, padded);
+  EXPECT_GE(spec.nchannels, 3) << "a colour scene's matrix is BC1 (RGB)";
+  std::vector<std::uint8_t> pixels(static_cast<std::size_t>(spec.width) * spec.height *
+                                   spec.nchannels);
+  ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, pixels.data()))
+      << in->geterror();
+  EXPECT_GT(std::accumulate(pixels.begin(), pixels.end(), 0.0), 0.0);
+}
+
+TEST_P(CompressedBake, SizesAddUpAndCompressionPays) {
+  const json& s = compression["sizes"];
+  const auto n = manifest["counts"]["patches"].get<std::size_t>();
+  EXPECT_EQ(s["dense_rgb_float32_bytes"].get<std::size_t>(), 3 * n * n * 4);
+  EXPECT_EQ(s["stored_bytes"].get<std::size_t>(), s["sparse_bytes"].get<std::size_t>() +
+                                                      s["block_bytes"].get<std::size_t>() +
+                                                      s["permutation_bytes"].get<std::size_t>());
+  EXPECT_EQ(s["block_bytes"].get<std::size_t>(), fs::file_size(out / "T.dds") - 128);
+  EXPECT_GT(s["ratio_to_dense_rgb"].get<double>(), 4.0);
+  for (const char* picture : {"T.png", "T_reordered.png", "T_error.png", "T_error_blocks.png"})
+    EXPECT_TRUE(fs::exists(out / picture)) << picture;
+}
+
+INSTANTIATE_TEST_SUITE_P(Codecs, CompressedBake, ::testing::Values("paper", "ours"),
+                         [](const ::testing::TestParamInfo<std::string>& p) { return p.param; });
+
+TEST(TransportBake, PaperCodecIsThePublishedPipeline) {
+  TempDir tmp;
+  const fs::path out = tmp / "bake";
+  const RunResult r = run({"bake", scene("cornell-box"), "--voxel", "5", "--codec", "paper",
+                           "--no-pictures", "--quiet", "--out", out.string()},
+                          tmp.path());
+  ASSERT_EQ(r.exit_code, 0) << r;
+  const json c = read_manifest(out)["compression"];
+  EXPECT_EQ(c["kept_fraction"], 0.04);
+  EXPECT_EQ(c["ordering"], "paper-2-passes");
+  EXPECT_EQ(c["format"], "BC1");
+  EXPECT_TRUE(contains(c["encoder"].get<std::string>(), "squish")) << c["encoder"];
+  EXPECT_FALSE(fs::exists(out / "T.png")) << "--no-pictures";
+}
+
+TEST(TransportBake, GreyFurnaceStoresOneChannelAndMatchesTheAnalyticSeries) {
+  // Albedo 0.5 everywhere in a closed box: each row of T(inf) = sum_h (rho F)^h
+  // sums to rho/(1 - rho) = 1 (F's rows sum to 1 within ~1%).
+  TempDir tmp;
+  const fs::path out = tmp / "bake";
+  const RunResult r = run({"bake", scene("furnace"), "--voxel", "6", "--bounces", "inf", "--codec",
+                           "ours", "--dump-matrices", "--quiet", "--out", out.string()},
+                          tmp.path());
+  ASSERT_EQ(r.exit_code, 0) << r;
+  const json m = read_manifest(out);
+  EXPECT_EQ(m["transport"]["grey"], true);
+  ASSERT_EQ(m["transport"]["channels"].size(), 1u);
+  EXPECT_EQ(m["transport"]["channels"][0]["rgb"], "RGB");
+  EXPECT_EQ(m["transport"]["channels"][0]["bounces"], "inf");
+  EXPECT_EQ(m["transport"]["channel_of_rgb"], json::array({0, 0, 0}));
+  EXPECT_EQ(m["compression"]["format"], "BC4") << "one grey channel: BC4";
+  EXPECT_EQ(m["compression"]["stored_channels"], 1);
+  const auto t = read_npy_f32(out / "T.npy");
+  const auto n = m["counts"]["patches"].get<std::size_t>();
+  ASSERT_EQ(t.shape, (std::vector<std::size_t>{1, n, n}));
+  for (std::size_t p = 0; p < n; ++p) {
+    double row = 0.0;
+    for (std::size_t q = 0; q < n; ++q) row += t.data[p * n + q];
+    // F rows within 1% of 1 amplify to 1/(1 - 0.5 * 1.01) - 1: 2% here.
+    EXPECT_NEAR(row, 1.0, 0.03) << "row " << p;
+  }
+  auto in = OIIO::ImageInput::open((out / "T.dds").string());
+  ASSERT_TRUE(in) << OIIO::geterror();
+  EXPECT_EQ(in->spec().nchannels, 1) << "BC4 is one channel";
+}
+
+TEST(TransportBake, SmallMatrixStaysDenseAndSaysSo) {
+  TempDir tmp;
+  const fs::path out = tmp / "bake";
+  const RunResult r = run({"bake", scene("parallel-squares"), "--voxel", "4", "--bounces", "3",
+                           "--quiet", "--out", out.string()},
+                          tmp.path());
+  ASSERT_EQ(r.exit_code, 0) << r;
+  const json m = read_manifest(out);
+  EXPECT_EQ(m["compression"]["codec"], "dense");
+  for (const json& c : m["transport"]["channels"]) EXPECT_EQ(c["bounces"], 3);
+  bool said = false;
+  for (const json& l : m["left_out"])
+    said = said ||
+           (l["where"] == "compress" && contains(l["message"].get<std::string>(), "compression"));
+  EXPECT_TRUE(said) << m["left_out"];
+  EXPECT_TRUE(fs::exists(out / "T.npy"));
+  EXPECT_FALSE(fs::exists(out / "T.dds"));
+}
+
+}  // namespace
+}  // namespace bounce::itest
