@@ -11,7 +11,7 @@
 //
 // Precision rule. The forward error of an LU solve is about kappa * eps, with
 // kappa the condition number. float32 is used when kappa * FLT_EPSILON <=
-// kFloat32ErrorLimit, float64 otherwise. kappa is first bounded from below
+// InverseOptions::float32_error_limit (1e-5), float64 otherwise. kappa is first bounded from below
 // without factorising, kappa_inf(I - M) >= ||I - M||_inf / (1 - rho(M))
 // (every norm bounds the spectral radius of (I - M)^-1, which is
 // 1 / (1 - rho) for non-negative M), and that alone sends stiff systems
