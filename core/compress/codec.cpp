@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <string>
 
+#include "base/error.h"
 #include "compress/block_image.h"
 #include "compress/ordering.h"
 #include "compress/ordering_paper.h"
@@ -15,6 +17,30 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
+
+Permutation compute_ordering(OrderingMethod ordering, const std::uint8_t* codes, std::size_t n,
+                             std::size_t channels) {
+  switch (ordering) {
+    case OrderingMethod::None:
+      return identity_permutation(n);
+    case OrderingMethod::Paper1:
+      return paper_ordering(codes, n, channels, 1);
+    case OrderingMethod::Paper2:
+      return paper_ordering(codes, n, channels, 2);
+    case OrderingMethod::Ours: {
+      // Code 0 is mostly a hole left by a kept entry, which the encoder
+      // ignores: let the ordering ignore it too.
+      OrderingSettings os;
+      os.sketch.zero_is_hole = true;
+      return our_ordering(codes, n, channels, os);
+    }
+  }
+  return identity_permutation(n);
+}
+
+// Ours: the log range covers all but the smallest 0.1% of the values (see
+// fitted_log_range).
+constexpr double kOursRangeQuantile = 0.001;
 
 }  // namespace
 
@@ -67,6 +93,10 @@ CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std:
     LogQuantizer q;
     for (std::size_t k = 0; k < n * n; ++k)
       if (a[k] < threshold) q.vmax = std::max(q.vmax, a[k]);
+    if (!paper) {
+      q.range = fitted_log_range(a, n * n, q.vmax, kOursRangeQuantile);
+      q.nearest_at_zero = true;
+    }
     m.quantizers.push_back(q);
     for (std::size_t k = 0; k < n * n; ++k) {
       const bool hole = !(a[k] < threshold);
@@ -90,28 +120,21 @@ CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std:
   const OrderingMethod ordering =
       settings.ordering.value_or(paper ? OrderingMethod::Paper2 : OrderingMethod::Ours);
   m.ordering = ordering_name(ordering);
-  if (progress) progress->begin_stage(std::string("compress: order rows (") + m.ordering + ")", 1);
+  if (progress)
+    progress->begin_stage(std::string("compress: order rows (") + m.ordering +
+                              (settings.permutation ? ", precomputed)" : ")"),
+                          1);
   t = Clock::now();
-  switch (ordering) {
-    case OrderingMethod::None:
-      m.permutation = identity_permutation(n);
-      break;
-    case OrderingMethod::Paper1:
-      m.permutation = paper_ordering(codes.data(), n, image_channels, 1);
-      break;
-    case OrderingMethod::Paper2:
-      m.permutation = paper_ordering(codes.data(), n, image_channels, 2);
-      break;
-    case OrderingMethod::Ours: {
-      // Code 0 is mostly a hole left by a kept entry, which the encoder
-      // ignores: let the ordering ignore it too.
-      OrderingSettings os;
-      os.sketch.zero_is_hole = true;
-      m.permutation = our_ordering(codes.data(), n, image_channels, os);
-      break;
-    }
+  if (settings.permutation) {
+    if (settings.permutation->size() != n || !is_bijection(*settings.permutation))
+      throw Error("compress",
+                  "the precomputed permutation (" + std::to_string(settings.permutation->size()) +
+                      " entries) is not a permutation of the " + std::to_string(n) + " patches");
+    m.permutation = *settings.permutation;
+  } else {
+    m.permutation = compute_ordering(ordering, codes.data(), n, image_channels);
   }
-  m.seconds_ordering = since(t);
+  m.seconds_ordering = settings.permutation ? 0.0 : since(t);
   if (progress) progress->end_stage();
   if (progress) progress->check();
 

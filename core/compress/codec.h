@@ -36,6 +36,13 @@ struct CodecSettings {
   // Overrides, for comparisons (bounce bench compress); unset = the codec's own.
   std::optional<Bc1Encoder> bc1_encoder;
   std::optional<OrderingMethod> ordering;
+  // A permutation computed before (CompressedMatrix::permutation of an earlier
+  // run on the same matrices, kept fraction and channel count), used instead
+  // of computing `ordering` again: the paper's tour is O(n^3), and a
+  // comparison of encoders should not pay for it once per encoder. The report
+  // still names `ordering`; seconds_ordering is then 0. Must be a bijection
+  // of 0..n-1 (compress_matrix throws bounce::Error otherwise).
+  std::optional<Permutation> permutation;
 };
 
 struct CompressedMatrix {

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "base/error.h"
 #include "compress/codec.h"
 #include "compress/matrix_error.h"
 
@@ -93,8 +94,35 @@ TEST(Codec, OursBeatsThePublishedPipelineAtTheSameSize) {
   const MatrixError ep = errors(mp, t), eo = errors(mo, t);
   std::printf("sum |error|: paper %.4g, ours %.4g (ratio %.3f); rel Frobenius %.4g vs %.4g\n",
               ep.sum_abs, eo.sum_abs, eo.sum_abs / ep.sum_abs, ep.rel_frobenius, eo.rel_frobenius);
-  EXPECT_LT(eo.sum_abs, ep.sum_abs);
-  EXPECT_LT(eo.rel_frobenius, ep.rel_frobenius);
+  // The target is half the paper's sum |error| at no larger size; on
+  // this matrix ours measures 0.42x (the fitted log range alone takes it from
+  // 0.61x).
+  EXPECT_LT(eo.sum_abs, 0.5 * ep.sum_abs);
+  EXPECT_LT(eo.rel_frobenius, 0.5 * ep.rel_frobenius);
+}
+
+TEST(Codec, PrecomputedPermutationGivesTheSameResultWithoutOrdering) {
+  // bounce bench compress computes each ordering once and hands it to the
+  // other encoders: the result must be the one a full run gives.
+  const std::size_t n = 96;
+  const std::vector<float> t0 = transport_like(n, 1.0f, 4), t1 = transport_like(n, 0.9f, 4),
+                           t2 = transport_like(n, 0.8f, 4);
+  const std::vector<const float*> in = {t0.data(), t1.data(), t2.data()};
+  CodecSettings s;
+  s.ordering = OrderingMethod::Paper2;
+  s.bc1_encoder = Bc1Encoder::kStbHighQuality;
+  const CompressedMatrix full = compress_matrix(in, n, s);
+  s.permutation = full.permutation;
+  const CompressedMatrix reused = compress_matrix(in, n, s);
+  EXPECT_EQ(reused.permutation, full.permutation);
+  EXPECT_EQ(reused.blocks, full.blocks);
+  EXPECT_EQ(reused.ordering, full.ordering);
+  EXPECT_EQ(reused.seconds_ordering, 0.0);
+
+  s.permutation = Permutation(n, 0);  // not a bijection
+  EXPECT_THROW(compress_matrix(in, n, s), Error);
+  s.permutation = identity_permutation(n - 1);  // wrong size
+  EXPECT_THROW(compress_matrix(in, n, s), Error);
 }
 
 }  // namespace bounce
