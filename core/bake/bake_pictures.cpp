@@ -14,15 +14,22 @@ std::vector<WrittenPicture> write_matrix_pictures(const std::filesystem::path& d
   const float scale = 1.0f / static_cast<float>(r.transport.channels.size());
   for (const ChannelTransport& c : r.transport.channels)
     for (std::size_t k = 0; k < n * n; ++k) mean[k] += c.t[k] * scale;
-  const MatrixPictureSettings settings;
+  MatrixPictureSettings settings;
+  const std::string what =
+      r.transport.channels.size() == 1 ? "T" : "T (mean of the stored channels)";
+  const std::string size = std::to_string(n) + " x " + std::to_string(n);
+  settings.title = what + ", patch order, " + size;
   write_png(dir / "T.png", matrix_picture(mean.data(), n, settings));
   written.push_back({"T.png", "picture: multi-bounce matrix, patch order, log colour map"});
   if (!r.storage.compressed) return written;
 
   const Permutation& perm = r.storage.compressed->permutation;
+  const std::string order = ", reordered (" + r.storage.compressed->ordering + ")";
+  settings.title = what + order;
   write_png(dir / "T_reordered.png", matrix_picture(mean.data(), n, settings, &perm));
   written.push_back(
       {"T_reordered.png", "picture: multi-bounce matrix after the codec's reordering"});
+  settings.title = "|T~ - T| per entry" + order;
   write_png(dir / "T_error.png",
             matrix_picture(r.storage.abs_error_sum.data(), n, settings, &perm));
   written.push_back({"T_error.png", "picture: |compressed - exact| per entry, reordered"});
@@ -34,6 +41,8 @@ std::vector<WrittenPicture> write_matrix_pictures(const std::filesystem::path& d
       stored[i * n + j] = r.storage.abs_error_sum[perm[i] * n + perm[j]];
   std::size_t blocks = 0;
   const std::vector<float> sums = block_error_sums(stored.data(), n, blocks);
+  settings.title = "|T~ - T| per 4x4 block of T.dds (" + r.storage.codec + ", " +
+                   r.storage.compressed->encoder + ")";
   write_png(dir / "T_error_blocks.png", matrix_picture(sums.data(), blocks, settings));
   written.push_back(
       {"T_error_blocks.png", "picture: |compressed - exact| summed per 4x4 block of T.dds"});

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+
+#include "io/text_label.h"
 
 namespace bounce {
 
@@ -23,7 +26,11 @@ Rgb8Image matrix_picture(const float* values, std::size_t n, const MatrixPicture
   const int size = static_cast<int>(std::min<std::size_t>(n, static_cast<std::size_t>(s.max_size)));
   const int bar_gap = std::max(8, size / 32), bar_width = std::max(12, size / 24);
   const int margin = std::max(4, size / 64);
-  Rgb8Image img(size + bar_gap + bar_width + 2 * margin, size + 2 * margin);
+  // Labels: one decade value per tick right of the bar, the caption on top.
+  const int font = std::max(10, size / 48);
+  const int label_width = text_width("0.0e-00", font) + (text_width("0", font) > 0 ? font / 2 : 0);
+  const int top = s.title.empty() || text_width(s.title, font) == 0 ? margin : margin + 2 * font;
+  Rgb8Image img(size + bar_gap + bar_width + label_width + 2 * margin, size + top + margin);
   std::fill(img.pixels.begin(), img.pixels.end(), std::uint8_t{255});  // white background
 
   // Block maxima of |value| per pixel.
@@ -52,13 +59,13 @@ Rgb8Image matrix_picture(const float* values, std::size_t n, const MatrixPicture
       }
     }
   }
-  const double top = vmax > 0.0f ? std::log10(static_cast<double>(vmax)) : 0.0;
-  const double bottom = top - s.decades;
+  const double log_max = vmax > 0.0f ? std::log10(static_cast<double>(vmax)) : 0.0;
+  const double bottom = log_max - s.decades;
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
       const float m = pix[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) +
                           static_cast<std::size_t>(x)];
-      std::uint8_t* px = img.at(margin + x, margin + y);
+      std::uint8_t* px = img.at(margin + x, top + y);
       if (!(m > 0.0f)) {
         px[0] = px[1] = px[2] = 0;
         continue;
@@ -74,10 +81,20 @@ Rgb8Image matrix_picture(const float* values, std::size_t n, const MatrixPicture
     const bool tick = static_cast<int>(std::floor(t * s.decades)) !=
                       static_cast<int>(std::floor((1.0 - (y + 1.5) / size) * s.decades));
     for (int x = 0; x < bar_width; ++x) {
-      std::uint8_t* px = img.at(bx + x, margin + y);
+      std::uint8_t* px = img.at(bx + x, top + y);
       for (int k = 0; k < 3; ++k) px[k] = tick ? 255 : c[k];
     }
   }
+  if (label_width > 0 && vmax > 0.0f) {
+    // The value at the top of the bar and at each decade below it.
+    for (int k = 0; k <= static_cast<int>(s.decades); ++k) {
+      const int y = top + static_cast<int>(std::lround(k / s.decades * size));
+      char label[32];
+      std::snprintf(label, sizeof label, "%.1e", std::pow(10.0, log_max - k));
+      draw_text(img, bx + bar_width + font / 3, std::min(y + font / 3, top + size), label, font);
+    }
+  }
+  if (top > margin) draw_text(img, margin, top - font / 2, s.title, font);
   return img;
 }
 

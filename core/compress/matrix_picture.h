@@ -5,8 +5,10 @@
 //
 // Layout: the matrix (downsampled by block maxima to at most `max_size`
 // pixels a side, so isolated large entries stay visible), a gap, and a
-// vertical colour bar whose ticks mark each decade (one tick per power of 10).
+// vertical colour bar whose ticks mark each decade below the maximum, each
+// labelled with its value, and an optional caption above.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "io/png_writer.h"
@@ -16,6 +18,7 @@ namespace bounce {
 struct MatrixPictureSettings {
   int max_size = 1024;   // pixels along a side of the matrix area
   double decades = 6.0;  // colour range: [max / 10^decades, max]
+  std::string title;     // caption above the matrix (none if empty)
 };
 
 // Viridis-like perceptual colour map, t in [0, 1].
