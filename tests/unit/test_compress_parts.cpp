@@ -161,4 +161,26 @@ TEST(LogQuantizer, FittedRangeCoversTheValuesAndNoMore) {
   EXPECT_EQ(fitted_log_range(wide.data(), wide.size(), 1.0f, 0.5), 25.0f);
 }
 
+TEST(MatrixPicture, ColourBarValuesAndCaptionAreDrawn) {
+  const std::size_t n = 200;
+  std::vector<float> m(n * n, 1e-3f);
+  MatrixPictureSettings s;
+  const Rgb8Image plain = matrix_picture(m.data(), n, s);
+  s.title = "caption";
+  const Rgb8Image titled = matrix_picture(m.data(), n, s);
+  EXPECT_GT(titled.height, plain.height) << "no room made for the caption";
+  // Dark text pixels on the white background right of the colour bar (the
+  // labels) and above the matrix (the caption).
+  auto dark_pixels = [](Rgb8Image& img, int x0, int x1, int y0, int y1) {
+    int count = 0;
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) count += img.at(x, y)[0] < 100 && img.at(x, y)[1] < 100;
+    return count;
+  };
+  Rgb8Image t = titled;
+  const int margin = 4, bar_right = margin + 200 + 8 + 12;
+  EXPECT_GT(dark_pixels(t, bar_right, t.width, 0, t.height), 50) << "no colour-bar labels";
+  EXPECT_GT(dark_pixels(t, 0, 200, 0, titled.height - plain.height + margin), 20) << "no caption";
+}
+
 }  // namespace bounce
