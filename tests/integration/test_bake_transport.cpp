@@ -9,6 +9,7 @@
 #include <numeric>
 #include <set>
 
+#include "bake/bake_reader.h"
 #include "cli_harness.h"
 
 namespace bounce::itest {
@@ -168,6 +169,47 @@ TEST_P(CompressedBake, SizesAddUpAndCompressionPays) {
   EXPECT_GT(s["ratio_to_dense_rgb"].get<double>(), 4.0);
   for (const char* picture : {"T.png", "T_reordered.png", "T_error.png", "T_error_blocks.png"})
     EXPECT_TRUE(fs::exists(out / picture)) << picture;
+}
+
+TEST_P(CompressedBake, ReadingTheBakeBackGivesTheSameMatrixAndErrors) {
+  const LoadedBake b = BakeReader::read(out);
+  ASSERT_TRUE(b.compressed.has_value());
+  const auto n = manifest["counts"]["patches"].get<std::size_t>();
+  ASSERT_EQ(b.size(), n);
+  ASSERT_EQ(b.dense.size(), static_cast<std::size_t>(b.stored_channels));
+  const Decoded d = decode_bake(out, compression);
+  std::vector<float> mine(n * n);
+  for (int c = 0; c < b.compressed->channels; ++c) {
+    decompress_channel(*b.compressed, c, mine.data());
+    // libsquish's decode through the paper's formula in double, against ours
+    // in float: exp of an argument up to R = 25 rounded to float (2^-24
+    // relative) is off by up to 25 * 2^-24 * a few, about 5e-6 relative.
+    for (std::size_t k = 0; k < n * n; ++k)
+      ASSERT_NEAR(mine[k], d.channels[static_cast<std::size_t>(c)][k],
+                  1e-5f * d.channels[static_cast<std::size_t>(c)][k])
+          << "entry " << k;
+  }
+  std::vector<const float*> exact_matrices;
+  for (const auto& t : b.dense) exact_matrices.push_back(t.data());
+  const CompressionErrors e = measure_compression(exact_matrices, *b.compressed, b.probe);
+  EXPECT_NEAR(e.matrix.sum_abs, compression["errors"]["sum_abs"].get<double>(),
+              1e-6 * e.matrix.sum_abs);
+  const json& li = compression["errors"]["indirect_light"];
+  EXPECT_NEAR(e.indirect.rel_rms_mean, li["rel_rms_mean"].get<double>(), 1e-6);
+  EXPECT_EQ(e.indirect.lights, li["lights"].get<std::size_t>());
+  // Members: every sample with a patch is a member of exactly that patch.
+  EXPECT_EQ(b.patches.member_first.back(), b.patches.member_samples.size());
+  EXPECT_GT(b.patches.member_samples.size(), n);
+}
+
+TEST_P(CompressedBake, ReadingABakeWithAMissingPartNamesTheFile) {
+  fs::remove(out / "permutation.npy");
+  try {
+    BakeReader::read(out);
+    FAIL() << "read a bake without its permutation";
+  } catch (const Error& e) {
+    EXPECT_TRUE(contains(e.what(), "permutation.npy")) << e.what();
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Codecs, CompressedBake, ::testing::Values("paper", "ours"),

@@ -1,0 +1,51 @@
+#pragma once
+// Reads a bake folder (docs/bake-format.md) back: what `bounce solve`, the
+// runtime benchmarks and the studio need to light a baked scene without
+// baking again. Every problem (missing file, wrong shape, a manifest from
+// another format version) throws bounce::Error naming the file.
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "compress/codec.h"
+#include "compress/compression_error.h"
+#include "patches/patch_set.h"
+#include "patches/samples.h"
+
+namespace bounce {
+
+struct LoadedBake {
+  std::filesystem::path dir;
+  nlohmann::json manifest;
+  // Patches with their member samples (position, normal, area, albedo,
+  // voxel, triangle): enough to compute direct light on the patches.
+  PatchSet patches;
+  SampleSet samples;
+  std::array<int, 3> channel_of_rgb{0, 1, 2};
+  int stored_channels = 0;
+  // The compressed matrix, when the bake stored one.
+  std::optional<CompressedMatrix> compressed;
+  // The exact matrices (stored channels, n x n each), when T.npy is there
+  // (dense bakes, or --dump-matrices).
+  std::vector<std::vector<float>> dense;
+  // The evaluation lights' first-hit vectors and the patch areas.
+  IndirectLightProbe probe;
+
+  std::size_t size() const { return patches.size(); }
+};
+
+class BakeReader {
+ public:
+  class ReadError : public Error {
+   public:
+    using Error::Error;
+  };
+
+  // `with_dense`: also read T.npy when present (it can be large).
+  static LoadedBake read(const std::filesystem::path& dir, bool with_dense = true);
+};
+
+}  // namespace bounce
