@@ -200,8 +200,10 @@ BakeResult Baker::run(Progress& progress) const {
   {
     StageTimer timer("evaluation lights");
     const std::vector<Light> lights = evaluation_lights(scene_);
-    progress.begin_stage("direct light of the evaluation lights", lights.size());
-    r.probe_lights_total = lights.size();
+    // The emissive triangles together count as one more light.
+    const std::vector<AreaLight> area = area_lights(scene_);
+    progress.begin_stage("direct light of the evaluation lights", lights.size() + 1);
+    r.probe_lights_total = lights.size() + (area.empty() ? 0 : 1);
     r.probe.channel_of_rgb = channel_of_rgb(r.transport);
     for (const Patch& p : r.patches.patches) r.probe.area.push_back(p.area);
     for (const Light& light : lights) {
@@ -210,6 +212,10 @@ BakeResult Baker::run(Progress& progress) const {
           first_bounce(r.patches, direct_irradiance(tracer, r.samples, r.patches, {light})));
       progress.advance();
     }
+    if (!area.empty())
+      r.probe.first_hit.push_back(
+          first_bounce(r.patches, direct_irradiance(tracer, r.samples, r.patches, {}, area)));
+    progress.advance();
     progress.end_stage();
     r.stages.push_back(timer.finish());
   }

@@ -44,8 +44,9 @@ glm::vec3 from_light(const RayTracer& tracer, const glm::vec3& p, const glm::vec
 }  // namespace
 
 std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
-                                         const PatchSet& patches,
-                                         const std::vector<Light>& lights) {
+                                         const PatchSet& patches, const std::vector<Light>& lights,
+                                         const std::vector<AreaLight>& area_lights,
+                                         int area_strata) {
   std::vector<glm::vec3> e(patches.size(), glm::vec3(0.0f));
   const float eps = 10.0f * tracer.epsilon();
 #pragma omp parallel for schedule(dynamic, 16)
@@ -57,11 +58,25 @@ std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSe
       const Sample& s = samples.samples[patches.member_samples[k]];
       glm::vec3 es(0.0f);
       for (const Light& light : lights) es += from_light(tracer, s.position, s.normal, light, eps);
+      for (const AreaLight& light : area_lights)
+        es += area_light_irradiance(tracer, s.position, s.normal, light, area_strata,
+                                    patches.member_samples[k]);
       sum += s.area * es;
       area += s.area;
     }
     e[p] = area > 0.0f ? sum / area : glm::vec3(0.0f);
   }
+  return e;
+}
+
+glm::vec3 irradiance_at(const RayTracer& tracer, const glm::vec3& p, const glm::vec3& n,
+                        const std::vector<Light>& lights, const std::vector<AreaLight>& area,
+                        int area_strata, std::uint64_t seed) {
+  const float eps = 10.0f * tracer.epsilon();  // the same offset as for patch samples
+  glm::vec3 e(0.0f);
+  for (const Light& light : lights) e += from_light(tracer, p, n, light, eps);
+  for (const AreaLight& light : area)
+    e += area_light_irradiance(tracer, p, n, light, area_strata, seed);
   return e;
 }
 

@@ -10,13 +10,26 @@
 
 #include "patches/patch_set.h"
 #include "raytrace/ray_tracer.h"
+#include "runtime/area_lights.h"
 #include "scene/scene.h"
 
 namespace bounce {
 
-// Irradiance (per colour channel) at each patch.
+// Irradiance (per colour channel) at each patch from point, spot and
+// directional lights, and from `area` lights (emissive triangles) with
+// `area_strata` x `area_strata` shadow rays per sample and light.
 std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
-                                         const PatchSet& patches, const std::vector<Light>& lights);
+                                         const PatchSet& patches, const std::vector<Light>& lights,
+                                         const std::vector<AreaLight>& area = {},
+                                         int area_strata = 4);
+
+// Irradiance (per colour channel) at one surface point p with unit normal n
+// (the side that receives), shadow rays included: what every patch sample
+// gets, for callers that shade other points (camera pixels). `seed` makes the
+// area lights' jitter reproducible per point.
+glm::vec3 irradiance_at(const RayTracer& tracer, const glm::vec3& p, const glm::vec3& n,
+                        const std::vector<Light>& lights, const std::vector<AreaLight>& area = {},
+                        int area_strata = 4, std::uint64_t seed = 0);
 
 // b = albedo * E per patch and channel.
 std::vector<glm::vec3> first_bounce(const PatchSet& patches,
@@ -24,7 +37,8 @@ std::vector<glm::vec3> first_bounce(const PatchSet& patches,
 
 // A fixed set of test lights for error figures that do not depend on the
 // scene's own lights: the scene's lights plus four unit point lights at
-// centre + extent * (+-0.2, 0.2, +-0.2).
+// centre + extent * (+-0.2, 0.2, +-0.2). (The bake adds the emissive
+// triangles, if any, as one more.)
 std::vector<Light> evaluation_lights(const Scene& scene);
 
 }  // namespace bounce
