@@ -6,6 +6,7 @@
 #include "bake/bake.h"
 #include "bake/bake_writer.h"
 #include "bake_report.h"
+#include "bench_commands.h"
 #include "commands.h"
 #include "console_progress.h"
 #include "scene/scene_loader.h"
@@ -36,18 +37,21 @@ void run_bench_bake(const BakeOptions& opt) {
                      {"counts", m["counts"]},
                      {"stages", m["stages"]},
                      {"total_seconds", m["total_seconds"]},
-                     {"baseline", {{"settings", b["settings"]},
-                                   {"counts", b["counts"]},
-                                   {"stages", b["stages"]},
-                                   {"total_seconds", b["total_seconds"]}}}});
+                     {"baseline",
+                      {{"settings", b["settings"]},
+                       {"counts", b["counts"]},
+                       {"stages", b["stages"]},
+                       {"total_seconds", b["total_seconds"]}}}});
       continue;
     }
     std::printf("\nbench bake: %s, %zu triangles, grid %d, %d x %d rays per voxel face\n",
-                scene.name.c_str(), scene.triangle_count(), ours.settings.voxel_resolution.value_or(0),
-                *ours.settings.samples_per_face, *ours.settings.samples_per_face);
+                scene.name.c_str(), scene.triangle_count(),
+                ours.settings.voxel_resolution.value_or(0), *ours.settings.samples_per_face,
+                *ours.settings.samples_per_face);
     std::printf("  (ratio = first column / second; peak RSS of the first)\n");
-    std::printf("  %-24s %14s %14s %14s %8s\n", "stage", to_string(ours.settings.patch_mode).c_str(),
-                to_string(other.patch_mode).c_str(), "peak RSS (MiB)", "ratio");
+    std::printf("  %-24s %14s %14s %14s %8s\n", "stage",
+                to_string(ours.settings.patch_mode).c_str(), to_string(other.patch_mode).c_str(),
+                "peak RSS (MiB)", "ratio");
     for (std::size_t k = 0; k < ours.stages.size() && k < base.stages.size(); ++k) {
       const double a = ours.stages[k].seconds, c = base.stages[k].seconds;
       char ratio[32] = "-";
@@ -80,6 +84,9 @@ void register_bench(CLI::App& app) {
       bench->add_subcommand("bake", "Time and peak memory per bake stage (nothing is written)");
   opt->add_to(*bake, false);
   bake->callback([opt]() { run_bench_bake(*opt); });
+  register_bench_transport(*bench);
+  register_bench_compress(*bench);
+  register_bench_ordering(*bench);
 }
 
 }  // namespace bounce::cli

@@ -37,7 +37,8 @@ struct CodecSettings {
   std::optional<Bc1Encoder> bc1_encoder;
   std::optional<OrderingMethod> ordering;
   // A permutation computed before (CompressedMatrix::permutation of an earlier
-  // run on the same matrices, kept fraction and channel count), used instead
+  // run on the same matrices, kind, kept fraction and channel count: the
+  // codes it was computed on depend on all four), used instead
   // of computing `ordering` again: the paper's tour is O(n^3), and a
   // comparison of encoders should not pay for it once per encoder. The report
   // still names `ordering`; seconds_ordering is then 0. Must be a bijection

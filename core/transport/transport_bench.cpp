@@ -7,6 +7,8 @@
 #include "transport/clblast_gemm.h"
 #include "transport/inverse_transport.h"
 #include "transport/openblas_gemm.h"
+#include "transport/plain_gemm.h"
+#include "transport/text_format.h"
 
 namespace bounce {
 
@@ -42,9 +44,26 @@ BenchEntry time_solve(std::size_t n, int repeats, TransportPrecision precision) 
   return e;
 }
 
+BenchEntry time_plain(std::size_t n, int repeats) {
+  const std::string what = "plain sgemm (i-k-j loop, OpenMP)";
+  if (n > kPlainGemmMaxN)
+    return {what,
+            false,
+            text_format("skipped above n = %zu: its time grows as n^3 (8x per doubling of n, "
+                        "tens of seconds and more per product) and the sizes up to %zu already "
+                        "show its ratio to OpenBLAS",
+                        kPlainGemmMaxN, kPlainGemmMaxN),
+            {}};
+  PlainGemm plain;
+  // At the largest size one product already takes seconds; a warm-up and
+  // repeats would only multiply that.
+  const bool once = n >= kPlainGemmMaxN;
+  return {what, true, {}, time_gemm(plain, n, once ? 1 : repeats, once ? 0 : 1)};
+}
+
 }  // namespace
 
-TransportBench run_transport_bench(std::size_t n, int repeats, bool with_lu) {
+TransportBench run_transport_bench(std::size_t n, int repeats, bool with_lu, bool with_plain) {
   TransportBench b;
   b.n = n;
   b.repeats = std::max(repeats, 1);
@@ -54,11 +73,12 @@ TransportBench run_transport_bench(std::size_t n, int repeats, bool with_lu) {
   }
   try {
     ClblastGemm clblast;
-    b.entries.push_back({"CLBlast sgemm on " + clblast.device_name(), true, {},
-                         time_gemm(clblast, n, b.repeats)});
+    b.entries.push_back(
+        {"CLBlast sgemm on " + clblast.device_name(), true, {}, time_gemm(clblast, n, b.repeats)});
   } catch (const Error& e) {
     b.entries.push_back({"CLBlast sgemm", false, e.what(), {}});
   }
+  if (with_plain) b.entries.push_back(time_plain(n, b.repeats));
   if (with_lu) {
     b.entries.push_back(time_solve(n, b.repeats, TransportPrecision::Float32));
     b.entries.push_back(time_solve(n, b.repeats, TransportPrecision::Float64));

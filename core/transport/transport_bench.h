@@ -1,7 +1,8 @@
 #pragma once
 // `bounce bench transport`: how fast the two GEMM backends and the two LU
 // precisions are on this machine, measured back to back in one process (dense
-// timings swing +-30% between runs here; compare ratios within one run).
+// timings swing +-30% between runs here; compare ratios within one run), with
+// an unblocked triple loop (transport/plain_gemm.h) as the naive baseline.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -23,9 +24,18 @@ struct TransportBench {
   std::vector<BenchEntry> entries;
 };
 
+// The plain loop is timed up to this size only: beyond it one product takes
+// tens of seconds and more (about 2 s at 2048 here, 8x per doubling) and
+// says nothing the smaller sizes do not.
+inline constexpr std::size_t kPlainGemmMaxN = 2048;
+
 // One n x n sgemm on OpenBLAS and on CLBlast (best and median of `repeats`
 // after one warm-up); with `with_lu`, also the K = infinity solve in float32
-// and float64 on a random substochastic M (rows summing to 0.9).
-TransportBench run_transport_bench(std::size_t n, int repeats, bool with_lu = false);
+// and float64 on a random substochastic M (rows summing to 0.9); with
+// `with_plain`, also the plain loop: `repeats` runs after a warm-up below
+// n = kPlainGemmMaxN, one run without warm-up at it, skipped (available =
+// false, with the reason) above it.
+TransportBench run_transport_bench(std::size_t n, int repeats, bool with_lu = false,
+                                   bool with_plain = false);
 
 }  // namespace bounce

@@ -1,0 +1,17 @@
+#pragma once
+// The `bounce bench` subcommands beyond `bench bake`, one file each
+// (command_bench_<name>.cpp). register_bench (command_bench.cpp) adds them
+// under `bench`.
+#include <CLI/CLI.hpp>
+
+namespace bounce::cli {
+
+// `bench transport`: sgemm on OpenBLAS, CLBlast and a plain loop, and LU.
+void register_bench_transport(CLI::App& bench);
+// `bench compress`: every BC1 encoder x every ordering on a real transport
+// matrix, against the published pipeline.
+void register_bench_compress(CLI::App& bench);
+// `bench ordering`: our ordering on a large synthetic matrix (N = 16384).
+void register_bench_ordering(CLI::App& bench);
+
+}  // namespace bounce::cli
