@@ -77,9 +77,12 @@ CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std:
   const bool paper = settings.kind == CodecKind::Paper;
   // The paper always encodes RGB with BC1; ours gives a single (grey)
   // channel BC4, which spends the same 8 bytes on one channel.
-  const bool bc4 = !paper && m.channels == 1 && !settings.bc1_encoder;
+  const bool planar_bc4 = settings.bc4_per_channel && m.channels > 1;
+  const bool bc4 = planar_bc4 || (!paper && m.channels == 1 && !settings.bc1_encoder);
   m.format = bc4 ? DdsFormat::kBc4 : DdsFormat::kBc1;
-  const std::size_t image_channels = bc4 ? 1 : 3;
+  // BC4 per channel keeps the three channels interleaved until encoding, so
+  // the ordering sees all of them, then encodes each plane on its own.
+  const std::size_t image_channels = bc4 && !planar_bc4 ? 1 : 3;
   if (progress) progress->begin_stage("compress: split and quantise", matrices.size());
 
   // 1. Kept entries and log codes, in patch order.
@@ -155,7 +158,20 @@ CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std:
       }
     }
   }
-  if (bc4) {
+  if (planar_bc4) {
+    m.encoder = std::string(bc4_encoder_name(Bc4Encoder::kWeighted)) + " BC4 per channel";
+    std::vector<std::uint8_t> plane(w * w);
+    std::vector<float> plane_weights(w * w);
+    for (int c = 0; c < m.channels; ++c) {
+      for (std::size_t k = 0; k < w * w; ++k) {
+        plane[k] = image[k * 3 + static_cast<std::size_t>(c)];
+        plane_weights[k] = image_weights[k * 3 + static_cast<std::size_t>(c)];
+      }
+      const std::vector<std::uint8_t> b =
+          encode_bc4_image(w, w, plane, plane_weights, Bc4Encoder::kWeighted);
+      m.blocks.insert(m.blocks.end(), b.begin(), b.end());
+    }
+  } else if (bc4) {
     m.encoder = bc4_encoder_name(Bc4Encoder::kWeighted);
     m.blocks = encode_bc4_image(w, w, image, image_weights, Bc4Encoder::kWeighted);
   } else {
@@ -172,8 +188,15 @@ CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std:
 void decompress_channel(const CompressedMatrix& m, int c, float* out) {
   const std::size_t n = m.n, w = m.padded;
   const bool bc4 = m.format == DdsFormat::kBc4;
-  const std::vector<std::uint8_t> decoded =
-      bc4 ? decode_bc4_image(w, w, m.blocks) : decode_bc1_image(w, w, m.blocks);
+  std::vector<std::uint8_t> decoded;
+  if (bc4 && m.channels > 1) {
+    // BC4 per channel: channel c's image is the c-th of equal size.
+    const std::size_t bytes = m.blocks.size() / static_cast<std::size_t>(m.channels);
+    decoded = decode_bc4_image(
+        w, w, std::span(m.blocks).subspan(bytes * static_cast<std::size_t>(c), bytes));
+  } else {
+    decoded = bc4 ? decode_bc4_image(w, w, m.blocks) : decode_bc1_image(w, w, m.blocks);
+  }
   const std::size_t stride = bc4 ? 1 : 3;
   // With one stored channel in BC1 (paper, grey scene) R stands for it.
   const std::size_t offset = bc4 || m.channels == 1 ? 0 : static_cast<std::size_t>(c);

@@ -35,6 +35,10 @@ struct CodecSettings {
   double kept_fraction = 0.04;
   // Overrides, for comparisons (bounce bench compress); unset = the codec's own.
   std::optional<Bc1Encoder> bc1_encoder;
+  // Colour scenes: one BC4 image per channel (3 x 8 bytes per block, 3x the
+  // block bytes of BC1) instead of one BC1 image, for the comparison in
+  // bounce bench compress. Not a bake format: the DDS holds one image.
+  bool bc4_per_channel = false;
   std::optional<OrderingMethod> ordering;
   // A permutation computed before (CompressedMatrix::permutation of an earlier
   // run on the same matrices, kind, kept fraction and channel count: the
@@ -54,7 +58,9 @@ struct CompressedMatrix {
   Permutation permutation;               // stored row/column k holds patch permutation[k]
   std::vector<LogQuantizer> quantizers;  // per stored channel
   std::vector<CsrMatrix> kept;           // per stored channel, patch order
-  std::vector<std::uint8_t> blocks;      // padded/4 x padded/4 blocks of 8 bytes
+  // padded/4 x padded/4 blocks of 8 bytes (BC4 per channel: one such image
+  // per stored channel, one after another).
+  std::vector<std::uint8_t> blocks;
   // What was used, for reports.
   std::string codec, encoder, ordering;
   double kept_fraction = 0.0;
