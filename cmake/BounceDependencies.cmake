@@ -5,6 +5,11 @@ find_package(OpenMP REQUIRED)
 find_package(Threads REQUIRED)
 find_package(embree 3 REQUIRED)
 find_package(assimp REQUIRED)
+# OpenMesh 9 (core/runtime/mesh_transfer): Debian 12 ships a CMake config
+# exporting OpenMeshCore/OpenMeshTools for configuration "None" only and no
+# version file, so ask for the config without a version; CMake falls back to
+# the one imported configuration for Release and Debug.
+find_package(OpenMesh REQUIRED CONFIG)
 find_package(glm REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 find_package(CLI11 REQUIRED)
