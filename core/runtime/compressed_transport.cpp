@@ -1,0 +1,291 @@
+#include "runtime/compressed_transport.h"
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <utility>
+
+#include "base/error.h"
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define BOUNCE_AVX2_BLOCK_LOOP 1
+#endif
+
+namespace bounce {
+
+namespace {
+
+using Tables = CompressedTransportTables;
+// Accumulates block row I of T~ times b (stored order, colour-major) into
+// acc[row within the block row][colour].
+using BlockRowFn = void (*)(const Tables&, const float*, std::size_t, float (*)[3]);
+// Adds the kept entries' corrections of block row I (b: 4 floats per stored
+// column, R, G, B, 0) to the same accumulators.
+using CorrectionsFn = void (*)(const Tables&, const float*, std::size_t, float (*)[3]);
+
+// Blocks are little-endian (DDS); they are read as integers in place.
+static_assert(std::endian::native == std::endian::little, "block decoding assumes little-endian");
+
+std::uint32_t load_u32(const std::uint8_t* p) {
+  std::uint32_t v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+std::uint64_t load_u64(const std::uint8_t* p) {
+  std::uint64_t v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+template <DdsFormat kFormat, int kSlots>
+void block_row_portable(const Tables& t, const float* b, std::size_t I, float (*acc)[3]) {
+  constexpr int kLevels = kFormat == DdsFormat::kBc1 ? 4 : 8;
+  constexpr int kBits = kFormat == DdsFormat::kBc1 ? 2 : 3;
+  const std::size_t nb = t.block_rows, padded = t.padded;
+  const std::uint8_t* blocks = &t.blocks[I * nb * 8];
+  const float* palettes = &t.palettes[I * nb * kSlots * kLevels];
+  for (std::size_t J = 0; J < nb; ++J) {
+    // BC1: 2-bit indices in bytes 4..7; BC4: 3-bit indices in bytes 2..7.
+    const std::uint64_t indices =
+        kFormat == DdsFormat::kBc1 ? load_u32(blocks + 8 * J + 4) : load_u64(blocks + 8 * J) >> 16;
+    const float* palette = palettes + J * kSlots * kLevels;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) {
+        const auto e = static_cast<int>((indices >> (kBits * (4 * r + c))) & (kLevels - 1));
+        for (std::size_t k = 0; k < 3; ++k)
+          acc[r][k] += palette[t.slot_of_colour[k] * kLevels + e] *
+                       b[k * padded + 4 * J + static_cast<std::size_t>(c)];
+      }
+  }
+}
+
+#ifdef BOUNCE_AVX2_BLOCK_LOOP
+// One block: the index word, shifted by a different amount in each of 8
+// lanes, is the control of a permute of the palette, giving the values of
+// rows r and r + 1 (4 texels each) in one register; a permute uses only the
+// low 2 (BC1, in-lane vpermilps, palette in both lanes) or 3 (BC4, vpermps,
+// 8-entry palette) bits of each lane, so no masking is needed. b of the
+// block's 4 columns is broadcast to both lanes and multiplied in by FMA.
+// The accumulators are named, not an array: GCC keeps arrays of them in
+// memory and stores them every iteration.
+template <DdsFormat kFormat>
+__attribute__((target("avx2,fma"))) inline __m256 load_palette(const float* palette) {
+  if constexpr (kFormat == DdsFormat::kBc1)
+    return _mm256_broadcast_ps(reinterpret_cast<const __m128*>(palette));
+  else
+    return _mm256_loadu_ps(palette);
+}
+
+template <DdsFormat kFormat>
+__attribute__((target("avx2,fma"))) inline __m256 permute(__m256 palette, __m256i control) {
+  if constexpr (kFormat == DdsFormat::kBc1)
+    return _mm256_permutevar_ps(palette, control);
+  else
+    return _mm256_permutevar8x32_ps(palette, control);
+}
+
+__attribute__((target("avx2,fma"))) inline void add_lanes(__m256 rows01, __m256 rows23,
+                                                          float (*acc)[3], int k) {
+  alignas(32) float lanes[2][8];
+  _mm256_store_ps(lanes[0], rows01);
+  _mm256_store_ps(lanes[1], rows23);
+  for (int h = 0; h < 2; ++h)
+    for (int r = 0; r < 2; ++r)
+      acc[2 * h + r][k] +=
+          (lanes[h][4 * r] + lanes[h][4 * r + 1]) + (lanes[h][4 * r + 2] + lanes[h][4 * r + 3]);
+}
+
+template <DdsFormat kFormat, int kSlots>
+__attribute__((target("avx2,fma"))) void block_row_avx2(const Tables& t, const float* b,
+                                                        std::size_t I, float (*acc)[3]) {
+  constexpr bool kBc1 = kFormat == DdsFormat::kBc1;
+  constexpr std::size_t kLevels = kBc1 ? 4 : 8;
+  const std::size_t nb = t.block_rows, padded = t.padded;
+  const std::uint8_t* blocks = &t.blocks[I * nb * 8];
+  const float* palettes = &t.palettes[I * nb * kSlots * kLevels];
+  const __m256i shift_lo = kBc1 ? _mm256_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14)
+                                : _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
+  const __m256i shift_hi = kBc1 ? _mm256_setr_epi32(16, 18, 20, 22, 24, 26, 28, 30) : shift_lo;
+  const float *b_r = b, *b_g = b + padded, *b_b = b + 2 * padded;
+  const std::size_t slot_r = static_cast<std::size_t>(t.slot_of_colour[0]) * kLevels;
+  const std::size_t slot_g = static_cast<std::size_t>(t.slot_of_colour[1]) * kLevels;
+  const std::size_t slot_b = static_cast<std::size_t>(t.slot_of_colour[2]) * kLevels;
+  // Rows 0 and 1 (resp. 2 and 3) x columns 0..3, per colour.
+  __m256 r01 = _mm256_setzero_ps(), g01 = r01, b01 = r01, r23 = r01, g23 = r01, b23 = r01;
+  for (std::size_t J = 0; J < nb; ++J) {
+    const std::uint8_t* block = blocks + 8 * J;
+    __m256i control01, control23;
+    if constexpr (kBc1) {
+      const __m256i word = _mm256_set1_epi32(static_cast<int>(load_u32(block + 4)));
+      control01 = _mm256_srlv_epi32(word, shift_lo);
+      control23 = _mm256_srlv_epi32(word, shift_hi);
+    } else {
+      const std::uint64_t field = load_u64(block) >> 16;  // 48 bits, 12 per row
+      control01 =
+          _mm256_srlv_epi32(_mm256_set1_epi32(static_cast<int>(field & 0xFFFFFF)), shift_lo);
+      control23 = _mm256_srlv_epi32(_mm256_set1_epi32(static_cast<int>(field >> 24)), shift_lo);
+    }
+    const float* palette = palettes + J * kSlots * kLevels;
+    const __m256 br = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(b_r + 4 * J));
+    const __m256 bg = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(b_g + 4 * J));
+    const __m256 bb = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(b_b + 4 * J));
+    if constexpr (kSlots == 1) {
+      const __m256 p = load_palette<kFormat>(palette);
+      const __m256 v01 = permute<kFormat>(p, control01), v23 = permute<kFormat>(p, control23);
+      r01 = _mm256_fmadd_ps(v01, br, r01);
+      g01 = _mm256_fmadd_ps(v01, bg, g01);
+      b01 = _mm256_fmadd_ps(v01, bb, b01);
+      r23 = _mm256_fmadd_ps(v23, br, r23);
+      g23 = _mm256_fmadd_ps(v23, bg, g23);
+      b23 = _mm256_fmadd_ps(v23, bb, b23);
+    } else {
+      const __m256 pr = load_palette<kFormat>(palette + slot_r);
+      const __m256 pg = load_palette<kFormat>(palette + slot_g);
+      const __m256 pb = load_palette<kFormat>(palette + slot_b);
+      r01 = _mm256_fmadd_ps(permute<kFormat>(pr, control01), br, r01);
+      g01 = _mm256_fmadd_ps(permute<kFormat>(pg, control01), bg, g01);
+      b01 = _mm256_fmadd_ps(permute<kFormat>(pb, control01), bb, b01);
+      r23 = _mm256_fmadd_ps(permute<kFormat>(pr, control23), br, r23);
+      g23 = _mm256_fmadd_ps(permute<kFormat>(pg, control23), bg, g23);
+      b23 = _mm256_fmadd_ps(permute<kFormat>(pb, control23), bb, b23);
+    }
+  }
+  add_lanes(r01, r23, acc, 0);
+  add_lanes(g01, g23, acc, 1);
+  add_lanes(b01, b23, acc, 2);
+}
+
+// The values of one kept position as R, G, B, x. With 3 values per entry
+// the 16-byte load reads the next entry's R (or the table's trailing 0) as
+// x, which the 0 in b's fourth lane cancels.
+template <int kWidth>
+__attribute__((target("avx2,fma"))) inline __m128 load_value(const float* v) {
+  if constexpr (kWidth == 3)
+    return _mm_loadu_ps(v);
+  else
+    return _mm_broadcast_ss(v);
+}
+
+// The kept entries of block row I, row by row, one position per 4-float
+// FMA, two positions per step on independent sums (the FMA latency would
+// otherwise bound the loop).
+template <int kWidth>
+__attribute__((target("avx2,fma"))) void corrections_avx2(const Tables& t, const float* b4,
+                                                          std::size_t I, float (*acc)[3]) {
+  const std::uint32_t* index = t.correction_index.data();
+  const float* value = t.correction_value.data();
+  for (std::size_t r = 0; r < 4; ++r) {
+    std::size_t e = t.correction_ptr[4 * I + r];
+    const std::size_t end = t.correction_ptr[4 * I + r + 1];
+    if (e == end) continue;
+    __m128 s0 = _mm_setzero_ps(), s1 = s0;
+    for (; e + 1 < end; e += 2) {
+      const std::size_t j0 = index[e] & kCorrectionColumnMask;
+      const std::size_t j1 = index[e + 1] & kCorrectionColumnMask;
+      s0 = _mm_fmadd_ps(load_value<kWidth>(value + kWidth * e), _mm_loadu_ps(b4 + 4 * j0), s0);
+      s1 =
+          _mm_fmadd_ps(load_value<kWidth>(value + kWidth * (e + 1)), _mm_loadu_ps(b4 + 4 * j1), s1);
+    }
+    if (e < end)
+      s0 = _mm_fmadd_ps(load_value<kWidth>(value + kWidth * e),
+                        _mm_loadu_ps(b4 + 4 * (index[e] & kCorrectionColumnMask)), s0);
+    alignas(16) float sum[4];
+    _mm_store_ps(sum, _mm_add_ps(s0, s1));
+    for (int k = 0; k < 3; ++k) acc[r][k] += sum[k];
+  }
+}
+
+bool cpu_has_avx2() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
+#else
+bool cpu_has_avx2() { return false; }
+#endif
+
+BlockRowFn block_row_function(const Tables& t, bool avx2) {
+  const bool bc1 = t.format == DdsFormat::kBc1;
+#ifdef BOUNCE_AVX2_BLOCK_LOOP
+  if (avx2) {
+    if (!bc1) return block_row_avx2<DdsFormat::kBc4, 1>;
+    return t.slots == 3 ? block_row_avx2<DdsFormat::kBc1, 3> : block_row_avx2<DdsFormat::kBc1, 1>;
+  }
+#else
+  (void)avx2;
+#endif
+  if (!bc1) return block_row_portable<DdsFormat::kBc4, 1>;
+  return t.slots == 3 ? block_row_portable<DdsFormat::kBc1, 3>
+                      : block_row_portable<DdsFormat::kBc1, 1>;
+}
+
+// The kept entries of block row I, into the same accumulators as its blocks.
+template <int kWidth>
+void corrections_portable(const Tables& t, const float* b4, std::size_t I, float (*acc)[3]) {
+  for (std::size_t r = 0; r < 4; ++r)
+    for (std::uint32_t e = t.correction_ptr[4 * I + r]; e < t.correction_ptr[4 * I + r + 1]; ++e) {
+      const float* v = &t.correction_value[kWidth * e];
+      const float* x = b4 + 4 * (t.correction_index[e] & kCorrectionColumnMask);
+      for (int k = 0; k < 3; ++k) acc[r][k] += v[kWidth == 3 ? k : 0] * x[k];
+    }
+}
+
+CorrectionsFn corrections_function(const Tables& t, bool avx2) {
+#ifdef BOUNCE_AVX2_BLOCK_LOOP
+  if (avx2) return t.correction_width == 3 ? corrections_avx2<3> : corrections_avx2<1>;
+#else
+  (void)avx2;
+#endif
+  return t.correction_width == 3 ? corrections_portable<3> : corrections_portable<1>;
+}
+
+}  // namespace
+
+CompressedTransport::CompressedTransport(const CompressedMatrix& m,
+                                         const std::array<int, 3>& channel_of_rgb, BlockLoop loop)
+    : CompressedTransport(build_compressed_transport_tables(m, channel_of_rgb), loop) {}
+
+CompressedTransport::CompressedTransport(CompressedTransportTables tables, BlockLoop loop)
+    : tables_(std::move(tables)),
+      avx2_(loop == BlockLoop::kFastest && cpu_has_avx2()),
+      b_stored_(3 * tables_.padded, 0.0f),
+      b_quad_(4 * tables_.padded, 0.0f) {}
+
+std::size_t CompressedTransport::bytes_per_product() const {
+  return tables_.bytes() + tables_.n * sizeof(glm::vec3);
+}
+
+void CompressedTransport::multiply(const std::vector<glm::vec3>& b,
+                                   std::vector<glm::vec3>& indirect) const {
+  const Tables& t = tables_;
+  if (b.size() != t.n)
+    throw Error("compressed transport", "b has " + std::to_string(b.size()) + " entries for " +
+                                            std::to_string(t.n) + " patches");
+  if (indirect.size() != t.n) indirect.resize(t.n);
+  // Gather into stored order, colour-major for the blocks and 4 floats per
+  // column for the corrections; padding columns stay 0 from construction.
+  float* bs = b_stored_.data();
+  float* b4 = b_quad_.data();
+  const std::size_t padded = t.padded;
+  for (std::size_t i = 0; i < t.n; ++i) {
+    const glm::vec3& v = b[t.permutation[i]];
+    bs[i] = b4[4 * i] = v.x;
+    bs[padded + i] = b4[4 * i + 1] = v.y;
+    bs[2 * padded + i] = b4[4 * i + 2] = v.z;
+  }
+  const BlockRowFn block_row = block_row_function(t, avx2_);
+  const CorrectionsFn corrections = corrections_function(t, avx2_);
+  glm::vec3* out = indirect.data();
+  // Block rows write disjoint patches (the permutation is a bijection).
+  // Dynamic chunks: on a shared machine one core may be busy elsewhere, and
+  // a static split would wait for its half.
+#pragma omp parallel for schedule(dynamic, 8)
+  for (std::ptrdiff_t row = 0; row < static_cast<std::ptrdiff_t>(t.block_rows); ++row) {
+    const auto I = static_cast<std::size_t>(row);
+    float acc[4][3] = {};
+    block_row(t, bs, I, acc);
+    corrections(t, b4, I, acc);
+    for (std::size_t r = 0; r < 4 && 4 * I + r < t.n; ++r)
+      out[t.permutation[4 * I + r]] = glm::vec3(acc[r][0], acc[r][1], acc[r][2]);
+  }
+}
+
+}  // namespace bounce

@@ -1,0 +1,68 @@
+#pragma once
+// The run-time product of the compressed multi-bounce matrix on the CPU
+// (DESIGN 1.8, issue 4 section 2): for each colour channel k,
+//   indirect_k = T~_c(k) b_k,
+// with T~ the matrix decompress_channel() gives (kept entries exact, the rest
+// decoded from the blocks), computed straight from the blocks: the dense
+// matrix is never formed. Equal to the dense product of decompress_channel's
+// output up to float32 summation order.
+//
+// Per product: b is gathered into stored (permuted) order once, every block
+// row is multiplied (OpenMP over block rows; per block, the 2- or 3-bit
+// indices select values from the block's palette, see
+// runtime/compressed_transport_tables.h), the corrections of the kept
+// entries are added to the same row accumulators, and the rows are scattered
+// back to patch order. With AVX2 (checked at run time), one block is a few
+// vector permutes and FMAs: the indices of two block rows become the control
+// of one permute of the palette, 8 texels at once; without it a portable
+// loop does the same one texel at a time.
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "compress/codec.h"
+#include "runtime/compressed_transport_tables.h"
+
+namespace bounce {
+
+// The block loop: the fastest this CPU runs, or the portable one (for tests
+// of the portable loop on CPUs that would take AVX2).
+enum class BlockLoop { kFastest, kPortable };
+
+class CompressedTransport {
+ public:
+  // Lays the matrix out once (see build_compressed_transport_tables, whose
+  // errors it throws). channel_of_rgb: stored channel of R, G, B.
+  explicit CompressedTransport(const CompressedMatrix& m,
+                               const std::array<int, 3>& channel_of_rgb = {0, 1, 2},
+                               BlockLoop loop = BlockLoop::kFastest);
+  explicit CompressedTransport(CompressedTransportTables tables,
+                               BlockLoop loop = BlockLoop::kFastest);
+
+  // indirect[p] = (T~_c(0) b_0, T~_c(1) b_1, T~_c(2) b_2)[p] for every patch
+  // p. b has one entry per patch (throws bounce::Error otherwise); indirect
+  // is resized only when its size differs, and nothing else is allocated.
+  // Uses a scratch buffer of the object: one call at a time per object.
+  void multiply(const std::vector<glm::vec3>& b, std::vector<glm::vec3>& indirect) const;
+
+  std::size_t size() const { return tables_.n; }
+  const CompressedTransportTables& tables() const { return tables_; }
+  // Bytes one product reads: the tables plus b (in patch order, 12 per patch).
+  std::size_t bytes_per_product() const;
+  // "avx2" or "portable": the block loop multiply() runs on this CPU.
+  const char* block_loop() const { return avx2_ ? "avx2" : "portable"; }
+
+ private:
+  CompressedTransportTables tables_;
+  bool avx2_ = false;
+  // b in stored order, padding columns 0, twice: colour-major (R of every
+  // stored column, then G, then B), the block loop reads 4 columns of one
+  // colour at once; and R, G, B, 0 per column, a kept entry reads its column's
+  // 3 colours at once.
+  mutable std::vector<float> b_stored_;
+  mutable std::vector<float> b_quad_;
+};
+
+}  // namespace bounce

@@ -1,0 +1,173 @@
+#include "runtime/runtime_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <random>
+
+#include "base/error.h"
+#include "runtime/compressed_transport.h"
+#include "runtime/compressed_transport_cl.h"
+#include "runtime/dense_transport.h"
+#include "transport/text_format.h"
+
+namespace bounce {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Product = std::function<void(const std::vector<glm::vec3>&, std::vector<glm::vec3>&)>;
+
+void time_product(const Product& product, const std::vector<glm::vec3>& b, int repeats,
+                  std::vector<glm::vec3>& out, RuntimeBenchEntry& e) {
+  product(b, out);  // warm-up: first touch, caches, the device's first launch
+  std::vector<double> ms;
+  for (int i = 0; i < repeats; ++i) {
+    const auto start = Clock::now();
+    product(b, out);
+    ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+  }
+  std::sort(ms.begin(), ms.end());
+  e.best_ms = ms.front();
+  e.median_ms = ms[ms.size() / 2];
+  e.gb_per_s = e.best_ms > 0.0 ? static_cast<double>(e.bytes) / (e.best_ms * 1e6) : 0.0;
+}
+
+double max_rel_diff(const std::vector<glm::vec3>& y, const std::vector<glm::vec3>& reference) {
+  double diff = 0.0, scale = 0.0;
+  for (std::size_t p = 0; p < reference.size(); ++p)
+    for (int k = 0; k < 3; ++k) {
+      diff = std::max(diff, std::abs(static_cast<double>(y[p][k]) - reference[p][k]));
+      scale = std::max(scale, std::abs(static_cast<double>(reference[p][k])));
+    }
+  return scale > 0.0 ? diff / scale : diff;
+}
+
+}  // namespace
+
+double measure_read_bandwidth(std::size_t bytes, int repeats) {
+  const std::size_t count = std::max<std::size_t>(bytes / sizeof(float), 1);
+  // Not std::vector: it would zero the array on one thread first.
+  const std::unique_ptr<float[]> data(new float[count]);
+  const auto size = static_cast<std::ptrdiff_t>(count);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < size; ++i) data[static_cast<std::size_t>(i)] = 1.0f;
+  // 16 partial sums per thread: a single running sum would be one long
+  // chain of dependent adds, bound by the add latency, not by memory.
+  constexpr std::ptrdiff_t kLanes = 16;
+  const std::ptrdiff_t chunks = size / kLanes;
+  double best = 0.0;
+  volatile float sink = 0.0f;  // keeps the sums from being optimised away
+  for (int r = 0; r < std::max(repeats, 1); ++r) {
+    const auto start = Clock::now();
+    float sum = 0.0f;
+#pragma omp parallel reduction(+ : sum)
+    {
+      float part[kLanes] = {};
+#pragma omp for schedule(static)
+      for (std::ptrdiff_t i = 0; i < chunks; ++i)
+        for (std::ptrdiff_t l = 0; l < kLanes; ++l)
+          part[l] += data[static_cast<std::size_t>(kLanes * i + l)];
+      for (float p : part) sum += p;
+    }
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    sink = sink + sum;
+    const auto bytes_read = static_cast<double>(chunks * kLanes) * sizeof(float);
+    if (seconds > 0.0) best = std::max(best, bytes_read / seconds);
+  }
+  return best * 1e-9;
+}
+
+RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 3>& channel_of_rgb,
+                               const std::vector<const float*>& dense, int repeats) {
+  RuntimeBench bench;
+  bench.n = m.n;
+  bench.channels = m.channels;
+  bench.format = m.format == DdsFormat::kBc4 ? "BC4" : "BC1";
+  bench.repeats = std::max(repeats, 1);
+  if (!dense.empty() && dense.size() != static_cast<std::size_t>(m.channels))
+    throw Error("bench runtime", std::to_string(dense.size()) + " dense matrices for " +
+                                     std::to_string(m.channels) + " stored channels");
+
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  std::vector<glm::vec3> b(m.n);
+  for (glm::vec3& v : b) v = glm::vec3(u(rng), u(rng), u(rng));
+
+  const CompressedTransport cpu(m, channel_of_rgb);
+  bench.corrections = cpu.tables().corrections();
+  std::vector<glm::vec3> reference, out;
+  cpu.multiply(b, reference);
+
+  RuntimeBenchEntry cl_entry;
+  cl_entry.what = "compressed, OpenCL";
+  try {
+    const ClCompressedTransport gpu(cpu.tables());
+    cl_entry.what += " (" + gpu.device_name() + ")";
+    cl_entry.bytes = gpu.bytes_per_product();
+    time_product([&gpu](const auto& x, auto& y) { gpu.multiply(x, y); }, b, bench.repeats, out,
+                 cl_entry);
+    cl_entry.max_rel_diff = max_rel_diff(out, reference);
+  } catch (const Error& e) {
+    cl_entry.available = false;
+    cl_entry.error = e.what();
+  }
+  bench.entries.push_back(cl_entry);
+
+  RuntimeBenchEntry cpu_entry;
+  cpu_entry.what = std::string("compressed, C++ (") + cpu.block_loop() + ")";
+  cpu_entry.bytes = cpu.bytes_per_product();
+  time_product([&cpu](const auto& x, auto& y) { cpu.multiply(x, y); }, b, bench.repeats, out,
+               cpu_entry);
+  cpu_entry.max_rel_diff = max_rel_diff(out, reference);
+  bench.entries.push_back(cpu_entry);
+
+  if (!dense.empty()) {
+    RuntimeBenchEntry dense_entry;
+    dense_entry.what = "dense, OpenBLAS sgemv";
+    // One sgemv per colour, each streaming its matrix (dense_transport.h).
+    dense_entry.bytes = 3 * m.n * m.n * sizeof(float) + m.n * sizeof(glm::vec3);
+    const std::size_t n = m.n;
+    time_product([&](const auto& x, auto& y) { dense_indirect(dense, n, channel_of_rgb, x, y); }, b,
+                 bench.repeats, out, dense_entry);
+    dense_entry.max_rel_diff = max_rel_diff(out, reference);
+    bench.entries.push_back(dense_entry);
+  }
+  bench.stream_gb_per_s = measure_read_bandwidth();
+  return bench;
+}
+
+std::string runtime_bench_table(const RuntimeBench& bench) {
+  double dense_ms = 0.0;
+  for (const RuntimeBenchEntry& e : bench.entries)
+    if (e.available && e.what.rfind("dense", 0) == 0) dense_ms = e.best_ms;
+  std::size_t width = 4;
+  for (const RuntimeBenchEntry& e : bench.entries) width = std::max(width, e.what.size());
+  const int w = static_cast<int>(width);
+  std::string s = text_format(
+      "runtime product, n = %zu, %d stored channel%s (%s), %zu kept positions, best / median of "
+      "%d\n",
+      bench.n, bench.channels, bench.channels == 1 ? "" : "s", bench.format.c_str(),
+      bench.corrections, bench.repeats);
+  s += text_format("  %-*s %10s %10s %10s %8s %7s %9s %9s\n", w, "path", "best ms", "median ms",
+                   "MiB read", "GB/s", "of mem", "vs dense", "rel diff");
+  for (const RuntimeBenchEntry& e : bench.entries) {
+    if (!e.available) {
+      s += text_format("  %-*s unavailable: %s\n", w, e.what.c_str(), e.error.c_str());
+      continue;
+    }
+    const double mib = static_cast<double>(e.bytes) / (1024.0 * 1024.0);
+    const double of_memory = bench.stream_gb_per_s > 0.0 ? e.gb_per_s / bench.stream_gb_per_s : 0.0;
+    s += text_format("  %-*s %10.3f %10.3f %10.1f %8.1f %6.0f%% ", w, e.what.c_str(), e.best_ms,
+                     e.median_ms, mib, e.gb_per_s, 100.0 * of_memory);
+    s += dense_ms > 0.0 ? text_format("%8.2fx", dense_ms / e.best_ms) : std::string("        -");
+    s += text_format(" %9.2e\n", e.max_rel_diff);
+  }
+  s += text_format("  read bandwidth of this machine (sum over 512 MiB, best of 5): %.1f GB/s\n",
+                   bench.stream_gb_per_s);
+  return s;
+}
+
+}  // namespace bounce
