@@ -49,6 +49,7 @@ struct BakeOptions {
 void register_bake(CLI::App& app);
 void register_info(CLI::App& app);
 void register_bench(CLI::App& app);
+void register_solve(CLI::App& app);
 
 // Expands arguments holding * or ? (quoted globs) into sorted matching paths.
 std::vector<std::string> expand_globs(const std::vector<std::string>& args);

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   bounce::cli::register_bake(app);
   bounce::cli::register_info(app);
+  bounce::cli::register_solve(app);
   bounce::cli::register_bench(app);
   try {
     app.parse(argc, argv);

@@ -1,0 +1,282 @@
+// `bounce solve BAKE`: one frame of the runtime on a baked scene, written out
+// for people to look at: the light on the patches (direct, first hit,
+// indirect), the lit mesh as a PLY with vertex colours, and the scene
+// camera's pictures (direct, indirect, full) as PNG and EXR.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "bake/bake_reader.h"
+#include "base/error.h"
+#include "commands.h"
+#include "console_progress.h"
+#include "io/npy.h"
+#include "io/ply_writer.h"
+#include "raytrace/ray_tracer.h"
+#include "runtime/camera_image.h"
+#include "runtime/compressed_transport.h"
+#include "runtime/compressed_transport_cl.h"
+#include "runtime/dense_transport.h"
+#include "runtime/mesh_transfer.h"
+#include "runtime/patch_lighting.h"
+#include "scene/scene_loader.h"
+
+namespace bounce::cli {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+struct SolveOptions {
+  std::string bake;
+  std::string scene;  // empty: the manifest's scene path
+  std::vector<std::string> lights;
+  std::string out;
+  std::string multiply = "auto";
+  int width = 640, height = 480, samples = 1;
+  bool no_images = false, no_mesh = false;
+  bool json = false, quiet = false;
+};
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// "NAME:x,y,z" moves the scene light NAME to (x, y, z).
+void move_light(Scene& scene, const std::string& spec) {
+  const auto colon = spec.rfind(':');
+  const std::string name = colon == std::string::npos ? "" : spec.substr(0, colon);
+  glm::vec3 p{0.0f};
+  char tail = 0;
+  const std::string coords = colon == std::string::npos ? "" : spec.substr(colon + 1);
+  if (name.empty() || std::sscanf(coords.c_str(), "%f,%f,%f%c", &p.x, &p.y, &p.z, &tail) != 3 ||
+      !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+    throw Error("--light", "expected NAME:x,y,z (e.g. ceiling-point:0,1.5,0), got '" + spec + "'");
+  std::string names;
+  for (Light& l : scene.lights) {
+    if (l.name == name) {
+      if (l.type == Light::Type::Directional)
+        throw Error("--light", "'" + name + "' is a directional light: it has no position");
+      l.position = p;
+      return;
+    }
+    names += (names.empty() ? "" : ", ") + l.name;
+  }
+  throw Error("--light", "the scene has no light named '" + name +
+                             "' (its lights: " + (names.empty() ? "none" : names) + ")");
+}
+
+// The product T b as asked: compressed on OpenCL or in C++, or dense.
+struct Multiplier {
+  std::string what;
+  IndirectMultiply multiply;
+  std::shared_ptr<void> keep_alive;
+  std::vector<const float*> dense;
+};
+
+Multiplier make_multiplier(const LoadedBake& b, const std::string& choice, Diagnostics& diag) {
+  Multiplier m;
+  const bool compressed = b.compressed.has_value();
+  if (choice == "dense" || (!compressed && choice == "auto")) {
+    if (b.dense.empty())
+      throw Error(b.dir.string(),
+                  "holds no dense T.npy (bake with --codec dense or "
+                  "--dump-matrices for --multiply dense)");
+    for (const auto& t : b.dense) m.dense.push_back(t.data());
+    const std::size_t n = b.size();
+    const auto map = b.channel_of_rgb;
+    const auto dense = m.dense;
+    m.multiply = [dense, n, map](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
+      dense_indirect(dense, n, map, in, out);
+    };
+    m.what = "dense float32 (OpenBLAS sgemv)";
+    return m;
+  }
+  if (!compressed)
+    throw Error(b.dir.string(), "holds no compressed matrix (T.dds) for --multiply " + choice);
+  if (choice == "opencl" || choice == "auto") {
+    try {
+      auto cl = std::make_shared<ClCompressedTransport>(*b.compressed, b.channel_of_rgb);
+      m.what = "compressed, OpenCL on " + cl->device_name();
+      m.multiply = [cl](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
+        cl->multiply(in, out);
+      };
+      m.keep_alive = cl;
+      return m;
+    } catch (const Error& e) {
+      if (choice == "opencl") throw;
+      diag.warn("solve", std::string("OpenCL unavailable, using the C++ path: ") + e.what());
+    }
+  }
+  auto cpp = std::make_shared<CompressedTransport>(*b.compressed, b.channel_of_rgb);
+  m.what = std::string("compressed, C++ (") + cpp->block_loop() + ")";
+  m.multiply = [cpp](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
+    cpp->multiply(in, out);
+  };
+  m.keep_alive = cpp;
+  return m;
+}
+
+void run_solve(const SolveOptions& opt) {
+  const auto start = Clock::now();
+  Diagnostics diag;
+  diag.set_listener([](const Diagnostic& d) {
+    if (d.kind == Diagnostic::Kind::Warning)
+      std::fprintf(stderr, "bounce: warning: %s: %s\n", d.where.c_str(), d.message.c_str());
+  });
+  if (opt.width < 1 || opt.width > 16384 || opt.height < 1 || opt.height > 16384)
+    throw Error("--size", "width and height must be between 1 and 16384");
+  if (opt.samples < 1 || opt.samples > 16)
+    throw Error("--samples", "must be between 1 and 16 (n x n rays per pixel)");
+  nlohmann::ordered_json timings;
+  auto t = Clock::now();
+  const LoadedBake bake = BakeReader::read(opt.bake, opt.multiply == "dense");
+  timings["read_bake"] = since(t);
+
+  t = Clock::now();
+  const fs::path scene_path =
+      opt.scene.empty() ? fs::path(bake.manifest.at("scene").at("path").get<std::string>())
+                        : fs::path(opt.scene);
+  if (!fs::exists(scene_path))
+    throw Error(scene_path.string(),
+                "the baked scene is not there any more (give it with --scene PATH)");
+  Scene scene = SceneLoader(diag).load(scene_path);
+  const auto baked_triangles = bake.manifest.at("scene").at("triangles").get<std::size_t>();
+  if (scene.triangle_count() != baked_triangles)
+    throw Error(scene_path.string(), "has " + std::to_string(scene.triangle_count()) +
+                                         " triangles, the bake was made from " +
+                                         std::to_string(baked_triangles) + ": not the same scene");
+  for (const std::string& spec : opt.lights) move_light(scene, spec);
+  const RayTracer tracer(scene);
+  timings["load_scene"] = since(t);
+
+  t = Clock::now();
+  const Multiplier multiplier = make_multiplier(bake, opt.multiply, diag);
+  timings["prepare_multiply"] = since(t);
+
+  const std::vector<AreaLight> area = area_lights(scene);
+  const PatchLighting light =
+      light_patches(tracer, bake.samples, bake.patches, scene.lights, area, multiplier.multiply);
+  timings["direct_light"] = light.seconds_direct;
+  timings["indirect_multiply"] = light.seconds_indirect;
+
+  const fs::path out = opt.out.empty() ? fs::path(opt.bake) / "solve" : fs::path(opt.out);
+  fs::create_directories(out);
+  t = Clock::now();
+  const std::size_t n = bake.size();
+  std::vector<float> rows;
+  rows.reserve(n * 9);
+  for (std::size_t p = 0; p < n; ++p)
+    for (const glm::vec3& v : {light.irradiance[p], light.first_hit[p], light.indirect[p]})
+      rows.insert(rows.end(), {v.r, v.g, v.b});
+  write_npy(out / "patch_light.npy", rows, {n, 3, 3});
+  json files = json::array({"patch_light.npy"});
+
+  const TransferGrid grid = TransferGrid::from_manifest(bake.manifest);
+  ConsoleProgress console(opt.quiet || opt.json);
+  if (!opt.no_mesh) {
+    // The mesh shows everything the patches send out: emission + b + T b.
+    const LitMesh mesh = transfer_to_mesh(tracer, bake.patches.patches, grid, light.exitance,
+                                          TransferSettings{}, &console.progress());
+    write_lit_ply(out / "lit.ply", {mesh.positions, mesh.normals, mesh.radiosity, mesh.triangles});
+    files.push_back("lit.ply");
+    timings["mesh_transfer"] = since(t);
+  }
+  if (!opt.no_images) {
+    t = Clock::now();
+    // The camera adds the direct light itself: gather only the indirect.
+    const PatchGather indirect(bake.patches.patches, light.indirect, grid, &tracer,
+                               GatherSettings{});
+    CameraImageSettings cs;
+    cs.width = opt.width;
+    cs.height = opt.height;
+    cs.samples_per_side = opt.samples;
+    const CameraImages images = render_camera(tracer, indirect, cs, &console.progress());
+    write_camera_images(images, out, "camera");
+    for (const char* part : {"direct", "indirect", "full"})
+      for (const char* ext : {".png", ".exr"}) files.push_back(std::string("camera_") + part + ext);
+    timings["camera_images"] = since(t);
+  }
+  timings["total"] = since(start);
+
+  json lights = json::array();
+  for (const Light& l : scene.lights)
+    lights.push_back({{"name", l.name},
+                      {"type", light_type_name(l.type)},
+                      {"position", {l.position.x, l.position.y, l.position.z}}});
+  double direct_sum = 0.0, indirect_sum = 0.0;
+  for (std::size_t p = 0; p < n; ++p) {
+    const float a = bake.patches.patches[p].area;
+    direct_sum += a * (light.first_hit[p].r + light.first_hit[p].g + light.first_hit[p].b);
+    indirect_sum += a * (light.indirect[p].r + light.indirect[p].g + light.indirect[p].b);
+  }
+  const nlohmann::ordered_json summary = {{"bake", opt.bake},
+                                          {"scene", scene.name},
+                                          {"patches", n},
+                                          {"multiply", multiplier.what},
+                                          {"lights", lights},
+                                          {"area_light_triangles", area.size()},
+                                          {"first_hit_power", direct_sum},
+                                          {"indirect_power", indirect_sum},
+                                          {"out", out.string()},
+                                          {"files", files},
+                                          {"seconds", timings}};
+  if (opt.json) {
+    std::cout << summary.dump(2) << '\n';
+    return;
+  }
+  std::printf("\nSolve of '%s' (%zu patches) with %s\n", scene.name.c_str(), n,
+              multiplier.what.c_str());
+  std::printf(
+      "  light leaving the patches (area-weighted sum over R, G, B): first hit %.4g, "
+      "indirect %.4g (%.1f%% of the first hit)\n",
+      direct_sum, indirect_sum, direct_sum > 0 ? 100.0 * indirect_sum / direct_sum : 0.0);
+  std::printf("  %-22s %10s\n", "step", "time (ms)");
+  for (const auto& [k, v] : timings.items())
+    std::printf("  %-22s %10.2f\n", k.c_str(), 1e3 * v.get<double>());
+  std::printf("  written to %s:", out.string().c_str());
+  for (const json& f : files) std::printf(" %s", f.get<std::string>().c_str());
+  std::printf("\n");
+}
+
+}  // namespace
+
+void register_solve(CLI::App& app) {
+  auto opt = std::make_shared<SolveOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "solve",
+      "Light a baked scene: direct light on the patches from the scene's lights (moved with "
+      "--light), indirect light through the baked matrix, the lit mesh as a PLY with vertex "
+      "colours and the scene camera's pictures (direct, indirect, full) as PNG and EXR");
+  cmd->add_option("bake", opt->bake, "Bake folder written by `bounce bake`")->required();
+  cmd->add_option("--light", opt->lights,
+                  "Move a scene light: NAME:x,y,z (repeat for several lights; `bounce info "
+                  "SCENE` lists their names)");
+  cmd->add_option("--scene", opt->scene,
+                  "The scene the bake was made from, if it moved (default: the path in the "
+                  "bake's manifest)");
+  cmd->add_option("--out,-o", opt->out, "Output folder (default: BAKE/solve)");
+  cmd->add_option("--multiply", opt->multiply,
+                  "How T b is computed: auto (compressed on OpenCL, else C++; dense for a dense "
+                  "bake), opencl, cpp (compressed, plain C++), dense (needs T.npy)")
+      ->check(CLI::IsMember({"auto", "opencl", "cpp", "dense"}))
+      ->capture_default_str();
+  cmd->add_option("--width", opt->width, "Camera image width in pixels")->capture_default_str();
+  cmd->add_option("--height", opt->height, "Camera image height in pixels")->capture_default_str();
+  cmd->add_option("--samples", opt->samples, "n x n camera rays per pixel (anti-aliasing)")
+      ->capture_default_str();
+  cmd->add_flag("--no-images", opt->no_images, "Skip the camera pictures");
+  cmd->add_flag("--no-mesh", opt->no_mesh, "Skip the lit PLY mesh");
+  cmd->add_flag("--json", opt->json, "Print a machine-readable summary with timings per step");
+  cmd->add_flag("--quiet,-q", opt->quiet, "No progress bars");
+  cmd->callback([opt]() { run_solve(*opt); });
+}
+
+}  // namespace bounce::cli

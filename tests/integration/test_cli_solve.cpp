@@ -1,0 +1,116 @@
+// `bounce solve` on a real bake: the three ways of computing T b agree (the
+// compressed ones to float rounding, the dense one within the compression
+// error the bake measured), lights move, outputs are complete, bad input is
+// named.
+#include "cli_harness.h"
+
+namespace bounce::itest {
+namespace {
+
+class Solve : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    tmp = new TempDir();
+    bake = tmp->path() / "bake";
+    const RunResult r = run({"bake", scene("cornell-box"), "--voxel", "6", "--codec", "ours",
+                             "--dump-matrices", "--no-pictures", "--quiet", "--out", bake.string()},
+                            tmp->path());
+    ASSERT_EQ(r.exit_code, 0) << r;
+  }
+  static void TearDownTestSuite() { delete tmp; }
+
+  // Runs solve into its own folder; returns the patch light (n x 3 x 3:
+  // irradiance, first hit, indirect).
+  NpyArray<float> solve(const std::string& name, std::vector<std::string> extra,
+                        json* summary = nullptr) {
+    const fs::path out = tmp->path() / name;
+    std::vector<std::string> args{"solve", bake.string(), "--out", out.string(), "--json"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const RunResult r = run(args, tmp->path(), 120.0);
+    EXPECT_EQ(r.exit_code, 0) << r;
+    if (summary) *summary = parse_json(r.out);
+    return read_npy_f32(out / "patch_light.npy");
+  }
+
+  static inline TempDir* tmp = nullptr;
+  static inline fs::path bake;
+};
+
+// Area-weighted relative L2 difference of the indirect light (slot 2).
+double indirect_difference(const NpyArray<float>& a, const NpyArray<float>& b,
+                           const NpyArray<float>& patches) {
+  double diff = 0.0, ref = 0.0;
+  for (std::size_t p = 0; p < a.shape[0]; ++p)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double w = at(patches, p, 6);
+      const double x = a.data[p * 9 + 6 + k], y = b.data[p * 9 + 6 + k];
+      diff += w * (x - y) * (x - y);
+      ref += w * y * y;
+    }
+  return std::sqrt(diff / ref);
+}
+
+TEST_F(Solve, OpenClCppAndDenseAgree) {
+  json s_cl, s_cpp, s_dense;
+  const auto cl = solve("cl", {"--multiply", "opencl", "--no-images", "--no-mesh"}, &s_cl);
+  const auto cpp = solve("cpp", {"--multiply", "cpp", "--no-images", "--no-mesh"}, &s_cpp);
+  const auto dense = solve("dense", {"--multiply", "dense", "--no-images", "--no-mesh"}, &s_dense);
+  EXPECT_TRUE(contains(s_cl["multiply"].get<std::string>(), "OpenCL")) << s_cl["multiply"];
+  EXPECT_TRUE(contains(s_cpp["multiply"].get<std::string>(), "C++")) << s_cpp["multiply"];
+  EXPECT_TRUE(contains(s_dense["multiply"].get<std::string>(), "dense")) << s_dense["multiply"];
+  const auto patches = read_npy_f32(bake / "patches.npy");
+  const auto n = patches.shape[0];
+  ASSERT_EQ(cl.shape, (std::vector<std::size_t>{n, 3, 3}));
+  // Same direct light whatever the multiply.
+  for (std::size_t k = 0; k < n * 9; k += 9)
+    for (std::size_t c = 0; c < 6; ++c) ASSERT_EQ(cl.data[k + c], dense.data[k + c]);
+  // Same compressed matrix, other summation order: float rounding only.
+  EXPECT_LT(indirect_difference(cl, cpp, patches), 1e-5);
+  // Against the exact matrix: the error compression adds. The bake measured
+  // it per evaluation light (the scene's point light and the area light are
+  // among them); the sum of two lights' errors is at most twice the worst.
+  const double worst =
+      read_manifest(bake)["compression"]["errors"]["indirect_light"]["rel_rms_max"].get<double>();
+  const double d = indirect_difference(cpp, dense, patches);
+  EXPECT_GT(d, 0.0) << "compressed equals exact: suspicious";
+  EXPECT_LT(d, 2.0 * worst) << "compressed vs dense " << d << ", bake's worst light " << worst;
+  double indirect = 0.0;
+  for (std::size_t k = 0; k < n * 9; k += 9) indirect += dense.data[k + 6];
+  EXPECT_GT(indirect, 0.0);
+}
+
+TEST_F(Solve, MovingTheLightChangesTheDirectLightAndOutputsAreComplete) {
+  json summary;
+  const auto here = solve("here", {"--no-mesh", "--no-images"});
+  const auto moved =
+      solve("moved", {"--light", "ceiling-point:-0.7,0.3,0.2", "--width", "64", "--height", "48"},
+            &summary);
+  double changed = 0.0;
+  for (std::size_t k = 0; k < here.data.size(); ++k)
+    changed += std::abs(here.data[k] - moved.data[k]);
+  EXPECT_GT(changed, 0.0);
+  EXPECT_EQ(summary["lights"][0]["position"], json::array({-0.7f, 0.3f, 0.2f}));
+  const fs::path out = tmp->path() / "moved";
+  for (const char* f : {"lit.ply", "camera_full.png", "camera_full.exr", "camera_direct.png",
+                        "camera_indirect.exr"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  EXPECT_EQ(read_text(out / "lit.ply").rfind("ply\nformat binary_little_endian 1.0", 0), 0u);
+}
+
+TEST_F(Solve, BadLightAndMissingBakeAreNamed) {
+  const RunResult r1 = run({"solve", bake.string(), "--light", "sun:0,1,0", "--no-images",
+                            "--no-mesh", "--out", (tmp->path() / "bad").string()},
+                           tmp->path());
+  EXPECT_EQ(r1.exit_code, 1) << r1;
+  EXPECT_TRUE(contains(r1.err, "sun") && contains(r1.err, "ceiling-point")) << r1;
+  const RunResult r2 =
+      run({"solve", bake.string(), "--light", "ceiling-point:1,2", "--no-images"}, tmp->path());
+  EXPECT_EQ(r2.exit_code, 1) << r2;
+  EXPECT_TRUE(contains(r2.err, "NAME:x,y,z")) << r2;
+  const RunResult r3 = run({"solve", (tmp->path() / "nothing").string()}, tmp->path());
+  EXPECT_EQ(r3.exit_code, 1) << r3;
+  EXPECT_TRUE(contains(r3.err, "nothing")) << r3;
+}
+
+}  // namespace
+}  // namespace bounce::itest
