@@ -13,5 +13,7 @@ void register_bench_transport(CLI::App& bench);
 void register_bench_compress(CLI::App& bench);
 // `bench ordering`: our ordering on a large synthetic matrix (N = 16384).
 void register_bench_ordering(CLI::App& bench);
+// `bench runtime`: ms per light update, compressed (OpenCL, C++) vs dense vs classic.
+void register_bench_runtime(CLI::App& bench);
 
 }  // namespace bounce::cli

@@ -87,6 +87,7 @@ void register_bench(CLI::App& app) {
   register_bench_transport(*bench);
   register_bench_compress(*bench);
   register_bench_ordering(*bench);
+  register_bench_runtime(*bench);
 }
 
 }  // namespace bounce::cli

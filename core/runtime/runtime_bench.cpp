@@ -81,7 +81,8 @@ double measure_read_bandwidth(std::size_t bytes, int repeats) {
 }
 
 RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 3>& channel_of_rgb,
-                               const std::vector<const float*>& dense, int repeats) {
+                               const std::vector<const float*>& dense, int repeats,
+                               const ClassicRadiosity* classic) {
   RuntimeBench bench;
   bench.n = m.n;
   bench.channels = m.channels;
@@ -134,6 +135,15 @@ RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 
                  bench.repeats, out, dense_entry);
     dense_entry.max_rel_diff = max_rel_diff(out, reference);
     bench.entries.push_back(dense_entry);
+  }
+  if (classic) {
+    RuntimeBenchEntry e;
+    e.what = "classic radiosity, K = " + std::to_string(classic->bounces()) + " sgemv iterations";
+    e.bytes = classic->bytes_per_update() + m.n * sizeof(glm::vec3);
+    time_product([classic](const auto& x, auto& y) { classic->multiply(x, y); }, b, bench.repeats,
+                 out, e);
+    e.max_rel_diff = max_rel_diff(out, reference);
+    bench.entries.push_back(e);
   }
   bench.stream_gb_per_s = measure_read_bandwidth();
   return bench;

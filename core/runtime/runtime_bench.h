@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "compress/codec.h"
+#include "runtime/classic_radiosity.h"
 
 namespace bounce {
 
@@ -43,8 +44,12 @@ struct RuntimeBench {
 // b (best and median). `dense`: the exact matrices, one per stored channel
 // (n x n, row-major, patch order); empty: no dense entry. The OpenCL entry is
 // marked unavailable (with the reason) when OpenCL has no device.
+// `classic`: the K-iteration baseline on the form factors (nullptr: none);
+// its max_rel_diff against the compressed product includes both the
+// compression error and any difference of K.
 RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 3>& channel_of_rgb,
-                               const std::vector<const float*>& dense, int repeats);
+                               const std::vector<const float*>& dense, int repeats,
+                               const ClassicRadiosity* classic = nullptr);
 
 // Read bandwidth in GB/s (1e9 bytes): the best of `repeats` sums over a float
 // array of `bytes`, on all OpenMP threads (a STREAM-like read-only test).

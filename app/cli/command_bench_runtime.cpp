@@ -1,0 +1,112 @@
+// `bounce bench runtime BAKE`: milliseconds per light update of every way to
+// compute the indirect light T b of a compressed bake (OpenCL, C++), against
+// the dense float32 matrix (when the bake holds T.npy) and the classic K
+// iterations on the form factors (when it holds F.npy), with bytes read per
+// update, effective bandwidth and the machine's own read bandwidth measured
+// in the same run.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "bake/bake_reader.h"
+#include "base/error.h"
+#include "bench_commands.h"
+#include "io/npy.h"
+#include "runtime/runtime_bench.h"
+
+namespace bounce::cli {
+
+namespace {
+
+struct RuntimeBenchOptions {
+  std::string bake;
+  int repeats = 20;
+  int bounces = 0;  // classic K; 0 = the bake's
+  bool json = false;
+};
+
+// K for the classic baseline: the bake's K, or where its auto series
+// converged when it computed K = infinity.
+int bake_bounces(const nlohmann::json& manifest) {
+  int k = 0;
+  for (const auto& c : manifest.at("transport").at("channels")) {
+    const int auto_k = c.value("auto_bounces", 0);
+    const int fixed = c.at("bounces").is_number() ? c.at("bounces").get<int>() : 0;
+    k = std::max(k, fixed > 0 ? fixed : auto_k);
+  }
+  return k > 0 ? k : 16;
+}
+
+void run(const RuntimeBenchOptions& opt) {
+  if (opt.repeats < 1 || opt.repeats > 10000)
+    throw Error("--repeats", "must be between 1 and 10000");
+  const LoadedBake b = BakeReader::read(opt.bake, true);
+  if (!b.compressed)
+    throw Error(opt.bake, "holds no compressed matrix (T.dds): bake with --codec ours or paper");
+  std::vector<const float*> dense;
+  for (const auto& t : b.dense) dense.push_back(t.data());
+  std::unique_ptr<ClassicRadiosity> classic;
+  const auto f_path = std::filesystem::path(opt.bake) / "F.npy";
+  const int k = opt.bounces > 0 ? opt.bounces : bake_bounces(b.manifest);
+  if (std::filesystem::exists(f_path)) {
+    NpyArray<float> f = read_npy_f32(f_path);
+    std::vector<glm::vec3> albedo;
+    for (const Patch& p : b.patches.patches) albedo.push_back(p.albedo);
+    classic = std::make_unique<ClassicRadiosity>(std::move(f.data), std::move(albedo), k);
+  }
+  const RuntimeBench bench =
+      run_runtime_bench(*b.compressed, b.channel_of_rgb, dense, opt.repeats, classic.get());
+  if (opt.json) {
+    nlohmann::json entries = nlohmann::json::array();
+    for (const RuntimeBenchEntry& e : bench.entries)
+      entries.push_back({{"what", e.what},
+                         {"available", e.available},
+                         {"error", e.error},
+                         {"best_ms", e.best_ms},
+                         {"median_ms", e.median_ms},
+                         {"bytes", e.bytes},
+                         {"gb_per_s", e.gb_per_s},
+                         {"max_rel_diff", e.max_rel_diff}});
+    std::cout << nlohmann::json{{"bake", opt.bake},
+                                {"patches", bench.n},
+                                {"stored_channels", bench.channels},
+                                {"format", bench.format},
+                                {"read_bandwidth_gb_per_s", bench.stream_gb_per_s},
+                                {"entries", entries}}
+                     .dump(2)
+              << '\n';
+    return;
+  }
+  std::printf("\nbench runtime: %s (%s)\n", opt.bake.c_str(),
+              b.manifest.at("scene").at("name").get<std::string>().c_str());
+  std::printf("  %s", runtime_bench_table(bench).c_str());
+  if (dense.empty())
+    std::printf("  (no dense row: the bake has no T.npy; bake with --dump-matrices)\n");
+  if (!classic)
+    std::printf("  (no classic row: the bake has no F.npy; bake with --dump-matrices)\n");
+  std::printf(
+      "  rel diff: max |y - y_C++| / max |y_C++| against the compressed C++ product (dense: the "
+      "compression error; classic: that and K = %d against the bake's K)\n",
+      k);
+}
+
+}  // namespace
+
+void register_bench_runtime(CLI::App& bench) {
+  auto opt = std::make_shared<RuntimeBenchOptions>();
+  CLI::App* cmd = bench.add_subcommand(
+      "runtime",
+      "Milliseconds per light update of the indirect light T b: compressed on OpenCL and in "
+      "C++, against dense float32 sgemv and classic K iterations (bake with --dump-matrices for "
+      "those two), with bytes read, GB/s and the machine's read bandwidth from the same run");
+  cmd->add_option("bake", opt->bake, "Bake folder with a compressed matrix")->required();
+  cmd->add_option("--repeats", opt->repeats, "Timed updates per path (after one warm-up)")
+      ->capture_default_str();
+  cmd->add_option("--bounces", opt->bounces,
+                  "K of the classic baseline (default: the bake's K, or where its auto series "
+                  "converged)");
+  cmd->add_flag("--json", opt->json, "Machine-readable output");
+  cmd->callback([opt]() { run(*opt); });
+}
+
+}  // namespace bounce::cli
