@@ -1,5 +1,6 @@
 #include "compute/opencl_context.h"
 
+#include <optional>
 #include <vector>
 
 namespace bounce {
@@ -36,16 +37,17 @@ void check_cl(cl_int status, const std::string& call) {
 OpenClContext& OpenClContext::shared() {
   static std::mutex mutex;
   static OpenClContext* instance = nullptr;
-  static std::string failure;
+  static std::optional<OpenClError> failure;
   std::lock_guard lock(mutex);
   if (instance) return *instance;
-  // A missing driver does not appear later in the same process. (The
-  // remembered message already names OpenCL.)
-  if (!failure.empty()) throw Error("", failure);
+  // A missing driver does not appear later in the same process: remember the
+  // first failure and throw it again (as the same type, which callers such
+  // as the GEMM backend selection catch to fall back).
+  if (failure) throw *failure;
   try {
     instance = new OpenClContext();
-  } catch (const Error& e) {
-    failure = e.what();
+  } catch (const OpenClError& e) {
+    failure = e;
     throw;
   }
   return *instance;

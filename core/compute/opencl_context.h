@@ -5,13 +5,11 @@
 // programs keyed by source and build options, so a kernel is compiled once
 // per process (PoCL takes a noticeable fraction of a second per build).
 //
-// Every OpenCL failure becomes an OpenClError (transport/clblast_gemm.h, the
+// Every OpenCL failure becomes an OpenClError (compute/opencl_error.h, the
 // same type CLBlast's failures use) through check_cl(), naming the call and
 // its status.
 //
-// CLBlast keeps its own context (transport/clblast_gemm.cpp): its kernels are
-// cached per context and it manages its buffers itself, so sharing would buy
-// nothing and couple the two.
+// CLBlast (transport/clblast_gemm.cpp) runs on this context and queue too.
 #ifndef CL_TARGET_OPENCL_VERSION
 // OpenCL 1.2 is what every driver offers (PoCL, Mesa, the GPU vendors').
 #define CL_TARGET_OPENCL_VERSION 120
@@ -22,7 +20,7 @@
 #include <mutex>
 #include <string>
 
-#include "transport/clblast_gemm.h"
+#include "compute/opencl_error.h"
 
 namespace bounce {
 

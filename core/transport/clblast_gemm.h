@@ -9,20 +9,10 @@
 #include <string>
 
 #include "base/error.h"
+#include "compute/opencl_error.h"
 #include "transport/gemm_backend.h"
 
 namespace bounce {
-
-// Every OpenCL and CLBlast failure is turned into this exception in one place
-// (clblast_gemm.cpp), naming the call and its status code.
-class OpenClError : public Error {
- public:
-  OpenClError(const std::string& call, int status);
-  int status() const noexcept { return status_; }
-
- private:
-  int status_;
-};
 
 class ClblastGemm final : public GemmBackend {
  public:
