@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "io/atomic_file.h"
+#include "io/image_file.h"
 
 namespace bounce {
 
@@ -18,29 +19,9 @@ namespace fs = std::filesystem;
 static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "pixels are handed to OIIO as packed RGB");
 
 void write_exr(const fs::path& path, const RgbFloatImage& image) {
-  static std::atomic<unsigned> counter{0};
-  // OIIO picks the format from the extension: keep ".exr" at the end.
-  const fs::path temp =
-      path.parent_path() / ("." + path.stem().string() + ".tmp-" + std::to_string(::getpid()) +
-                            "-" + std::to_string(counter++) + ".exr");
-  auto out = OIIO::ImageOutput::create(temp.string());
-  if (!out) throw IoError(path.string(), "cannot write EXR: " + OIIO::geterror());
   OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT);
   spec.attribute("compression", "zip");  // lossless
-  const bool ok = out->open(temp.string(), spec) &&
-                  out->write_image(OIIO::TypeDesc::FLOAT, image.pixels.data()) && out->close();
-  if (!ok) {
-    const std::string why = out->geterror();
-    std::error_code ec;
-    fs::remove(temp, ec);
-    throw IoError(path.string(), "cannot write EXR: " + why);
-  }
-  std::error_code ec;
-  fs::rename(temp, path, ec);
-  if (ec) {
-    fs::remove(temp, ec);
-    throw IoError(path.string(), "cannot move into place: " + ec.message());
-  }
+  write_image_atomically(path, spec, image.pixels.data(), "EXR");
 }
 
 RgbFloatImage read_exr(const fs::path& path) {

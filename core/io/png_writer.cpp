@@ -10,31 +10,15 @@
 #include <unistd.h>
 
 #include "io/atomic_file.h"
+#include "io/image_file.h"
 
 namespace bounce {
 
 namespace fs = std::filesystem;
 
 void write_png(const fs::path& path, const Rgb8Image& image) {
-  static std::atomic<unsigned> counter{0};
-  // OIIO picks the format from the extension: keep ".png" at the end.
-  const fs::path temp =
-      path.parent_path() / ("." + path.stem().string() + ".tmp-" + std::to_string(::getpid()) +
-                            "-" + std::to_string(counter++) + ".png");
-  auto out = OIIO::ImageOutput::create(temp.string());
-  if (!out) throw IoError(path.string(), "cannot write PNG: " + OIIO::geterror());
-  const OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-  const bool ok = out->open(temp.string(), spec) &&
-                  out->write_image(OIIO::TypeDesc::UINT8, image.pixels.data()) && out->close();
-  if (!ok) {
-    const std::string why = out->geterror();
-    std::error_code ec;
-    fs::remove(temp, ec);
-    throw IoError(path.string(), "cannot write PNG: " + why);
-  }
-  std::error_code ec;
-  fs::rename(temp, path, ec);
-  if (ec) throw IoError(path.string(), "cannot move into place: " + ec.message());
+  write_image_atomically(path, OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::UINT8),
+                         image.pixels.data(), "PNG");
 }
 
 Rgb8Image read_png(const fs::path& path) {
