@@ -14,6 +14,7 @@
 #include "bake/bake_reader.h"
 #include "base/error.h"
 #include "commands.h"
+#include "compute/opencl_context.h"
 #include "console_progress.h"
 #include "io/npy.h"
 #include "io/ply_writer.h"
@@ -101,7 +102,20 @@ Multiplier make_multiplier(const LoadedBake& b, const std::string& choice, Diagn
   }
   if (!compressed)
     throw Error(b.dir.string(), "holds no compressed matrix (T.dds) for --multiply " + choice);
-  if (choice == "opencl" || choice == "auto") {
+  // auto: OpenCL only on a GPU. On a CPU device (PoCL here) the kernel
+  // shares the cores with the C++ path and loses to it (bench runtime).
+  bool opencl = choice == "opencl";
+  if (choice == "auto") {
+    try {
+      cl_device_type type = 0;
+      clGetDeviceInfo(OpenClContext::shared().device(), CL_DEVICE_TYPE, sizeof(type), &type,
+                      nullptr);
+      opencl = (type & CL_DEVICE_TYPE_GPU) != 0;
+    } catch (const Error&) {
+      opencl = false;  // no OpenCL at all: the C++ path
+    }
+  }
+  if (opencl) {
     try {
       auto cl = std::make_shared<ClCompressedTransport>(*b.compressed, b.channel_of_rgb);
       m.what = "compressed, OpenCL on " + cl->device_name();
@@ -112,7 +126,7 @@ Multiplier make_multiplier(const LoadedBake& b, const std::string& choice, Diagn
       return m;
     } catch (const Error& e) {
       if (choice == "opencl") throw;
-      diag.warn("solve", std::string("OpenCL unavailable, using the C++ path: ") + e.what());
+      diag.warn("solve", std::string("OpenCL failed, using the C++ path: ") + e.what());
     }
   }
   auto cpp = std::make_shared<CompressedTransport>(*b.compressed, b.channel_of_rgb);
@@ -264,8 +278,8 @@ void register_solve(CLI::App& app) {
                   "bake's manifest)");
   cmd->add_option("--out,-o", opt->out, "Output folder (default: BAKE/solve)");
   cmd->add_option("--multiply", opt->multiply,
-                  "How T b is computed: auto (compressed on OpenCL, else C++; dense for a dense "
-                  "bake), opencl, cpp (compressed, plain C++), dense (needs T.npy)")
+                  "How T b is computed: auto (compressed: OpenCL on a GPU, else C++; dense for a "
+                  "dense bake), opencl, cpp (compressed, C++), dense (needs T.npy)")
       ->check(CLI::IsMember({"auto", "opencl", "cpp", "dense"}))
       ->capture_default_str();
   cmd->add_option("--width", opt->width, "Camera image width in pixels")->capture_default_str();

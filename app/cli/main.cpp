@@ -13,7 +13,9 @@ int main(int argc, char** argv) {
       "  bounce info resources/scenes/cornell-box          what is in a scene\n"
       "  bounce bake resources/scenes/cornell-box --out bakes/cornell\n"
       "  bounce bake scenes/*/scene.json --out bakes        batch: one folder per scene\n"
-      "  bounce bench bake resources/scenes/cornell-bunny --patches-total 4096\n",
+      "  bounce solve bakes/cornell --light ceiling-point:0,1.5,0.3   lit PLY and camera images\n"
+      "  bounce bench compress resources/scenes/cornell-box  our codec against the paper's\n"
+      "  bounce bench runtime bakes/cornell                 ms per light update\n",
       "bounce"};
   app.set_version_flag("--version", std::string("bounce ") + BOUNCE_VERSION);
   app.require_subcommand(1);
