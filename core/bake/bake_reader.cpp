@@ -150,6 +150,17 @@ CompressedMatrix read_compressed(const fs::path& dir, const json& c, std::size_t
 }  // namespace
 
 LoadedBake BakeReader::read(const fs::path& dir, bool with_dense) {
+  // A manifest with missing or mistyped entries is a damaged bake: say so,
+  // naming the file, rather than letting a JSON exception escape.
+  try {
+    return read_checked(dir, with_dense);
+  } catch (const nlohmann::json::exception& e) {
+    throw ReadError((dir / "manifest.json").string(),
+                    std::string("lacks an entry or has one of the wrong type: ") + e.what());
+  }
+}
+
+LoadedBake BakeReader::read_checked(const fs::path& dir, bool with_dense) {
   LoadedBake b;
   b.dir = dir;
   b.manifest = read_manifest(dir);

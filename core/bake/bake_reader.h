@@ -46,6 +46,9 @@ class BakeReader {
 
   // `with_dense`: also read T.npy when present (it can be large).
   static LoadedBake read(const std::filesystem::path& dir, bool with_dense = true);
+
+ private:
+  static LoadedBake read_checked(const std::filesystem::path& dir, bool with_dense);
 };
 
 }  // namespace bounce

@@ -112,5 +112,78 @@ TEST_F(Solve, BadLightAndMissingBakeAreNamed) {
   EXPECT_TRUE(contains(r3.err, "nothing")) << r3;
 }
 
+// A damaged bake folder: one clear error naming the damaged file, exit 1,
+// never a crash or a hang.
+struct Damage {
+  const char* name;
+  const char* file;  // the file damaged, which the error must name
+  void (*apply)(const fs::path& bake);
+};
+
+void PrintTo(const Damage& d, std::ostream* os) { *os << d.name; }
+
+class SolveDamagedBake : public Solve, public ::testing::WithParamInterface<Damage> {};
+
+TEST_P(SolveDamagedBake, OneErrorNamingTheFile) {
+  const Damage& d = GetParam();
+  const fs::path copy = tmp->path() / (std::string("damaged-") + d.name);
+  fs::remove_all(copy);
+  fs::copy(bake, copy, fs::copy_options::recursive);
+  d.apply(copy);
+  const RunResult r = run({"solve", copy.string(), "--no-images", "--no-mesh", "--out",
+                           (tmp->path() / (std::string("out-") + d.name)).string()},
+                          tmp->path(), 60.0);
+  EXPECT_EQ(r.exit_code, 1) << r;
+  const auto errors = lines_starting_with(r.err, "bounce: error: ");
+  ASSERT_EQ(errors.size(), 1u) << r;
+  EXPECT_TRUE(contains(errors[0], d.file)) << errors[0];
+}
+
+void truncate_file(const fs::path& path, std::uintmax_t keep) { fs::resize_file(path, keep); }
+
+INSTANTIATE_TEST_SUITE_P(
+    Damages, SolveDamagedBake,
+    ::testing::Values(Damage{"truncated_dds", "T.dds",
+                             [](const fs::path& b) { truncate_file(b / "T.dds", 200); }},
+                      Damage{"dds_header_only", "T.dds",
+                             [](const fs::path& b) { truncate_file(b / "T.dds", 60); }},
+                      Damage{"missing_permutation", "permutation.npy",
+                             [](const fs::path& b) { fs::remove(b / "permutation.npy"); }},
+                      Damage{"permutation_wrong_shape", "permutation.npy",
+                             [](const fs::path& b) {
+                               const auto p = read_npy_u32(b / "permutation.npy");
+                               std::vector<std::uint32_t> half(p.data.begin(),
+                                                               p.data.begin() + p.data.size() / 2);
+                               write_npy(b / "permutation.npy", half, {half.size()});
+                             }},
+                      Damage{"patches_wrong_dtype", "patches.npy",
+                             [](const fs::path& b) {
+                               const auto p = read_npy_f32(b / "patches.npy");
+                               std::vector<std::int32_t> ints(p.data.size(), 0);
+                               write_npy(b / "patches.npy", ints, p.shape);
+                             }},
+                      Damage{
+                          "truncated_kept_values", "T_kept_0_value.npy",
+                          [](const fs::path& b) { truncate_file(b / "T_kept_0_value.npy", 100); }},
+                      Damage{"manifest_not_json", "manifest.json",
+                             [](const fs::path& b) {
+                               write_text(b / "manifest.json", "{\"format\": \"bounce-");
+                             }},
+                      Damage{"manifest_old_version", "manifest.json",
+                             [](const fs::path& b) {
+                               json m = read_manifest(b);
+                               m["format_version"] = 1;
+                               write_text(b / "manifest.json", m.dump());
+                             }},
+                      Damage{"manifest_missing_key", "manifest.json",
+                             [](const fs::path& b) {
+                               json m = read_manifest(b);
+                               m["compression"].erase("quantizers");
+                               write_text(b / "manifest.json", m.dump());
+                             }},
+                      Damage{"lights_missing", "lights_first_hit.npy",
+                             [](const fs::path& b) { fs::remove(b / "lights_first_hit.npy"); }}),
+    [](const ::testing::TestParamInfo<Damage>& p) { return std::string(p.param.name); });
+
 }  // namespace
 }  // namespace bounce::itest
