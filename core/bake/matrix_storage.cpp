@@ -94,44 +94,45 @@ MatrixStorage store_transport(const TransportResult& transport, const IndirectLi
     s.error_budget = budget;
     constexpr int kRungs = static_cast<int>(std::size(kKeptFractionLadder));
     int lo = 0, hi = kRungs - 1, best = -1;
-    std::vector<std::optional<Trial>> trials(kRungs);
+    // Only two trials are ever needed afterwards: the best that met the
+    // budget, and the last one tried (the top rung when none met it). Each
+    // keeps its error map, so the chosen one is not measured twice.
+    std::optional<Trial> passed, last;
+    std::vector<float> passed_map, last_map;
     while (lo <= hi) {
       const int mid = (lo + hi) / 2;
       codec.kept_fraction = kKeptFractionLadder[mid];
-      trials[static_cast<std::size_t>(mid)] =
-          compress_and_measure(exact, n, codec, probe, nullptr, progress);
-      const Trial& t = *trials[static_cast<std::size_t>(mid)];
+      last = compress_and_measure(exact, n, codec, probe, &last_map, progress);
       s.trials.push_back(
-          {codec.kept_fraction, t.errors.matrix.rel_frobenius, t.compressed.total_bytes()});
-      if (t.errors.matrix.rel_frobenius <= budget) {
+          {codec.kept_fraction, last->errors.matrix.rel_frobenius, last->compressed.total_bytes()});
+      if (last->errors.matrix.rel_frobenius <= budget) {
         best = mid;
         hi = mid - 1;
+        passed = std::move(last);
+        passed_map.swap(last_map);
       } else {
         lo = mid + 1;
       }
     }
     if (best < 0) {
-      best = kRungs - 1;
-      diagnostics.warn(
-          "compress",
-          text_format("no kept fraction up to %g meets the error budget %g (relative "
-                      "Frobenius error %.3g): keeping %g; use --codec dense for an "
-                      "exact matrix",
-                      kKeptFractionLadder[best], budget,
-                      trials[static_cast<std::size_t>(best)]->errors.matrix.rel_frobenius,
-                      kKeptFractionLadder[best]));
+      best = kRungs - 1;  // bisection that never passes ends on the top rung
+      diagnostics.warn("compress",
+                       text_format("no kept fraction up to %g meets the error budget %g (relative "
+                                   "Frobenius error %.3g): keeping %g; use --codec dense for an "
+                                   "exact matrix",
+                                   kKeptFractionLadder[best], budget,
+                                   last->errors.matrix.rel_frobenius, kKeptFractionLadder[best]));
+      passed = std::move(last);
+      passed_map.swap(last_map);
     }
-    chosen = std::move(*trials[static_cast<std::size_t>(best)]);
+    chosen = std::move(*passed);
+    s.abs_error_sum = std::move(passed_map);
     codec.kept_fraction = kKeptFractionLadder[best];
     s.decisions.push_back(
         {text_format("kept fraction: %g", codec.kept_fraction),
          text_format("the smallest of %zu tried whose relative Frobenius error (%.3g) meets the "
                      "error budget %g",
                      s.trials.size(), chosen.errors.matrix.rel_frobenius, budget)});
-    // The error map of the chosen trial, computed once more rather than kept
-    // for every trial (n^2 floats each).
-    chosen.errors =
-        measure_compression(exact, chosen.compressed, probe, &s.abs_error_sum, progress);
   }
   s.errors = chosen.errors;
   s.stored_bytes = chosen.compressed.total_bytes();

@@ -3,11 +3,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
-#include <atomic>
 #include <string>
-#include <system_error>
-
-#include <unistd.h>
 
 #include "io/atomic_file.h"
 #include "io/image_file.h"
