@@ -1,5 +1,6 @@
 #include "runtime/compressed_transport.h"
 
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -45,18 +46,18 @@ void block_row_portable(const Tables& t, const float* b, std::size_t I, float (*
   constexpr int kBits = kFormat == DdsFormat::kBc1 ? 2 : 3;
   const std::size_t nb = t.block_rows, padded = t.padded;
   const std::uint8_t* blocks = &t.blocks[I * nb * 8];
-  const float* palettes = &t.palettes[I * nb * kSlots * kLevels];
   for (std::size_t J = 0; J < nb; ++J) {
     // BC1: 2-bit indices in bytes 4..7; BC4: 3-bit indices in bytes 2..7.
     const std::uint64_t indices =
         kFormat == DdsFormat::kBc1 ? load_u32(blocks + 8 * J + 4) : load_u64(blocks + 8 * J) >> 16;
-    const float* palette = palettes + J * kSlots * kLevels;
+    const float* palette[3];
+    for (std::size_t k = 0; k < 3; ++k)
+      palette[k] = t.palette(I, J, kSlots == 1 ? 0 : t.slot_of_colour[k]);
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c) {
         const auto e = static_cast<int>((indices >> (kBits * (4 * r + c))) & (kLevels - 1));
         for (std::size_t k = 0; k < 3; ++k)
-          acc[r][k] += palette[t.slot_of_colour[k] * kLevels + e] *
-                       b[k * padded + 4 * J + static_cast<std::size_t>(c)];
+          acc[r][k] += palette[k][e] * b[k * padded + 4 * J + static_cast<std::size_t>(c)];
       }
   }
 }
@@ -104,14 +105,22 @@ __attribute__((target("avx2,fma"))) void block_row_avx2(const Tables& t, const f
   constexpr std::size_t kLevels = kBc1 ? 4 : 8;
   const std::size_t nb = t.block_rows, padded = t.padded;
   const std::uint8_t* blocks = &t.blocks[I * nb * 8];
-  const float* palettes = &t.palettes[I * nb * kSlots * kLevels];
+  // BC4: the block's own palette; BC1: the slot tables, looked up by the
+  // endpoints (colour k's table and field: slot_of_colour[k]).
+  const float* bc4_palettes = kBc1 ? nullptr : &t.palettes[I * nb * kLevels];
+  std::array<const float*, 3> table{};
+  std::array<std::uint32_t, 3> shift{}, bits{};
+  if constexpr (kBc1)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const auto slot = static_cast<std::size_t>(kSlots == 1 ? 0 : t.slot_of_colour[k]);
+      table[k] = t.bc1_tables.data() + t.bc1_table_offset[slot];
+      shift[k] = t.bc1_field_shift[slot];
+      bits[k] = t.bc1_field_bits[slot];
+    }
   const __m256i shift_lo = kBc1 ? _mm256_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14)
                                 : _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
   const __m256i shift_hi = kBc1 ? _mm256_setr_epi32(16, 18, 20, 22, 24, 26, 28, 30) : shift_lo;
   const float *b_r = b, *b_g = b + padded, *b_b = b + 2 * padded;
-  const std::size_t slot_r = static_cast<std::size_t>(t.slot_of_colour[0]) * kLevels;
-  const std::size_t slot_g = static_cast<std::size_t>(t.slot_of_colour[1]) * kLevels;
-  const std::size_t slot_b = static_cast<std::size_t>(t.slot_of_colour[2]) * kLevels;
   // Rows 0 and 1 (resp. 2 and 3) x columns 0..3, per colour.
   __m256 r01 = _mm256_setzero_ps(), g01 = r01, b01 = r01, r23 = r01, g23 = r01, b23 = r01;
   for (std::size_t J = 0; J < nb; ++J) {
@@ -127,12 +136,13 @@ __attribute__((target("avx2,fma"))) void block_row_avx2(const Tables& t, const f
           _mm256_srlv_epi32(_mm256_set1_epi32(static_cast<int>(field & 0xFFFFFF)), shift_lo);
       control23 = _mm256_srlv_epi32(_mm256_set1_epi32(static_cast<int>(field >> 24)), shift_lo);
     }
-    const float* palette = palettes + J * kSlots * kLevels;
     const __m256 br = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(b_r + 4 * J));
     const __m256 bg = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(b_g + 4 * J));
     const __m256 bb = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(b_b + 4 * J));
     if constexpr (kSlots == 1) {
-      const __m256 p = load_palette<kFormat>(palette);
+      const __m256 p = load_palette<kFormat>(
+          kBc1 ? table[0] + 4 * bc1_palette_key(load_u32(block), shift[0], bits[0])
+               : bc4_palettes + J * kLevels);
       const __m256 v01 = permute<kFormat>(p, control01), v23 = permute<kFormat>(p, control23);
       r01 = _mm256_fmadd_ps(v01, br, r01);
       g01 = _mm256_fmadd_ps(v01, bg, g01);
@@ -141,9 +151,13 @@ __attribute__((target("avx2,fma"))) void block_row_avx2(const Tables& t, const f
       g23 = _mm256_fmadd_ps(v23, bg, g23);
       b23 = _mm256_fmadd_ps(v23, bb, b23);
     } else {
-      const __m256 pr = load_palette<kFormat>(palette + slot_r);
-      const __m256 pg = load_palette<kFormat>(palette + slot_g);
-      const __m256 pb = load_palette<kFormat>(palette + slot_b);
+      const std::uint32_t endpoints = load_u32(block);
+      const __m256 pr =
+          load_palette<kFormat>(table[0] + 4 * bc1_palette_key(endpoints, shift[0], bits[0]));
+      const __m256 pg =
+          load_palette<kFormat>(table[1] + 4 * bc1_palette_key(endpoints, shift[1], bits[1]));
+      const __m256 pb =
+          load_palette<kFormat>(table[2] + 4 * bc1_palette_key(endpoints, shift[2], bits[2]));
       r01 = _mm256_fmadd_ps(permute<kFormat>(pr, control01), br, r01);
       g01 = _mm256_fmadd_ps(permute<kFormat>(pg, control01), bg, g01);
       b01 = _mm256_fmadd_ps(permute<kFormat>(pb, control01), bb, b01);

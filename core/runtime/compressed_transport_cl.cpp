@@ -35,18 +35,24 @@ std::string build_options(const CompressedTransportTables& t) {
   return o;
 }
 
-// The palettes as the kernel reads them: with three slots, entry-major with
-// the colours' mapping applied, (R, G, B, 0) per entry, so a texel is one
-// float4 load; with one slot, as they are.
+// The palettes as the kernel reads them, one per block (the C++ path looks
+// BC1 palettes up in the slot tables instead; on a GPU the tables would sit
+// in local memory, on PoCL per-block palettes measured no slower): with
+// three slots, entry-major with the colours' mapping applied, (R, G, B, 0)
+// per entry, so a texel is one float4 load; with one slot, as they are.
 std::vector<float> device_palettes(const CompressedTransportTables& t) {
-  if (t.slots != 3) return t.palettes;
-  const std::size_t blocks = t.block_rows * t.block_rows, levels = 4;
-  std::vector<float> out(blocks * levels * 4, 0.0f);
-  for (std::size_t b = 0; b < blocks; ++b)
-    for (std::size_t e = 0; e < levels; ++e)
-      for (std::size_t k = 0; k < 3; ++k)
-        out[(b * levels + e) * 4 + k] =
-            t.palettes[(b * 3 + static_cast<std::size_t>(t.slot_of_colour[k])) * levels + e];
+  if (t.format == DdsFormat::kBc4) return t.palettes;
+  const std::size_t nb = t.block_rows, levels = 4;
+  const std::size_t width = t.slots == 3 ? 4 : 1;
+  std::vector<float> out(nb * nb * levels * width, 0.0f);
+  for (std::size_t I = 0; I < nb; ++I)
+    for (std::size_t J = 0; J < nb; ++J) {
+      const std::size_t b = I * nb + J;
+      for (std::size_t k = 0; k < (t.slots == 3 ? 3u : 1u); ++k) {
+        const float* palette = t.palette(I, J, t.slots == 3 ? t.slot_of_colour[k] : 0);
+        for (std::size_t e = 0; e < levels; ++e) out[(b * levels + e) * width + k] = palette[e];
+      }
+    }
   return out;
 }
 
@@ -101,7 +107,8 @@ ClCompressedTransport::ClCompressedTransport(const CompressedTransportTables& t)
   d.block_rows = t.block_rows;
   const std::vector<float> palettes_on_device = device_palettes(t);
   // What a product reads on the device: the tables with its palette layout.
-  d.table_bytes = t.bytes() + (palettes_on_device.size() - t.palettes.size()) * sizeof(float);
+  d.table_bytes = t.bytes() + palettes_on_device.size() * sizeof(float) -
+                  (t.palettes.size() + t.bc1_tables.size()) * sizeof(float);
   d.permutation = t.permutation;
   if (t.block_rows > 0xFFFFFFFFu) throw Error("compressed transport", "too many block columns");
   cl_program program = d.cl.program("kernels/compressed_transport.cl",

@@ -1,6 +1,7 @@
 #include "runtime/compressed_transport_tables.h"
 
 #include <algorithm>
+#include <cstring>
 #include <string>
 
 #include "base/error.h"
@@ -27,32 +28,62 @@ int texel_index(const std::uint8_t* block, DdsFormat format, std::size_t r, std:
   return static_cast<int>((field >> (3 * (4 * r + c))) & 7);
 }
 
-void build_palettes(const CompressedMatrix& m, CompressedTransportTables& t) {
+// BC1: every palette slot s can hold, in a table keyed by bc1_palette_key.
+// Each entry is decoded by decode_bc1_block from a probe block whose
+// endpoints carry the key's fields in colour s, and, in the other bits, what
+// forces the key's mode: colour s's own low bits when it is the top field
+// (R), else R. Keys whose mode no block can have (R endpoints e0 < e1 in the
+// 4-colour mode, say) stay 0: no block looks them up.
+void build_bc1_tables(const CompressedMatrix& m, CompressedTransportTables& t) {
+  std::size_t total = 0;
+  for (int s = 0; s < t.slots; ++s) {
+    const auto slot = static_cast<std::size_t>(s);
+    t.bc1_table_offset[slot] = total;
+    total += (std::size_t{2} << (2 * t.bc1_field_bits[slot])) * 4;
+  }
+  t.bc1_tables.assign(total, 0.0f);
+  for (int s = 0; s < t.slots; ++s) {
+    const auto slot = static_cast<std::size_t>(s);
+    const std::uint32_t shift = t.bc1_field_shift[slot], bits = t.bc1_field_bits[slot];
+    for (std::uint32_t mode = 0; mode < 2; ++mode)
+      for (std::uint32_t e0 = 0; e0 < (1u << bits); ++e0)
+        for (std::uint32_t e1 = 0; e1 < (1u << bits); ++e1) {
+          std::uint32_t c0 = e0 << shift, c1 = e1 << shift;
+          const std::uint32_t low = (1u << 11) - 1, top = 31u << 11;
+          if (shift == 11)
+            (mode == 0 ? c0 : c1) |= low;
+          else
+            (mode == 0 ? c0 : c1) |= top;
+          const std::uint32_t endpoints = c0 | (c1 << 16);
+          const std::uint32_t key = bc1_palette_key(endpoints, shift, bits);
+          if (key >> (2 * bits) != mode) continue;  // no block has this mode with these fields
+          const std::uint8_t probe[8] = {
+              static_cast<std::uint8_t>(c0), static_cast<std::uint8_t>(c0 >> 8),
+              static_cast<std::uint8_t>(c1), static_cast<std::uint8_t>(c1 >> 8),
+              kBc1PaletteIndices[0],         kBc1PaletteIndices[1],
+              kBc1PaletteIndices[2],         kBc1PaletteIndices[3]};
+          std::uint8_t rgb[16][3];
+          decode_bc1_block(probe, rgb);
+          float* out = &t.bc1_tables[t.bc1_table_offset[slot] + 4 * key];
+          for (std::size_t e = 0; e < 4; ++e) out[e] = m.quantizers[slot].decode(rgb[e][slot]);
+        }
+  }
+}
+
+// BC4: one palette per block (see the header for why not a table).
+void build_bc4_palettes(const CompressedMatrix& m, CompressedTransportTables& t) {
   const std::size_t blocks = t.block_rows * t.block_rows;
-  const std::size_t slots = static_cast<std::size_t>(t.slots);
-  const std::size_t levels = static_cast<std::size_t>(t.levels);
-  t.palettes.assign(blocks * slots * levels, 0.0f);
+  t.palettes.assign(blocks * 8, 0.0f);
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
     const std::uint8_t* block = &t.blocks[static_cast<std::size_t>(b) * 8];
-    float* out = &t.palettes[static_cast<std::size_t>(b) * slots * levels];
+    float* out = &t.palettes[static_cast<std::size_t>(b) * 8];
     std::uint8_t probe[8];
-    if (t.format == DdsFormat::kBc1) {
-      std::copy(block, block + 4, probe);
-      std::copy(kBc1PaletteIndices, kBc1PaletteIndices + 4, probe + 4);
-      std::uint8_t rgb[16][3];
-      decode_bc1_block(probe, rgb);
-      // Stored channel s sits in colour s; one stored channel sits in R.
-      for (std::size_t s = 0; s < slots; ++s)
-        for (std::size_t e = 0; e < levels; ++e)
-          out[s * levels + e] = m.quantizers[s].decode(rgb[e][s]);
-    } else {
-      std::copy(block, block + 2, probe);
-      std::copy(kBc4PaletteIndices, kBc4PaletteIndices + 6, probe + 2);
-      std::uint8_t value[16];
-      decode_bc4_block(probe, value);
-      for (std::size_t e = 0; e < levels; ++e) out[e] = m.quantizers[0].decode(value[e]);
-    }
+    std::copy(block, block + 2, probe);
+    std::copy(kBc4PaletteIndices, kBc4PaletteIndices + 6, probe + 2);
+    std::uint8_t value[16];
+    decode_bc4_block(probe, value);
+    for (std::size_t e = 0; e < 8; ++e) out[e] = m.quantizers[0].decode(value[e]);
   }
 }
 
@@ -66,7 +97,6 @@ struct KeptEntry {
 void build_corrections(const CompressedMatrix& m, const std::array<int, 3>& channel_of_colour,
                        CompressedTransportTables& t) {
   const std::size_t n = t.n, width = static_cast<std::size_t>(t.correction_width);
-  const std::size_t levels = static_cast<std::size_t>(t.levels);
   const Permutation stored_of = inverse(m.permutation);
   // Colours whose values are stored: one per stored channel used (width 1:
   // the one channel); the values of a channel serve every colour mapped to it.
@@ -99,9 +129,7 @@ void build_corrections(const CompressedMatrix& m, const std::array<int, 3>& chan
         const std::uint32_t j = stored_of[kept.col[e]];
         const std::size_t block = (i / 4) * t.block_rows + j / 4;
         const int index = texel_index(&t.blocks[block * 8], t.format, i % 4, j % 4);
-        const float decoded =
-            t.palettes[(block * static_cast<std::size_t>(t.slots) + slot) * levels +
-                       static_cast<std::size_t>(index)];
+        const float decoded = t.palette(i / 4, j / 4, static_cast<int>(slot))[index];
         row.push_back({j, static_cast<int>(k), kept.value[e] - decoded});
       }
     }
@@ -126,8 +154,18 @@ void build_corrections(const CompressedMatrix& m, const std::array<int, 3>& chan
 
 }  // namespace
 
+const float* CompressedTransportTables::palette(std::size_t I, std::size_t J, int slot) const {
+  const std::uint8_t* block = &blocks[(I * block_rows + J) * 8];
+  if (format == DdsFormat::kBc4) return &palettes[(I * block_rows + J) * 8];
+  const auto s = static_cast<std::size_t>(slot);
+  std::uint32_t endpoints;
+  std::memcpy(&endpoints, block, sizeof endpoints);
+  return &bc1_tables[bc1_table_offset[s] +
+                     4 * bc1_palette_key(endpoints, bc1_field_shift[s], bc1_field_bits[s])];
+}
+
 std::size_t CompressedTransportTables::bytes() const {
-  return blocks.size() + palettes.size() * sizeof(float) +
+  return blocks.size() + (palettes.size() + bc1_tables.size()) * sizeof(float) +
          (correction_ptr.size() + correction_index.size()) * sizeof(std::uint32_t) +
          correction_value.size() * sizeof(float);
 }
@@ -184,7 +222,10 @@ CompressedTransportTables build_compressed_transport_tables(
   t.correction_width = m.channels == 1 ? 1 : 3;
   t.blocks = m.blocks;
   t.permutation = m.permutation;
-  build_palettes(m, t);
+  if (t.format == DdsFormat::kBc1)
+    build_bc1_tables(m, t);
+  else
+    build_bc4_palettes(m, t);
   build_corrections(m, channel_of_colour, t);
   return t;
 }

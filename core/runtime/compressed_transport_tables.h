@@ -5,14 +5,24 @@
 // (runtime/compressed_transport_cl.h). Everything is in stored order: block
 // rows and columns as in the DDS, rows and columns of the matrix permuted.
 //
-// Palettes in value space. For every block and palette slot, the 4 (BC1) or
-// 8 (BC4) values its indices select, after the inverse log step. They come
-// from the existing decoders (decode_bc1_block / decode_bc4_block on the
-// block's endpoints with indices 0, 1, 2, ...) and LogQuantizer::decode, so
-// they are bit for bit what decompress_channel produces; decoding a texel at
-// run time is an index lookup. Slots: 3 for BC1 with three stored channels
-// (stored channel c in colour c of the block), else 1 (BC4; BC1 of one
-// stored channel, which sits in R).
+// Palettes in value space: the 4 (BC1) or 8 (BC4) values a block's indices
+// select, after the inverse log step, per palette slot. Slots: 3 for BC1
+// with three stored channels (stored channel c in colour c of the block),
+// else 1 (BC4; BC1 of one stored channel, which sits in R). They come from
+// the existing decoders (decode_bc1_block / decode_bc4_block on the block's
+// endpoints with indices 0, 1, 2, ...) and LogQuantizer::decode, so they are
+// bit for bit what decompress_channel produces; decoding a texel at run time
+// is an index lookup.
+//
+// BC1: one palette table per slot, not one palette per block. A BC1 colour
+// channel's 4 codes depend only on its two endpoint fields (5 or 6 bits) and
+// on the block's mode (colour0 > colour1 or not), so every palette the
+// matrix can hold is in a table of 2 * 2^(2 bits) entries: 32 KB for R and
+// B, 128 KB for G, which stay in L2 cache. A product then reads 8 bytes per
+// block instead of 8 + 48 (the 12 palette floats), which is what bounds it
+// in memory traffic (docs/benchmarks.md, runtime). BC4's 8-entry palettes
+// key on two 8-bit endpoints, a 2 MB table per channel that would not stay
+// in cache; BC4 (grey scenes) keeps one palette per block.
 //
 // Holes. A kept entry replaces the decoded value at its position, and the
 // block holds some code there (ours: any code, the encoder ignores it). The
@@ -46,9 +56,16 @@ struct CompressedTransportTables {
   int correction_width = 3;
 
   std::vector<std::uint8_t> blocks;  // the DDS blocks, 8 bytes each, block-row-major
-  // block_rows^2 * slots * levels values: block (I, J), slot s, entry e at
-  // ((I * block_rows + J) * slots + s) * levels + e.
+  // BC4 only: block_rows^2 * levels values, block (I, J), entry e at
+  // (I * block_rows + J) * levels + e. Empty for BC1.
   std::vector<float> palettes;
+  // BC1 only: the palette tables, see bc1_palette(). Slot s reads the colour
+  // field at bit bc1_field_shift[s] of the endpoints, bc1_field_bits[s] wide,
+  // and its table starts at bc1_table_offset[s] in bc1_tables.
+  std::vector<float> bc1_tables;
+  std::array<std::uint32_t, 3> bc1_field_shift{11, 5, 0};
+  std::array<std::uint32_t, 3> bc1_field_bits{5, 6, 5};
+  std::array<std::size_t, 3> bc1_table_offset{0, 0, 0};
 
   // Corrections in CSR form over the stored rows: the entries of stored row
   // i are correction_ptr[i] .. correction_ptr[i + 1] (padded + 1 offsets;
@@ -65,9 +82,22 @@ struct CompressedTransportTables {
   Permutation permutation;  // stored row/column k is patch permutation[k]
 
   std::size_t corrections() const { return correction_index.size(); }
-  // Bytes one product reads from the tables (blocks, palettes, corrections).
+  // Bytes one product reads from the tables (blocks, palettes or BC1
+  // palette tables, corrections).
   std::size_t bytes() const;
+  // The palette (levels values) of slot `slot` of block (I, J).
+  const float* palette(std::size_t I, std::size_t J, int slot) const;
 };
+
+// Entry of a BC1 block's palette in its slot's table: mode (1 for the
+// 3-colour mode, colour0 <= colour1), then the two endpoint fields.
+inline std::uint32_t bc1_palette_key(std::uint32_t endpoints, std::uint32_t shift,
+                                     std::uint32_t bits) {
+  const std::uint32_t c0 = endpoints & 0xFFFFu, c1 = endpoints >> 16;
+  const std::uint32_t mask = (1u << bits) - 1;
+  return (static_cast<std::uint32_t>(c0 <= c1) << (2 * bits)) | (((c0 >> shift) & mask) << bits) |
+         ((c1 >> shift) & mask);
+}
 
 inline constexpr std::uint32_t kCorrectionColumnMask = (1u << 30) - 1;
 inline constexpr int kCorrectionRowShift = 30;

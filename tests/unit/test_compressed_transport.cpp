@@ -26,6 +26,7 @@
 #include <glm/glm.hpp>
 
 #include "base/error.h"
+#include "compress/block_bc1.h"
 #include "compress/codec.h"
 #include "compute/kernel_source.h"
 #include "compute/opencl_context.h"
@@ -278,6 +279,38 @@ TEST(CompressedTransport, HoleCorrectionsShareOnePatternAcrossChannels) {
   EXPECT_EQ(t.correction_ptr.size(), t.padded + 1);
   EXPECT_EQ(t.correction_ptr.back(), t.corrections());
   std::printf("kept entries %zu over 3 channels, %zu positions\n", kept, t.corrections());
+}
+
+// The BC1 slot tables hold every block's palette: for random blocks (both
+// modes, every endpoint field), the table entry the block's endpoints select
+// equals decoding the block itself with libsquish-exact decode_bc1_block and
+// the channel's quantizer, texel by texel.
+TEST(CompressedTransport, Bc1PaletteTablesGiveEveryBlocksOwnPalette) {
+  const CompressedMatrix m = random_blocks(kN, 3, DdsFormat::kBc1, 21);
+  const CompressedTransportTables t = build_compressed_transport_tables(m, {0, 1, 2});
+  // The tables replace per-block palettes: 2 * 2^10 * 4 floats for R and B,
+  // 2 * 2^12 * 4 for G.
+  EXPECT_EQ(t.bc1_tables.size(), 4u * (2048 + 8192 + 2048));
+  EXPECT_TRUE(t.palettes.empty());
+  std::size_t three_colour_blocks = 0;
+  for (std::size_t I = 0; I < t.block_rows; ++I)
+    for (std::size_t J = 0; J < t.block_rows; ++J) {
+      const std::uint8_t* block = &m.blocks[(I * t.block_rows + J) * 8];
+      std::uint8_t rgb[16][3];
+      decode_bc1_block(block, rgb);
+      three_colour_blocks += (block[0] | block[1] << 8) <= (block[2] | block[3] << 8);
+      for (int s = 0; s < 3; ++s) {
+        const float* palette = t.palette(I, J, s);
+        for (int texel = 0; texel < 16; ++texel) {
+          const int index = (block[4 + texel / 4] >> (2 * (texel % 4))) & 3;
+          ASSERT_EQ(palette[index], m.quantizers[static_cast<std::size_t>(s)].decode(
+                                        rgb[texel][static_cast<std::size_t>(s)]))
+              << "block (" << I << ", " << J << ") slot " << s << " texel " << texel;
+        }
+      }
+    }
+  EXPECT_GT(three_colour_blocks, 0u);  // both modes were checked
+  EXPECT_LT(three_colour_blocks, t.block_rows * t.block_rows);
 }
 
 TEST(ClCompressedTransport, MatchesTheDenseProductAndTheCppPath) {
