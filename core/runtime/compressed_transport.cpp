@@ -98,6 +98,46 @@ __attribute__((target("avx2,fma"))) inline void add_lanes(__m256 rows01, __m256 
           (lanes[h][4 * r] + lanes[h][4 * r + 1]) + (lanes[h][4 * r + 2] + lanes[h][4 * r + 3]);
 }
 
+// The palette-table offsets (floats into bc1_tables) of 8 consecutive BC1
+// blocks, per slot: bc1_palette_key of each block's endpoints, 8 at once.
+// Scalar, the key costs ~10 integer instructions per slot, as much as the
+// rest of the block; in vectors, ~2 per block for all three slots.
+__attribute__((target("avx2,fma"))) inline void bc1_offsets_x8(const Tables& t,
+                                                               const std::uint8_t* blocks,
+                                                               std::uint32_t (*offset)[8]) {
+  static_assert(Tables::bc1_field_shift == std::array<std::uint32_t, 3>{11, 5, 0} &&
+                Tables::bc1_field_bits == std::array<std::uint32_t, 3>{5, 6, 5});
+  // Endpoint words are the even dwords of the 8 blocks: the shuffle takes
+  // them in the order 0 1 4 5 | 2 3 6 7, the 64-bit permute restores 0..7.
+  const __m256 lo = _mm256_loadu_ps(reinterpret_cast<const float*>(blocks));
+  const __m256 hi = _mm256_loadu_ps(reinterpret_cast<const float*>(blocks + 32));
+  const __m256i endpoints = _mm256_permute4x64_epi64(
+      _mm256_castps_si256(_mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0))),
+      _MM_SHUFFLE(3, 1, 2, 0));
+  const __m256i c0 = _mm256_and_si256(endpoints, _mm256_set1_epi32(0xFFFF));
+  const __m256i c1 = _mm256_srli_epi32(endpoints, 16);
+  // 1 in the 3-colour mode (colour0 <= colour1): -1 + 1 when c0 > c1 is 0.
+  const __m256i mode = _mm256_add_epi32(_mm256_cmpgt_epi32(c0, c1), _mm256_set1_epi32(1));
+  const __m256i m5 = _mm256_set1_epi32(31), m6 = _mm256_set1_epi32(63);
+  const __m256i key_r = _mm256_or_si256(
+      _mm256_slli_epi32(mode, 10),
+      _mm256_or_si256(_mm256_slli_epi32(_mm256_srli_epi32(c0, 11), 5), _mm256_srli_epi32(c1, 11)));
+  const __m256i key_g = _mm256_or_si256(
+      _mm256_slli_epi32(mode, 12),
+      _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(_mm256_srli_epi32(c0, 5), m6), 6),
+                      _mm256_and_si256(_mm256_srli_epi32(c1, 5), m6)));
+  const __m256i key_b = _mm256_or_si256(
+      _mm256_slli_epi32(mode, 10),
+      _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(c0, m5), 5), _mm256_and_si256(c1, m5)));
+  const __m256i keys[3] = {key_r, key_g, key_b};
+  for (int s = 0; s < t.slots; ++s)
+    _mm256_store_si256(
+        reinterpret_cast<__m256i*>(offset[s]),
+        _mm256_add_epi32(
+            _mm256_slli_epi32(keys[s], 2),
+            _mm256_set1_epi32(static_cast<int>(t.bc1_table_offset[static_cast<std::size_t>(s)]))));
+}
+
 template <DdsFormat kFormat, int kSlots>
 __attribute__((target("avx2,fma"))) void block_row_avx2(const Tables& t, const float* b,
                                                         std::size_t I, float (*acc)[3]) {
@@ -105,18 +145,14 @@ __attribute__((target("avx2,fma"))) void block_row_avx2(const Tables& t, const f
   constexpr std::size_t kLevels = kBc1 ? 4 : 8;
   const std::size_t nb = t.block_rows, padded = t.padded;
   const std::uint8_t* blocks = &t.blocks[I * nb * 8];
-  // BC4: the block's own palette; BC1: the slot tables, looked up by the
-  // endpoints (colour k's table and field: slot_of_colour[k]).
+  // BC4: the block's own palette; BC1: the slot tables at the offsets the
+  // endpoints give, 8 blocks at a time (colour k reads slot_of_colour[k]).
   const float* bc4_palettes = kBc1 ? nullptr : &t.palettes[I * nb * kLevels];
-  std::array<const float*, 3> table{};
-  std::array<std::uint32_t, 3> shift{}, bits{};
-  if constexpr (kBc1)
-    for (std::size_t k = 0; k < 3; ++k) {
-      const auto slot = static_cast<std::size_t>(kSlots == 1 ? 0 : t.slot_of_colour[k]);
-      table[k] = t.bc1_tables.data() + t.bc1_table_offset[slot];
-      shift[k] = t.bc1_field_shift[slot];
-      bits[k] = t.bc1_field_bits[slot];
-    }
+  const float* tables = t.bc1_tables.data();
+  alignas(32) std::uint32_t offset[3][8] = {};
+  const std::size_t slot_r = kSlots == 1 ? 0 : static_cast<std::size_t>(t.slot_of_colour[0]);
+  const std::size_t slot_g = kSlots == 1 ? 0 : static_cast<std::size_t>(t.slot_of_colour[1]);
+  const std::size_t slot_b = kSlots == 1 ? 0 : static_cast<std::size_t>(t.slot_of_colour[2]);
   const __m256i shift_lo = kBc1 ? _mm256_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14)
                                 : _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
   const __m256i shift_hi = kBc1 ? _mm256_setr_epi32(16, 18, 20, 22, 24, 26, 28, 30) : shift_lo;
@@ -125,6 +161,21 @@ __attribute__((target("avx2,fma"))) void block_row_avx2(const Tables& t, const f
   __m256 r01 = _mm256_setzero_ps(), g01 = r01, b01 = r01, r23 = r01, g23 = r01, b23 = r01;
   for (std::size_t J = 0; J < nb; ++J) {
     const std::uint8_t* block = blocks + 8 * J;
+    const std::size_t lane = J % 8;
+    if constexpr (kBc1) {
+      if (lane == 0) {
+        if (J + 8 <= nb) {
+          bc1_offsets_x8(t, block, offset);
+        } else {
+          for (std::size_t j = 0; J + j < nb; ++j)
+            for (std::size_t s = 0; s < static_cast<std::size_t>(t.slots); ++s)
+              offset[s][j] = static_cast<std::uint32_t>(t.bc1_table_offset[s] +
+                                                        4 * bc1_palette_key(load_u32(block + 8 * j),
+                                                                            t.bc1_field_shift[s],
+                                                                            t.bc1_field_bits[s]));
+        }
+      }
+    }
     __m256i control01, control23;
     if constexpr (kBc1) {
       const __m256i word = _mm256_set1_epi32(static_cast<int>(load_u32(block + 4)));
@@ -140,9 +191,8 @@ __attribute__((target("avx2,fma"))) void block_row_avx2(const Tables& t, const f
     const __m256 bg = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(b_g + 4 * J));
     const __m256 bb = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(b_b + 4 * J));
     if constexpr (kSlots == 1) {
-      const __m256 p = load_palette<kFormat>(
-          kBc1 ? table[0] + 4 * bc1_palette_key(load_u32(block), shift[0], bits[0])
-               : bc4_palettes + J * kLevels);
+      const __m256 p =
+          load_palette<kFormat>(kBc1 ? tables + offset[0][lane] : bc4_palettes + J * kLevels);
       const __m256 v01 = permute<kFormat>(p, control01), v23 = permute<kFormat>(p, control23);
       r01 = _mm256_fmadd_ps(v01, br, r01);
       g01 = _mm256_fmadd_ps(v01, bg, g01);
@@ -151,13 +201,9 @@ __attribute__((target("avx2,fma"))) void block_row_avx2(const Tables& t, const f
       g23 = _mm256_fmadd_ps(v23, bg, g23);
       b23 = _mm256_fmadd_ps(v23, bb, b23);
     } else {
-      const std::uint32_t endpoints = load_u32(block);
-      const __m256 pr =
-          load_palette<kFormat>(table[0] + 4 * bc1_palette_key(endpoints, shift[0], bits[0]));
-      const __m256 pg =
-          load_palette<kFormat>(table[1] + 4 * bc1_palette_key(endpoints, shift[1], bits[1]));
-      const __m256 pb =
-          load_palette<kFormat>(table[2] + 4 * bc1_palette_key(endpoints, shift[2], bits[2]));
+      const __m256 pr = load_palette<kFormat>(tables + offset[slot_r][lane]);
+      const __m256 pg = load_palette<kFormat>(tables + offset[slot_g][lane]);
+      const __m256 pb = load_palette<kFormat>(tables + offset[slot_b][lane]);
       r01 = _mm256_fmadd_ps(permute<kFormat>(pr, control01), br, r01);
       g01 = _mm256_fmadd_ps(permute<kFormat>(pg, control01), bg, g01);
       b01 = _mm256_fmadd_ps(permute<kFormat>(pb, control01), bb, b01);

@@ -63,8 +63,8 @@ struct CompressedTransportTables {
   // field at bit bc1_field_shift[s] of the endpoints, bc1_field_bits[s] wide,
   // and its table starts at bc1_table_offset[s] in bc1_tables.
   std::vector<float> bc1_tables;
-  std::array<std::uint32_t, 3> bc1_field_shift{11, 5, 0};
-  std::array<std::uint32_t, 3> bc1_field_bits{5, 6, 5};
+  static constexpr std::array<std::uint32_t, 3> bc1_field_shift{11, 5, 0};
+  static constexpr std::array<std::uint32_t, 3> bc1_field_bits{5, 6, 5};
   std::array<std::size_t, 3> bc1_table_offset{0, 0, 0};
 
   // Corrections in CSR form over the stored rows: the entries of stored row
