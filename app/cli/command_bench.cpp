@@ -88,6 +88,7 @@ void register_bench(CLI::App& app) {
   register_bench_compress(*bench);
   register_bench_ordering(*bench);
   register_bench_runtime(*bench);
+  register_bench_dynamic(*bench);
 }
 
 }  // namespace bounce::cli
