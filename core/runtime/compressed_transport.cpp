@@ -258,19 +258,103 @@ __attribute__((target("avx2,fma"))) void corrections_avx2(const Tables& t, const
 }
 
 bool cpu_has_avx2() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
+
+// GCC 12's AVX-512 intrinsic headers start some results from
+// _mm512_undefined_*(), which -Wmaybe-uninitialized reports at every use
+// (GCC bug 105593, fixed in GCC 13); the warning is about the header.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+// AVX-512, BC1: the whole block in one 16-lane register per colour. The
+// index word, shifted by 2t in lane t, is the control of an in-lane permute
+// of the palette (broadcast to the four 128-bit lanes), giving texel t's
+// value in lane t, row r in 128-bit lane r; b of the block's 4 columns is
+// broadcast to the four lanes. Half the permutes and FMAs of the AVX2 loop
+// (3 each per block), on 512-bit units where the CPU has them. Two sets of
+// accumulators (even and odd blocks) hide the FMA latency.
+__attribute__((target("avx512f"))) inline void add_rows(__m512 rows, float (*acc)[3], int k) {
+  alignas(64) float lanes[16];
+  _mm512_store_ps(lanes, rows);
+  for (int r = 0; r < 4; ++r)
+    acc[r][k] += (lanes[4 * r] + lanes[4 * r + 1]) + (lanes[4 * r + 2] + lanes[4 * r + 3]);
+}
+
+template <int kSlots>
+__attribute__((target("avx512f,avx2,fma"))) void block_row_avx512_bc1(const Tables& t,
+                                                                      const float* b, std::size_t I,
+                                                                      float (*acc)[3]) {
+  const std::size_t nb = t.block_rows, padded = t.padded;
+  const std::uint8_t* blocks = &t.blocks[I * nb * 8];
+  const float* tables = t.bc1_tables.data();
+  alignas(32) std::uint32_t offset[3][8] = {};
+  const std::size_t slot_r = kSlots == 1 ? 0 : static_cast<std::size_t>(t.slot_of_colour[0]);
+  const std::size_t slot_g = kSlots == 1 ? 0 : static_cast<std::size_t>(t.slot_of_colour[1]);
+  const std::size_t slot_b = kSlots == 1 ? 0 : static_cast<std::size_t>(t.slot_of_colour[2]);
+  const __m512i shift =
+      _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+  const float *b_r = b, *b_g = b + padded, *b_b = b + 2 * padded;
+  __m512 acc_r[2] = {_mm512_setzero_ps(), _mm512_setzero_ps()};
+  __m512 acc_g[2] = {acc_r[0], acc_r[0]}, acc_b[2] = {acc_r[0], acc_r[0]};
+  for (std::size_t J = 0; J < nb; ++J) {
+    const std::uint8_t* block = blocks + 8 * J;
+    const std::size_t lane = J % 8;
+    if (lane == 0) {
+      if (J + 8 <= nb) {
+        bc1_offsets_x8(t, block, offset);
+      } else {
+        for (std::size_t j = 0; J + j < nb; ++j)
+          for (std::size_t s = 0; s < static_cast<std::size_t>(t.slots); ++s)
+            offset[s][j] = static_cast<std::uint32_t>(t.bc1_table_offset[s] +
+                                                      4 * bc1_palette_key(load_u32(block + 8 * j),
+                                                                          t.bc1_field_shift[s],
+                                                                          t.bc1_field_bits[s]));
+      }
+    }
+    const __m512i control =
+        _mm512_srlv_epi32(_mm512_set1_epi32(static_cast<int>(load_u32(block + 4))), shift);
+    const __m512 br = _mm512_broadcast_f32x4(_mm_loadu_ps(b_r + 4 * J));
+    const __m512 bg = _mm512_broadcast_f32x4(_mm_loadu_ps(b_g + 4 * J));
+    const __m512 bb = _mm512_broadcast_f32x4(_mm_loadu_ps(b_b + 4 * J));
+    const std::size_t h = J & 1;
+    if constexpr (kSlots == 1) {
+      const __m512 v = _mm512_permutevar_ps(
+          _mm512_broadcast_f32x4(_mm_loadu_ps(tables + offset[0][lane])), control);
+      acc_r[h] = _mm512_fmadd_ps(v, br, acc_r[h]);
+      acc_g[h] = _mm512_fmadd_ps(v, bg, acc_g[h]);
+      acc_b[h] = _mm512_fmadd_ps(v, bb, acc_b[h]);
+    } else {
+      const __m512 pr = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + offset[slot_r][lane]));
+      const __m512 pg = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + offset[slot_g][lane]));
+      const __m512 pb = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + offset[slot_b][lane]));
+      acc_r[h] = _mm512_fmadd_ps(_mm512_permutevar_ps(pr, control), br, acc_r[h]);
+      acc_g[h] = _mm512_fmadd_ps(_mm512_permutevar_ps(pg, control), bg, acc_g[h]);
+      acc_b[h] = _mm512_fmadd_ps(_mm512_permutevar_ps(pb, control), bb, acc_b[h]);
+    }
+  }
+  add_rows(_mm512_add_ps(acc_r[0], acc_r[1]), acc, 0);
+  add_rows(_mm512_add_ps(acc_g[0], acc_g[1]), acc, 1);
+  add_rows(_mm512_add_ps(acc_b[0], acc_b[1]), acc, 2);
+}
+
+#pragma GCC diagnostic pop
+
+bool cpu_has_avx512() { return __builtin_cpu_supports("avx512f") && cpu_has_avx2(); }
+
 #else
 bool cpu_has_avx2() { return false; }
+bool cpu_has_avx512() { return false; }
 #endif
 
-BlockRowFn block_row_function(const Tables& t, bool avx2) {
+BlockRowFn block_row_function(const Tables& t, bool avx2, bool avx512) {
   const bool bc1 = t.format == DdsFormat::kBc1;
 #ifdef BOUNCE_AVX2_BLOCK_LOOP
+  if (avx512 && bc1) return t.slots == 3 ? block_row_avx512_bc1<3> : block_row_avx512_bc1<1>;
   if (avx2) {
     if (!bc1) return block_row_avx2<DdsFormat::kBc4, 1>;
     return t.slots == 3 ? block_row_avx2<DdsFormat::kBc1, 3> : block_row_avx2<DdsFormat::kBc1, 1>;
   }
 #else
   (void)avx2;
+  (void)avx512;
 #endif
   if (!bc1) return block_row_portable<DdsFormat::kBc4, 1>;
   return t.slots == 3 ? block_row_portable<DdsFormat::kBc1, 3>
@@ -305,9 +389,15 @@ CompressedTransport::CompressedTransport(const CompressedMatrix& m,
 
 CompressedTransport::CompressedTransport(CompressedTransportTables tables, BlockLoop loop)
     : tables_(std::move(tables)),
-      avx2_(loop == BlockLoop::kFastest && cpu_has_avx2()),
+      avx2_(loop != BlockLoop::kPortable && cpu_has_avx2()),
+      avx512_(loop == BlockLoop::kFastest && cpu_has_avx512()),
       b_stored_(3 * tables_.padded, 0.0f),
       b_quad_(4 * tables_.padded, 0.0f) {}
+
+const char* CompressedTransport::block_loop() const {
+  if (avx512_ && tables_.format == DdsFormat::kBc1) return "avx512";
+  return avx2_ ? "avx2" : "portable";
+}
 
 std::size_t CompressedTransport::bytes_per_product() const {
   return tables_.bytes() + tables_.n * sizeof(glm::vec3);
@@ -331,7 +421,7 @@ void CompressedTransport::multiply(const std::vector<glm::vec3>& b,
     bs[padded + i] = b4[4 * i + 1] = v.y;
     bs[2 * padded + i] = b4[4 * i + 2] = v.z;
   }
-  const BlockRowFn block_row = block_row_function(t, avx2_);
+  const BlockRowFn block_row = block_row_function(t, avx2_, avx512_);
   const CorrectionsFn corrections = corrections_function(t, avx2_);
   glm::vec3* out = indirect.data();
   // Block rows write disjoint patches (the permutation is a bijection).

@@ -27,9 +27,10 @@
 
 namespace bounce {
 
-// The block loop: the fastest this CPU runs, or the portable one (for tests
-// of the portable loop on CPUs that would take AVX2).
-enum class BlockLoop { kFastest, kPortable };
+// The block loop: the fastest this CPU runs (AVX-512 for BC1, else AVX2,
+// else portable), AVX2 at most, or the portable one (the last two for tests
+// of the slower loops on CPUs that would take a faster one).
+enum class BlockLoop { kFastest, kAvx2, kPortable };
 
 class CompressedTransport {
  public:
@@ -51,12 +52,13 @@ class CompressedTransport {
   const CompressedTransportTables& tables() const { return tables_; }
   // Bytes one product reads: the tables plus b (in patch order, 12 per patch).
   std::size_t bytes_per_product() const;
-  // "avx2" or "portable": the block loop multiply() runs on this CPU.
-  const char* block_loop() const { return avx2_ ? "avx2" : "portable"; }
+  // "avx512", "avx2" or "portable": the block loop multiply() runs.
+  const char* block_loop() const;
 
  private:
   CompressedTransportTables tables_;
-  bool avx2_ = false;
+  bool avx2_ = false;    // AVX2 block loop and corrections
+  bool avx512_ = false;  // AVX-512 block loop (BC1)
   // b in stored order, padding columns 0, twice: colour-major (R of every
   // stored column, then G, then B), the block loop reads 4 columns of one
   // colour at once; and R, G, B, 0 per column, a kept entry reads its column's

@@ -212,7 +212,7 @@ TEST(CompressedTransport, MatchesTheDenseProductOfTheDecompressedMatrix) {
   const std::vector<glm::vec3> b = random_light(kN, 11);
   for (const Case& c : cases()) {
     const Reference r = dense_reference(c.m, c.channel_of_rgb, b);
-    for (BlockLoop loop : {BlockLoop::kFastest, BlockLoop::kPortable}) {
+    for (BlockLoop loop : {BlockLoop::kFastest, BlockLoop::kAvx2, BlockLoop::kPortable}) {
       const CompressedTransport t(c.m, c.channel_of_rgb, loop);
       std::vector<glm::vec3> y;
       t.multiply(b, y);
