@@ -16,6 +16,11 @@ void BakeOptions::add_to(CLI::App& cmd, bool with_output) {
     cmd.add_option("--out,-o", out,
                    "Output folder. One scene: the bake folder itself. Several scenes: one "
                    "sub-folder per scene. Default: bakes/<scene-name>");
+  if (with_output)
+    cmd.add_flag("--reference", reference,
+                 "Also print the bake's error against the path-traced reference "
+                 "(docs/reference.md) and its run time; the first run per scene renders the "
+                 "reference (seconds), later runs read it from the cache");
   voxel_option = cmd.add_option(
       "--voxel", voxel,
       "Voxel grid resolution: cells along the scene's longest axis. More cells = more, smaller "

@@ -11,6 +11,7 @@
 #include "base/error.h"
 #include "commands.h"
 #include "console_progress.h"
+#include "reference_check.h"
 #include "scene/scene_loader.h"
 
 namespace bounce::cli {
@@ -25,6 +26,7 @@ struct Outcome {
   bool ok = false;
   std::string detail;  // error message, or a one-line summary
   json manifest;
+  std::string reference;  // --reference: one line against the path-traced reference
 };
 
 // `out` is the bake folder itself, or with `nest` the parent of one folder
@@ -54,6 +56,9 @@ Outcome bake_one(const std::string& path, const fs::path& out, bool nest, const 
                  scene.triangle_count(), target.string().c_str());
   const BakeResult result = Baker(scene, opt.settings(), diagnostics).run(console.progress());
   o.manifest = write_bake(target, scene, result, diagnostics);
+  if (opt.reference)
+    o.manifest["reference_check"] =
+        check_bake_against_reference(scene, result, console.progress(), o.reference);
   o.ok = true;
   char line[256];
   std::snprintf(line, sizeof line, "%zu patches, %.2fs", result.patches.size(),
@@ -74,6 +79,7 @@ int run_bake(const BakeOptions& opt) {
       std::cout << o.manifest.dump(2) << '\n';
     else
       print_bake_report(stdout, o.manifest);
+    if (!opt.json && !o.reference.empty()) std::printf("%s\n", o.reference.c_str());
     return 0;
   }
   // Batch: one folder per scene; a failing scene does not stop the others.

@@ -33,6 +33,7 @@ struct BakeOptions {
   double error_budget = BakeSettings::kDefaultErrorBudget;
   std::string gemm = "auto";
   bool no_pictures = false;
+  bool reference = false;  // bake: also measure against the path-traced reference
   bool json = false;
   bool quiet = false;
   CLI::Option* voxel_option = nullptr;
@@ -50,6 +51,7 @@ void register_bake(CLI::App& app);
 void register_info(CLI::App& app);
 void register_bench(CLI::App& app);
 void register_solve(CLI::App& app);
+void register_report(CLI::App& app);
 
 // Expands arguments holding * or ? (quoted globs) into sorted matching paths.
 std::vector<std::string> expand_globs(const std::vector<std::string>& args);

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   bounce::cli::register_bake(app);
   bounce::cli::register_info(app);
   bounce::cli::register_solve(app);
+  bounce::cli::register_report(app);
   bounce::cli::register_bench(app);
   try {
     app.parse(argc, argv);

@@ -1,0 +1,30 @@
+#pragma once
+// The bake measured against the path-traced reference (core/reference), for
+// `bounce bake --reference` and `bounce report`: the indirect light a bake
+// gives on the scene camera's picture, compared with the reference's.
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "bake/bake.h"
+#include "base/progress.h"
+#include "runtime/patch_lighting.h"
+#include "scene/scene.h"
+
+namespace bounce::cli {
+
+// T b through the bake's stored matrix, the way `bounce solve` multiplies it
+// on a CPU: dense sgemv, or the compressed C++ product. `keep_alive` holds
+// what the returned function uses.
+IndirectMultiply baked_multiply(const TransportResult& transport, const MatrixStorage& storage,
+                                std::shared_ptr<void>& keep_alive);
+
+// The bake's indirect picture (96 x 72) against a 256-path reference (cached
+// in ReferenceCache::default_dir()), noise-corrected relative RMSE, with the
+// run time of one light update. Returns the JSON summary; `line` gets one
+// human-readable sentence.
+nlohmann::json check_bake_against_reference(const Scene& scene, const BakeResult& bake,
+                                            Progress& progress, std::string& line);
+
+}  // namespace bounce::cli

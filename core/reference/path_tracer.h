@@ -1,0 +1,141 @@
+#pragma once
+// The ground truth the radiosity solver is measured against: a plain diffuse
+// path tracer on the project's Embree BVH (raytrace/ray_tracer.h). It shares
+// nothing with the solver beyond the scene and the ray tracer -- no voxels,
+// patches, form factors, samples or runtime light functions -- so an error it
+// reports is the solver's, not a shared approximation's. (Primary camera rays
+// use runtime/camera_image.h's camera_ray_direction, which is camera geometry
+// only, so reference and solver pictures line up pixel for pixel.)
+//
+// Units follow the solver's (docs/reference.md): irradiance E in W/m^2 per
+// channel, radiosity B = albedo * E + emission (light leaving a surface), and
+// pictures show B per pixel. "Indirect" is everything after the first
+// bounce: E_indirect(x) is the irradiance x receives from light that was
+// reflected at least once, the quantity the baked matrix T b delivers.
+//
+// Estimator: at a surface point x the path samples a cosine-weighted
+// direction, so pi * L_in is an unbiased estimate of the irradiance, and the
+// reflected radiance at the next hit y is albedo(y) * E(y) / pi. That gives
+//   E_indirect(x) ~ albedo(y1) * (E_direct(y1) + albedo(y2) * (E_direct(y2) + ...))
+// with E_direct at each vertex by next-event estimation (one shadow ray per
+// point/spot/directional light, one to an emissive triangle picked by power).
+// Emission found by the bounce ray itself is not added (NEE already counted
+// it), so nothing is counted twice. Russian roulette ends long paths without
+// bias.
+//
+// Determinism: sample s of item i (pixel or point) draws from its own
+// counter-based stream Rng(seed, i, s), and each item is accumulated in sample
+// order by one thread, so results do not depend on the thread count.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "base/progress.h"
+#include "io/exr_writer.h"
+#include "raytrace/ray_tracer.h"
+#include "scene/scene.h"
+
+namespace bounce {
+
+struct ReferenceSettings {
+  int samples = 256;       // paths per point or per pixel
+  int min_bounces = 3;     // Russian roulette only after this many bounces
+  int max_bounces = 1000;  // hard cap (a furnace of albedo 0.99 needs hundreds)
+  std::uint64_t seed = 1;
+  int threads = 0;  // 0: OpenMP's default
+
+  // Throws bounce::Error naming the setting for values out of range.
+  void validate() const;
+};
+
+// A surface point to estimate light at: position, the unit normal of the side
+// that receives, and its albedo (for radiosity).
+struct SurfacePoint {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};
+  glm::vec3 albedo{0.0f};
+  glm::vec3 emission{0.0f};
+};
+
+// Monte Carlo means with the variance of each mean (sample variance / n), per
+// channel: a 3-sigma bound is 3 * sqrt(variance_of_mean).
+struct PointReference {
+  std::vector<glm::vec3> direct_irradiance;
+  std::vector<glm::vec3> indirect_irradiance;
+  std::vector<glm::vec3> indirect_variance;  // of the mean of indirect_irradiance
+  std::vector<glm::vec3> radiosity;          // albedo * (direct + indirect) + emission
+  std::vector<glm::vec3> radiosity_variance;
+  int samples = 0;
+};
+
+struct ReferenceImages {
+  RgbFloatImage full, indirect;
+  RgbFloatImage full_variance, indirect_variance;  // of the pixel means
+  std::vector<float> coverage;                     // share of rays that hit: 0 = background
+  int samples = 0;
+};
+
+class ReferencePathTracer {
+ public:
+  ReferencePathTracer(const RayTracer& tracer, ReferenceSettings settings);
+
+  // Irradiance and radiosity at the given points (`settings.samples` paths
+  // each). Throws Cancelled when progress asks to stop.
+  PointReference estimate_points(const std::vector<SurfacePoint>& points,
+                                 Progress* progress = nullptr) const;
+
+  const ReferenceSettings& settings() const { return settings_; }
+  const RayTracer& tracer() const { return tracer_; }
+
+  // One sample of the irradiance at x from point/spot/directional lights and
+  // emissive triangles (next-event estimation), shadow rays included.
+  glm::vec3 sample_direct(const glm::vec3& x, const glm::vec3& n, std::uint64_t stream,
+                          std::uint64_t sample) const;
+  // One sample of the indirect irradiance at x (normal n).
+  glm::vec3 sample_indirect(const glm::vec3& x, const glm::vec3& n, std::uint64_t stream,
+                            std::uint64_t sample) const;
+
+ private:
+  friend class ReferenceRenderer;
+  struct Emitter {
+    std::uint32_t triangle;
+    glm::vec3 v0, e1, e2, normal, exitance;
+    float area;
+    bool two_sided;
+  };
+  class Sampler;
+  glm::vec3 direct(const glm::vec3& x, const glm::vec3& n, Sampler& rng) const;
+  glm::vec3 indirect(const glm::vec3& x, const glm::vec3& n, Sampler& rng) const;
+
+  const RayTracer& tracer_;
+  ReferenceSettings settings_;
+  std::vector<Emitter> emitters_;
+  std::vector<float> emitter_cdf_;  // by power (area x mean exitance)
+  float eps_ = 0.0f;
+};
+
+// Progressive camera pictures: add passes until the noise is low enough.
+class ReferenceRenderer {
+ public:
+  // Throws bounce::Error for a size below 1 or above 16384.
+  ReferenceRenderer(const ReferencePathTracer& pt, int width, int height);
+
+  // `samples` more paths per pixel (samples seeded after the ones already
+  // taken, so 2 x 64 equals 1 x 128 exactly). Throws Cancelled on a stop.
+  void add_samples(int samples, Progress* progress = nullptr);
+  int samples() const { return samples_; }
+  // The current means, variances and coverage.
+  ReferenceImages images() const;
+
+ private:
+  const ReferencePathTracer& pt_;
+  int width_, height_;
+  int samples_ = 0;
+  // Per pixel and channel: sums of values and squares, in double so that
+  // thousands of samples do not lose the variance to cancellation.
+  std::vector<glm::dvec3> full_sum_, full_sq_, ind_sum_, ind_sq_;
+  std::vector<std::uint32_t> hits_;
+};
+
+}  // namespace bounce
