@@ -1,7 +1,8 @@
 // `bounce solve BAKE`: one frame of the runtime on a baked scene, written out
 // for people to look at: the light on the patches (direct, first hit,
 // indirect), the lit mesh as a PLY with vertex colours, and the scene
-// camera's pictures (direct, indirect, full) as PNG and EXR.
+// camera's pictures (direct, indirect, full) as PNG and EXR. The frame on
+// the patches runs through the runtime's frame graph (runtime/runtime_frame.h).
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -25,6 +26,7 @@
 #include "runtime/dense_transport.h"
 #include "runtime/mesh_transfer.h"
 #include "runtime/patch_lighting.h"
+#include "runtime/runtime_frame.h"
 #include "scene/scene_loader.h"
 
 namespace bounce::cli {
@@ -176,28 +178,37 @@ void run_solve(const SolveOptions& opt) {
   timings["prepare_multiply"] = since(t);
 
   const std::vector<AreaLight> area = area_lights(scene);
-  const PatchLighting light =
-      light_patches(tracer, bake.samples, bake.patches, scene.lights, area, multiplier.multiply);
-  timings["direct_light"] = light.seconds_direct;
-  timings["indirect_multiply"] = light.seconds_indirect;
+  t = Clock::now();
+  RuntimeFrame frame(tracer, bake.samples, bake.patches, multiplier.multiply);
+  timings["compile_frame_graph"] = since(t);
+  frame.solve(scene.lights, area);
+  // Pass times, grouped as before the graph: direct light + first hit (and
+  // recording them), then the product (applying it and recording it).
+  double seconds_direct = 0.0, seconds_indirect = 0.0;
+  json passes = json::array();
+  bool after_product = false;
+  for (std::size_t i = 0; i < frame.graph().passes().size(); ++i) {
+    const std::string& name = frame.graph().passes()[i].name;
+    after_product = after_product || name == "indirect product";
+    (after_product ? seconds_indirect : seconds_direct) += frame.pass_seconds()[i];
+    passes.push_back({{"name", name}, {"seconds", frame.pass_seconds()[i]}});
+  }
+  timings["direct_light"] = seconds_direct;
+  timings["indirect_multiply"] = seconds_indirect;
 
   const fs::path out = opt.out.empty() ? fs::path(opt.bake) / "solve" : fs::path(opt.out);
   fs::create_directories(out);
   t = Clock::now();
   const std::size_t n = bake.size();
-  std::vector<float> rows;
-  rows.reserve(n * 9);
-  for (std::size_t p = 0; p < n; ++p)
-    for (const glm::vec3& v : {light.irradiance[p], light.first_hit[p], light.indirect[p]})
-      rows.insert(rows.end(), {v.r, v.g, v.b});
-  write_npy(out / "patch_light.npy", rows, {n, 3, 3});
+  // The graph recorded E, b and T b per patch in this layout.
+  write_npy(out / "patch_light.npy", frame.record(), {n, 3, 3});
   json files = json::array({"patch_light.npy"});
 
   const TransferGrid grid = TransferGrid::from_manifest(bake.manifest);
   ConsoleProgress console(opt.quiet || opt.json);
   if (!opt.no_mesh) {
     // The mesh shows everything the patches send out: emission + b + T b.
-    const LitMesh mesh = transfer_to_mesh(tracer, bake.patches.patches, grid, light.exitance,
+    const LitMesh mesh = transfer_to_mesh(tracer, bake.patches.patches, grid, frame.exitance(),
                                           TransferSettings{}, &console.progress());
     write_lit_ply(out / "lit.ply", {mesh.positions, mesh.normals, mesh.radiosity, mesh.triangles});
     files.push_back("lit.ply");
@@ -206,7 +217,7 @@ void run_solve(const SolveOptions& opt) {
   if (!opt.no_images) {
     t = Clock::now();
     // The camera adds the direct light itself: gather only the indirect.
-    const PatchGather indirect(bake.patches.patches, light.indirect, grid, &tracer,
+    const PatchGather indirect(bake.patches.patches, frame.indirect(), grid, &tracer,
                                GatherSettings{});
     CameraImageSettings cs;
     cs.width = opt.width;
@@ -228,20 +239,27 @@ void run_solve(const SolveOptions& opt) {
   double direct_sum = 0.0, indirect_sum = 0.0;
   for (std::size_t p = 0; p < n; ++p) {
     const float a = bake.patches.patches[p].area;
-    direct_sum += a * (light.first_hit[p].r + light.first_hit[p].g + light.first_hit[p].b);
-    indirect_sum += a * (light.indirect[p].r + light.indirect[p].g + light.indirect[p].b);
+    const glm::vec3 b = frame.first_hit()[p], tb = frame.indirect()[p];
+    direct_sum += a * (b.r + b.g + b.b);
+    indirect_sum += a * (tb.r + tb.g + tb.b);
   }
-  const nlohmann::ordered_json summary = {{"bake", opt.bake},
-                                          {"scene", scene.name},
-                                          {"patches", n},
-                                          {"multiply", multiplier.what},
-                                          {"lights", lights},
-                                          {"area_light_triangles", area.size()},
-                                          {"first_hit_power", direct_sum},
-                                          {"indirect_power", indirect_sum},
-                                          {"out", out.string()},
-                                          {"files", files},
-                                          {"seconds", timings}};
+  const nlohmann::ordered_json summary = {
+      {"bake", opt.bake},
+      {"scene", scene.name},
+      {"patches", n},
+      {"multiply", multiplier.what},
+      {"lights", lights},
+      {"area_light_triangles", area.size()},
+      {"first_hit_power", direct_sum},
+      {"indirect_power", indirect_sum},
+      {"out", out.string()},
+      {"files", files},
+      {"frame_graph",
+       {{"passes", passes},
+        {"transient_bytes", frame.transient_bytes()},
+        {"unaliased_transient_bytes", frame.unaliased_transient_bytes()},
+        {"imported_bytes", frame.imported_bytes()}}},
+      {"seconds", timings}};
   if (opt.json) {
     std::cout << summary.dump(2) << '\n';
     return;
@@ -252,6 +270,11 @@ void run_solve(const SolveOptions& opt) {
       "  light leaving the patches (area-weighted sum over R, G, B): first hit %.4g, "
       "indirect %.4g (%.1f%% of the first hit)\n",
       direct_sum, indirect_sum, direct_sum > 0 ? 100.0 * indirect_sum / direct_sum : 0.0);
+  std::printf(
+      "  frame graph: %zu passes, transient memory %zu bytes aliased (%zu unaliased), "
+      "%zu bytes of persistent per-patch buffers\n",
+      frame.graph().passes().size(), frame.transient_bytes(), frame.unaliased_transient_bytes(),
+      frame.imported_bytes());
   std::printf("  %-22s %10s\n", "step", "time (ms)");
   for (const auto& [k, v] : timings.items())
     std::printf("  %-22s %10.2f\n", k.c_str(), 1e3 * v.get<double>());
