@@ -27,3 +27,24 @@ find_package(CLBlast REQUIRED)
 # broken on Debian 12, find the library directly; stb_dxt is header-only.
 find_library(SQUISH_LIB squish REQUIRED)
 find_path(STB_INCLUDE_DIR stb/stb_dxt.h REQUIRED)
+# Bounce Studio (views/, app/studio/, tests/render/): Qt 5 Widgets and VTK 9.
+# VTK 9.1 on Debian 12 is built against Qt 5 and MPI: its config needs
+# MPI::MPI_C to exist, so MPI (C only) is found first. The studio is skipped,
+# with a warning, only when the packages are missing; the core never links them.
+option(BOUNCE_STUDIO "Build Bounce Studio (needs Qt 5 and VTK 9, see tools/packages.txt)" ON)
+set(BOUNCE_STUDIO_ENABLED OFF)
+if(BOUNCE_STUDIO)
+  find_package(Qt5 COMPONENTS Widgets QUIET)
+  find_package(MPI COMPONENTS C QUIET)
+  if(Qt5_FOUND AND MPI_C_FOUND)
+    find_package(VTK QUIET COMPONENTS CommonCore CommonDataModel FiltersCore FiltersSources
+                 FiltersGeneral GUISupportQt InteractionStyle RenderingCore RenderingOpenGL2
+                 RenderingAnnotation RenderingFreeType)
+  endif()
+  if(Qt5_FOUND AND VTK_FOUND)
+    set(BOUNCE_STUDIO_ENABLED ON)
+  else()
+    message(WARNING "Bounce Studio skipped: Qt 5 Widgets or VTK 9 (with MPI C) not found; "
+                    "install qtbase5-dev libqt5opengl5-dev libvtk9-qt-dev libvtk9-dev")
+  endif()
+endif()

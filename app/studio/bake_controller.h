@@ -1,0 +1,42 @@
+#pragma once
+// Runs a bake job (bake_job.h) on a worker thread so the window never
+// freezes: reports each stage's progress with an ETA, and cancels through
+// the core's progress callback (returning false stops the bake at its next
+// poll; core/base/progress.h).
+#include <atomic>
+#include <chrono>
+#include <memory>
+
+#include <QObject>
+#include <QString>
+
+#include "bake_job.h"
+
+class QThread;
+
+namespace bounce::studio {
+
+class BakeController : public QObject {
+  Q_OBJECT
+ public:
+  explicit BakeController(QObject* parent = nullptr);
+  ~BakeController() override;
+
+  bool busy() const { return thread_ != nullptr; }
+  // Starts a bake into `folder` (replaced when the bake succeeds).
+  void start(const QString& scene_path, const BakeSettings& settings, const QString& folder);
+  void cancel() { cancel_.store(true); }
+
+ signals:
+  // fraction in [0,1]; eta_seconds < 0 while unknown.
+  void stage_progress(const QString& stage, double fraction, double eta_seconds);
+  void finished(std::shared_ptr<const BakeJobResult> job);
+  void failed(const QString& message);
+  void cancelled();
+
+ private:
+  QThread* thread_ = nullptr;
+  std::atomic<bool> cancel_{false};
+};
+
+}  // namespace bounce::studio

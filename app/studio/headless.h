@@ -1,0 +1,25 @@
+#pragma once
+// `bounce-studio SCENE|BAKE --screenshot out.png --view voxels|patches|matrix|error`:
+// loads (baking a scene first, with the settings panel's mapping of the
+// options given), renders one view at the requested size into a PNG and
+// returns the exit code. Used by the render tests and for the README pictures.
+#include <QString>
+
+namespace bounce::studio {
+
+struct ScreenshotRequest {
+  QString input;       // scene or bake folder
+  QString screenshot;  // PNG to write
+  QString view;        // voxels, patches, matrix, error
+  int width = 1024, height = 768;
+  int voxel = 0;          // > 0: --voxel
+  int patches_total = 0;  // > 0: --patches-total
+  QString codec;          // empty: the panel's default
+  QString bake_out;       // keep the bake folder here (default: a temporary one)
+  int pick_patch = -1;    // patches view: pick this patch, as a click would
+};
+
+// Throws bounce::Error for bad requests and failed bakes or renders.
+void take_screenshot(const ScreenshotRequest& request);
+
+}  // namespace bounce::studio

@@ -1,0 +1,289 @@
+#include "main_window.h"
+
+#include <QAction>
+#include <QCloseEvent>
+#include <QDir>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QMenu>
+#include <QMenuBar>
+#include <QMessageBox>
+#include <QMimeData>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QSettings>
+#include <QStandardPaths>
+#include <QStatusBar>
+#include <QTabWidget>
+#include <QUrl>
+#include <QVBoxLayout>
+
+#include "error_view.h"
+#include "matrix_view.h"
+#include "patch_view.h"
+#include "settings_panel.h"
+#include "voxel_view.h"
+
+namespace bounce::studio {
+
+namespace {
+
+constexpr int kMaxRecent = 8;
+
+QString eta_text(double seconds) {
+  if (seconds < 0.0) return QObject::tr("ETA ...");
+  if (seconds < 90.0) return QObject::tr("ETA %1 s").arg(static_cast<int>(seconds + 0.5));
+  return QObject::tr("ETA %1 min").arg(seconds / 60.0, 0, 'f', 1);
+}
+
+}  // namespace
+
+MainWindow::MainWindow(QWidget* parent)
+    : QMainWindow(parent),
+      settings_(new SettingsPanel(this)),
+      controller_(new BakeController(this)),
+      tabs_(new QTabWidget(this)),
+      voxel_view_(new views::VoxelView(this)),
+      patch_view_(new views::PatchView(this)),
+      matrix_view_(new views::MatrixView(this)),
+      error_view_(new views::ErrorView(this)),
+      bake_button_(new QPushButton(tr("Bake"), this)),
+      cancel_button_(new QPushButton(tr("Cancel"), this)),
+      stage_bars_(new QVBoxLayout),
+      scene_label_(new QLabel(tr("No scene: File > Open, or drop a scene here"), this)) {
+  setWindowTitle(tr("Bounce Studio"));
+  setAcceptDrops(true);
+  tabs_->addTab(voxel_view_, tr("Voxels"));
+  tabs_->addTab(patch_view_, tr("Patches"));
+  tabs_->addTab(matrix_view_, tr("Matrix"));
+  tabs_->addTab(error_view_, tr("Compression error"));
+  setCentralWidget(tabs_);
+
+  auto* panel = new QWidget(this);
+  auto* layout = new QVBoxLayout(panel);
+  scene_label_->setWordWrap(true);
+  layout->addWidget(scene_label_);
+  layout->addWidget(settings_);
+  auto* buttons = new QHBoxLayout;
+  bake_button_->setToolTip(tr("Bake the scene with these settings (on a worker thread)"));
+  cancel_button_->setToolTip(tr("Stop the bake at its next check; nothing is written"));
+  buttons->addWidget(bake_button_);
+  buttons->addWidget(cancel_button_);
+  layout->addLayout(buttons);
+  layout->addLayout(stage_bars_);
+  layout->addStretch(1);
+  auto* dock = new QDockWidget(tr("Bake"), this);
+  dock->setObjectName("bake_dock");
+  dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
+  auto* scroll = new QScrollArea(dock);
+  scroll->setWidgetResizable(true);
+  scroll->setWidget(panel);
+  dock->setWidget(scroll);
+  addDockWidget(Qt::LeftDockWidgetArea, dock);
+  cancel_button_->setEnabled(false);
+  bake_button_->setEnabled(false);
+
+  build_menus();
+  connect(bake_button_, &QPushButton::clicked, this, &MainWindow::start_bake);
+  connect(cancel_button_, &QPushButton::clicked, this, [this] {
+    controller_->cancel();
+    statusBar()->showMessage(tr("Cancelling..."));
+  });
+  connect(controller_, &BakeController::stage_progress, this, &MainWindow::on_stage_progress);
+  connect(controller_, &BakeController::finished, this,
+          [this](std::shared_ptr<const BakeJobResult> job) {
+            set_busy(false);
+            last_job_ = job;
+            export_action_->setEnabled(true);
+            statusBar()->showMessage(tr("Baked %1 patches in %2 s")
+                                         .arg(job->data->patch_count())
+                                         .arg(job->result->total_seconds, 0, 'f', 2));
+            show_data(job->data);
+          });
+  connect(controller_, &BakeController::failed, this, [this](const QString& message) {
+    set_busy(false);
+    show_error(tr("Bake failed"), message);
+  });
+  connect(controller_, &BakeController::cancelled, this, [this] {
+    set_busy(false);
+    statusBar()->showMessage(tr("Bake cancelled"));
+  });
+
+  QSettings store;
+  settings_->load(store);
+  restoreGeometry(store.value("window/geometry").toByteArray());
+  restoreState(store.value("window/state").toByteArray());
+}
+
+MainWindow::~MainWindow() = default;
+
+void MainWindow::build_menus() {
+  QMenu* file = menuBar()->addMenu(tr("&File"));
+  file->addAction(
+      tr("&Open scene..."), this,
+      [this] {
+        const QString path = QFileDialog::getOpenFileName(
+            this, tr("Open scene"), QString(),
+            tr("Scenes (scene.json *.obj *.ply *.gltf *.glb);;All files (*)"));
+        if (!path.isEmpty()) open(path);
+      },
+      QKeySequence::Open);
+  file->addAction(tr("Open &bake folder..."), this, [this] {
+    const QString dir = QFileDialog::getExistingDirectory(this, tr("Open bake folder"));
+    if (!dir.isEmpty()) open(dir);
+  });
+  recent_menu_ = file->addMenu(tr("Open &recent"));
+  rebuild_recent_menu();
+  export_action_ = file->addAction(tr("&Export bake..."), this, &MainWindow::export_bake_folder);
+  export_action_->setEnabled(false);
+  file->addSeparator();
+  file->addAction(tr("&Quit"), this, &QWidget::close, QKeySequence::Quit);
+}
+
+void MainWindow::rebuild_recent_menu() {
+  recent_menu_->clear();
+  const QStringList recent = QSettings().value("recent").toStringList();
+  for (const QString& path : recent)
+    recent_menu_->addAction(path, this, [this, path] { open(path); });
+  recent_menu_->setEnabled(!recent.isEmpty());
+}
+
+void MainWindow::open(const QString& path) {
+  const QFileInfo info(path);
+  if (!info.exists()) {
+    show_error(tr("Cannot open"), tr("%1: no such file or folder").arg(path));
+    return;
+  }
+  QSettings store;
+  QStringList recent = store.value("recent").toStringList();
+  recent.removeAll(info.absoluteFilePath());
+  recent.prepend(info.absoluteFilePath());
+  while (recent.size() > kMaxRecent) recent.removeLast();
+  store.setValue("recent", recent);
+  rebuild_recent_menu();
+
+  if (is_bake_folder(path.toStdString())) {
+    try {
+      show_data(views::load_bake_view_data(path.toStdString()));
+      scene_label_->setText(tr("Bake folder %1").arg(info.absoluteFilePath()));
+      scene_path_.clear();
+      bake_button_->setEnabled(false);
+    } catch (const std::exception& e) {
+      show_error(tr("Cannot read bake folder"), QString::fromStdString(e.what()));
+    }
+    return;
+  }
+  scene_path_ = info.absoluteFilePath();
+  scene_label_->setText(tr("Scene %1").arg(scene_path_));
+  bake_button_->setEnabled(!controller_->busy());
+  start_bake();
+}
+
+void MainWindow::show_data(std::shared_ptr<const views::BakeViewData> bake) {
+  voxel_view_->set_data(bake);
+  patch_view_->set_data(bake);
+  matrix_view_->set_data(bake);
+  error_view_->set_data(bake);
+}
+
+void MainWindow::show_tab(Tab tab) { tabs_->setCurrentIndex(static_cast<int>(tab)); }
+
+QString MainWindow::session_folder() const {
+  // Each bake goes to a folder of its own: the views read it back.
+  const QString root = QStandardPaths::writableLocation(QStandardPaths::CacheLocation);
+  QDir().mkpath(root);
+  return root + "/" + QFileInfo(scene_path_).completeBaseName() + "-bake";
+}
+
+void MainWindow::start_bake() {
+  if (scene_path_.isEmpty() || controller_->busy()) return;
+  QSettings store;
+  settings_->save(store);
+  const BakeSettings settings = settings_->settings();
+  try {
+    settings.validate();
+  } catch (const std::exception& e) {
+    show_error(tr("Invalid setting"), QString::fromStdString(e.what()));
+    return;
+  }
+  while (QLayoutItem* item = stage_bars_->takeAt(0)) {
+    if (QLayout* row = item->layout()) {
+      while (QLayoutItem* w = row->takeAt(0)) {
+        delete w->widget();
+        delete w;
+      }
+    }
+    delete item->widget();
+    delete item;
+  }
+  current_stage_.clear();
+  current_bar_ = nullptr;
+  set_busy(true);
+  statusBar()->showMessage(tr("Baking %1...").arg(scene_path_));
+  controller_->start(scene_path_, settings, session_folder());
+}
+
+void MainWindow::on_stage_progress(const QString& stage, double fraction, double eta) {
+  if (stage != current_stage_ || !current_bar_) {
+    // A bar per stage: finished stages stay full, the current one moves.
+    current_stage_ = stage;
+    auto* row = new QHBoxLayout;
+    current_bar_ = new QProgressBar(this);
+    current_bar_->setRange(0, 1000);
+    current_bar_->setFormat(stage + " %p%");
+    current_eta_ = new QLabel(this);
+    row->addWidget(current_bar_, 1);
+    row->addWidget(current_eta_);
+    stage_bars_->addLayout(row);
+  }
+  current_bar_->setValue(static_cast<int>(fraction * 1000.0 + 0.5));
+  current_eta_->setText(fraction >= 1.0 ? tr("done") : eta_text(eta));
+}
+
+void MainWindow::set_busy(bool busy) {
+  bake_button_->setEnabled(!busy && !scene_path_.isEmpty());
+  cancel_button_->setEnabled(busy);
+  settings_->setEnabled(!busy);
+}
+
+void MainWindow::export_bake_folder() {
+  if (!last_job_) return;
+  const QString dir = QFileDialog::getSaveFileName(this, tr("Export bake folder"),
+                                                   QFileInfo(scene_path_).completeBaseName());
+  if (dir.isEmpty()) return;
+  try {
+    export_bake(*last_job_, dir.toStdString());
+    statusBar()->showMessage(tr("Exported to %1").arg(dir));
+  } catch (const std::exception& e) {
+    show_error(tr("Export failed"), QString::fromStdString(e.what()));
+  }
+}
+
+void MainWindow::show_error(const QString& what, const QString& message) {
+  statusBar()->showMessage(what);
+  QMessageBox::critical(this, what, message);
+}
+
+void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
+  if (event->mimeData()->hasUrls()) event->acceptProposedAction();
+}
+
+void MainWindow::dropEvent(QDropEvent* event) {
+  const QList<QUrl> urls = event->mimeData()->urls();
+  if (!urls.isEmpty() && urls.front().isLocalFile()) open(urls.front().toLocalFile());
+}
+
+void MainWindow::closeEvent(QCloseEvent* event) {
+  QSettings store;
+  settings_->save(store);
+  store.setValue("window/geometry", saveGeometry());
+  store.setValue("window/state", saveState());
+  if (controller_->busy()) controller_->cancel();
+  event->accept();
+}
+
+}  // namespace bounce::studio

@@ -1,0 +1,82 @@
+#pragma once
+// Bounce Studio's main window: open a scene (dialog, recent files, drag and
+// drop) or a bake folder, tune the bake settings, bake on a worker thread
+// with a progress bar per stage, ETA and Cancel, look at the result in the
+// views' tabs, export the bake folder. Errors go to message boxes.
+#include <memory>
+
+#include <QMainWindow>
+
+#include "bake_controller.h"
+
+class QLabel;
+class QMenu;
+class QProgressBar;
+class QPushButton;
+class QTabWidget;
+class QVBoxLayout;
+
+namespace bounce::views {
+class ErrorView;
+class MatrixView;
+class PatchView;
+class VoxelView;
+}  // namespace bounce::views
+
+namespace bounce::studio {
+
+class SettingsPanel;
+
+class MainWindow : public QMainWindow {
+  Q_OBJECT
+ public:
+  enum class Tab { Voxels = 0, Patches = 1, Matrix = 2, Error = 3 };
+
+  explicit MainWindow(QWidget* parent = nullptr);
+  ~MainWindow() override;
+
+  // Opens a scene (remembered in recent files) or a bake folder.
+  void open(const QString& path);
+  void show_data(std::shared_ptr<const views::BakeViewData> bake);
+  void show_tab(Tab tab);
+  SettingsPanel* settings_panel() const { return settings_; }
+  views::VoxelView* voxel_view() const { return voxel_view_; }
+  views::PatchView* patch_view() const { return patch_view_; }
+  views::MatrixView* matrix_view() const { return matrix_view_; }
+
+ protected:
+  void dragEnterEvent(QDragEnterEvent* event) override;
+  void dropEvent(QDropEvent* event) override;
+  void closeEvent(QCloseEvent* event) override;
+
+ private:
+  void build_menus();
+  void rebuild_recent_menu();
+  void start_bake();
+  void export_bake_folder();
+  void on_stage_progress(const QString& stage, double fraction, double eta);
+  void set_busy(bool busy);
+  void show_error(const QString& what, const QString& message);
+  QString session_folder() const;
+
+  SettingsPanel* settings_;
+  BakeController* controller_;
+  QTabWidget* tabs_;
+  views::VoxelView* voxel_view_;
+  views::PatchView* patch_view_;
+  views::MatrixView* matrix_view_;
+  views::ErrorView* error_view_;
+  QPushButton* bake_button_;
+  QPushButton* cancel_button_;
+  QVBoxLayout* stage_bars_;
+  QLabel* scene_label_;
+  QMenu* recent_menu_ = nullptr;
+  QAction* export_action_ = nullptr;
+  QString scene_path_;
+  QString current_stage_;
+  QProgressBar* current_bar_ = nullptr;
+  QLabel* current_eta_ = nullptr;
+  std::shared_ptr<const BakeJobResult> last_job_;
+};
+
+}  // namespace bounce::studio

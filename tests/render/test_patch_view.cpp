@@ -1,0 +1,108 @@
+#include <QVTKOpenGLNativeWidget.h>
+#include <QMouseEvent>
+
+#include "patch_view.h"
+#include "render_support.h"
+
+namespace bounce::render_test {
+
+class PatchView : public RenderTest {
+ protected:
+  void SetUp() override {
+    RenderTest::SetUp();
+    data_ = load_fixture();
+    view_.resize(640, 480);
+    view_.show();
+    settle();
+    view_.set_data(data_);
+    settle();
+  }
+  // Patches whose normal points at the camera: their disc centre is in view
+  // unless something stands in front of it.
+  std::vector<int> patches_facing_camera() const {
+    const glm::vec3 eye = data_->scene->camera.position;
+    std::vector<int> facing;
+    for (std::size_t p = 0; p < data_->patch_count(); ++p) {
+      const Patch& patch = data_->bake.patches.patches[p];
+      if (glm::dot(patch.normal, glm::normalize(eye - patch.position)) > 0.95f)
+        facing.push_back(static_cast<int>(p));
+    }
+    return facing;
+  }
+  std::shared_ptr<const views::BakeViewData> data_;
+  views::PatchView view_;
+};
+
+TEST_F(PatchView, DiscsShowTheWallColours) {
+  const QImage image = view_.render_image().convertToFormat(QImage::Format_RGB32);
+  EXPECT_EQ(view_.patch_colours().size(), data_->patch_count());
+  // The Cornell box has a red and a green wall: coloured by albedo, both show.
+  std::size_t red = 0, green = 0;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) {
+      const QRgb c = image.pixel(x, y);
+      // Hue dominance: the walls' albedos are far from grey in sRGB.
+      red += qRed(c) > 60 && qRed(c) * 2 > qGreen(c) * 3 && qRed(c) * 2 > qBlue(c) * 3;
+      green += qGreen(c) > 60 && qGreen(c) * 2 > qRed(c) * 3 && qGreen(c) * 2 > qBlue(c) * 3;
+    }
+  const std::size_t total = static_cast<std::size_t>(image.width() * image.height());
+  EXPECT_GT(red, total / 100);
+  EXPECT_GT(green, total / 100);
+}
+
+TEST_F(PatchView, ClickPicksThePatchUnderTheMouse) {
+  ASSERT_TRUE(data_->scene);
+  const std::vector<int> facing = patches_facing_camera();
+  ASSERT_GE(facing.size(), 4u);
+  std::size_t exact = 0;
+  for (int p : facing) {
+    const QPoint at = view_.project_patch(p);
+    const int q = view_.patch_at(at.x(), at.y());
+    ASSERT_GE(q, 0) << "nothing picked at the centre of patch " << p;
+    // Another disc may overlap the centre (a neighbour, or a box in front),
+    // but most centres are their own patch's.
+    exact += q == p ? 1 : 0;
+  }
+  EXPECT_GE(exact * 2, facing.size());
+
+  // A real click goes through VTK's interactor to the same pick.
+  auto* gl = view_.findChild<QVTKOpenGLNativeWidget*>();
+  ASSERT_NE(gl, nullptr);
+  const int p = facing[facing.size() / 2];
+  const QPoint in_view = view_.project_patch(p);
+  const int expected = view_.patch_at(in_view.x(), in_view.y());
+  const QPoint local = gl->mapFrom(&view_, in_view);
+  QMouseEvent press(QEvent::MouseButtonPress, local, Qt::LeftButton, Qt::LeftButton,
+                    Qt::NoModifier);
+  QMouseEvent release(QEvent::MouseButtonRelease, local, Qt::LeftButton, Qt::NoButton,
+                      Qt::NoModifier);
+  QApplication::sendEvent(gl, &press);
+  QApplication::sendEvent(gl, &release);
+  settle();
+  EXPECT_EQ(view_.selected_patch(), expected);
+}
+
+TEST_F(PatchView, PickedPatchColoursItsFormFactorRow) {
+  ASSERT_FALSE(data_->form_factors.empty()) << "the fixture bake keeps F.npy";
+  const std::size_t n = data_->patch_count();
+  const int p = patches_facing_camera().front();
+  view_.select_patch(p);
+  ASSERT_EQ(view_.selected_patch(), p);
+  const float* row = &data_->form_factors[static_cast<std::size_t>(p) * n];
+  const std::size_t best = static_cast<std::size_t>(std::max_element(row, row + n) - row);
+  ASSERT_GT(row[best], 0.0f);
+  const auto& colours = view_.patch_colours();
+  // The patch it sends most light to is at the top of the colour map
+  // (viridis yellow, 253 231 37); patches it does not see are black.
+  EXPECT_EQ(colours[best], (std::array<unsigned char, 3>{253, 231, 37}));
+  std::size_t unseen = 0;
+  for (std::size_t q = 0; q < n; ++q)
+    if (row[q] == 0.0f) {
+      ++unseen;
+      EXPECT_EQ(colours[q], (std::array<unsigned char, 3>{0, 0, 0})) << "patch " << q;
+    }
+  EXPECT_GT(unseen, 0u) << "a patch on a wall does not see its own wall";
+  EXPECT_GT(non_uniform_share(view_.render_image()), 0.2);
+}
+
+}  // namespace bounce::render_test

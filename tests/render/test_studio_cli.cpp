@@ -1,0 +1,94 @@
+// bounce-studio from the outside: headless screenshots and option errors.
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <string>
+
+#include "render_support.h"
+
+namespace bounce::render_test {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct StudioRun {
+  int code = -1;
+  std::string output;  // stdout and stderr
+};
+
+StudioRun run_studio(const std::string& args) {
+  const std::string command = std::string(BOUNCE_STUDIO) + " " + args + " 2>&1";
+  StudioRun r;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return r;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
+  const int status = ::pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path work_dir(const std::string& name) {
+  const fs::path dir = fs::path(BOUNCE_RENDER_WORK) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+}  // namespace
+
+class StudioCli : public RenderTest {};
+
+TEST_F(StudioCli, ScreenshotsOfEveryViewFromABakeFolder) {
+  const fs::path dir = work_dir("screenshots");
+  for (const char* view : {"voxels", "patches", "matrix", "error"}) {
+    const fs::path png = dir / (std::string(view) + ".png");
+    const StudioRun r = run_studio(fixture_bake().string() + " --screenshot " + png.string() +
+                                   " --view " + view + " --size 400x300");
+    ASSERT_EQ(r.code, 0) << view << ": " << r.output;
+    const QImage image(QString::fromStdString(png.string()));
+    ASSERT_FALSE(image.isNull()) << view;
+    EXPECT_EQ(image.size(), QSize(400, 300)) << view;
+    EXPECT_GT(non_uniform_share(image), 0.2) << view << " looks blank";
+  }
+}
+
+TEST_F(StudioCli, SettingsChangeThePatchCount) {
+  // The fixture is --voxel 4; a coarser grid through the studio's settings
+  // (headless maps --voxel onto the settings panel) must give fewer patches.
+  const fs::path dir = work_dir("settings");
+  const StudioRun r =
+      run_studio(std::string(BOUNCE_RESOURCE_DIR) + "/scenes/cornell-box --voxel 2 " +
+                 "--screenshot " + (dir / "patches.png").string() +
+                 " --view patches --size 320x240 --bake-out " + (dir / "bake").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir / "bake" / "manifest.json");
+  const nlohmann::json coarse = nlohmann::json::parse(in);
+  const nlohmann::json fine = fixture_manifest();
+  EXPECT_EQ(coarse["settings"]["voxel_resolution"], 2);
+  EXPECT_EQ(fine["settings"]["voxel_resolution"], 4);
+  EXPECT_LT(coarse["counts"]["patches"].get<int>(), fine["counts"]["patches"].get<int>());
+  EXPECT_LT(coarse["counts"]["occupied_voxels"].get<int>(),
+            fine["counts"]["occupied_voxels"].get<int>());
+}
+
+TEST_F(StudioCli, BadOptionsFailWithOneLine) {
+  // One case per kind of check: option values, then values against the bake.
+  const fs::path dir = work_dir("errors");
+  const std::string shot = " --screenshot " + (dir / "x.png").string();
+  const struct {
+    std::string args, names;
+  } cases[] = {
+      {fixture_bake().string() + shot + " --view nonsense", "--view"},
+  };
+  for (const auto& c : cases) {
+    const StudioRun r = run_studio(c.args);
+    EXPECT_EQ(r.code, 1) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find("bounce-studio: error: "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(c.names), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "x.png")) << c.args;
+  }
+}
+
+}  // namespace bounce::render_test

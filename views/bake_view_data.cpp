@@ -1,0 +1,65 @@
+#include "bake_view_data.h"
+
+#include "base/diagnostics.h"
+#include "io/npy.h"
+#include "scene/scene_loader.h"
+
+namespace bounce::views {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Column count of voxels.npy (docs/bake-format.md).
+constexpr std::size_t kVoxelColumns = 9;
+
+void require_shape(const fs::path& file, const std::vector<std::size_t>& shape,
+                   std::size_t columns) {
+  if (shape.size() != 2 || shape[1] != columns)
+    throw Error(file.string(), "expected a 2-D array with " + std::to_string(columns) +
+                                   " columns (docs/bake-format.md)");
+}
+
+}  // namespace
+
+std::shared_ptr<const BakeViewData> load_bake_view_data(const fs::path& dir,
+                                                        std::shared_ptr<const Scene> scene) {
+  auto data = std::make_shared<BakeViewData>();
+  data->bake = BakeReader::read(dir, true);
+  const nlohmann::json& m = data->bake.manifest;
+  data->cell_size = m.at("grid").at("cell_size").get<float>();
+
+  const fs::path voxel_file = dir / "voxels.npy";
+  const NpyArray<float> v = read_npy_f32(voxel_file);
+  require_shape(voxel_file, v.shape, kVoxelColumns);
+  data->voxels.reserve(v.shape[0]);
+  for (std::size_t k = 0; k < v.shape[0]; ++k) {
+    const float* r = &v.data[k * kVoxelColumns];
+    data->voxels.push_back(
+        {glm::ivec3(static_cast<int>(r[0]), static_cast<int>(r[1]), static_cast<int>(r[2])),
+         glm::vec3(r[3], r[4], r[5]), r[6], static_cast<int>(r[7]), static_cast<int>(r[8])});
+  }
+
+  const fs::path f_file = dir / "F.npy";
+  if (fs::exists(f_file)) {
+    NpyArray<float> f = read_npy_f32(f_file);
+    const std::size_t n = data->patch_count();
+    if (f.shape.size() != 2 || f.shape[0] != n || f.shape[1] != n)
+      throw Error(f_file.string(), "expected " + std::to_string(n) + " x " + std::to_string(n) +
+                                       " form factors, one row per patch");
+    data->form_factors = std::move(f.data);
+  }
+
+  if (!scene) {
+    // A bake folder names its scene; show the mesh when it is still there.
+    const std::string path = m.at("scene").value("path", std::string());
+    if (!path.empty() && fs::exists(path)) {
+      Diagnostics quiet;
+      scene = std::make_shared<const Scene>(SceneLoader(quiet).load(path));
+    }
+  }
+  data->scene = std::move(scene);
+  return data;
+}
+
+}  // namespace bounce::views

@@ -1,0 +1,313 @@
+#include "patch_view.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <QVTKOpenGLNativeWidget.h>
+#include <vtkActor.h>
+#include <vtkCallbackCommand.h>
+#include <vtkCellArray.h>
+#include <vtkCellPicker.h>
+#include <vtkFloatArray.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkGlyph3D.h>
+#include <vtkIdTypeArray.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRegularPolygonSource.h>
+#include <vtkRenderWindowInteractor.h>
+#include <vtkRenderer.h>
+#include <vtkUnsignedCharArray.h>
+#include <QComboBox>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QMouseEvent>
+#include <QVBoxLayout>
+
+#include "compress/matrix_picture.h"
+#include "io/tone_map.h"
+#include "runtime/dense_transport.h"
+#include "vtk_scene.h"
+
+namespace bounce::views {
+
+namespace {
+
+std::array<unsigned char, 3> srgb(const glm::vec3& linear) {
+  return {ToneMap::srgb8(linear.r), ToneMap::srgb8(linear.g), ToneMap::srgb8(linear.b)};
+}
+
+// A colour per id that neighbours tell apart: hues by the golden ratio.
+std::array<unsigned char, 3> id_colour(std::size_t id) {
+  const double h = std::fmod(static_cast<double>(id) * 0.618033988749895, 1.0) * 6.0;
+  const int k = static_cast<int>(h);
+  const double f = h - k;
+  const double v = 0.95, s = 0.75, p = v * (1 - s), q = v * (1 - s * f), t = v * (1 - s * (1 - f));
+  const double rgb[6][3] = {{v, t, p}, {q, v, p}, {p, v, t}, {p, q, v}, {t, p, v}, {v, p, q}};
+  return {static_cast<unsigned char>(rgb[k][0] * 255), static_cast<unsigned char>(rgb[k][1] * 255),
+          static_cast<unsigned char>(rgb[k][2] * 255)};
+}
+
+}  // namespace
+
+PatchView::PatchView(QWidget* parent)
+    : QWidget(parent),
+      vtk_widget_(new QVTKOpenGLNativeWidget(this)),
+      colour_box_(new QComboBox(this)),
+      status_(new QLabel(this)),
+      renderer_(vtkSmartPointer<vtkRenderer>::New()),
+      centres_(vtkSmartPointer<vtkPolyData>::New()),
+      glyphs_(vtkSmartPointer<vtkGlyph3D>::New()),
+      disc_actor_(vtkSmartPointer<vtkActor>::New()),
+      sample_poly_(vtkSmartPointer<vtkPolyData>::New()),
+      sample_actor_(vtkSmartPointer<vtkActor>::New()),
+      picker_(vtkSmartPointer<vtkCellPicker>::New()) {
+  colour_box_->addItems(
+      {tr("Albedo"), tr("Patch id"), tr("Radiosity (first light)"), tr("Form-factor row")});
+  colour_box_->setToolTip(
+      tr("Albedo: the patch colour. Patch id: one colour per patch. Radiosity: light leaving "
+         "each patch under the scene's first light, direct plus indirect through T. "
+         "Form-factor row: how much of the picked patch's light reaches each patch (log "
+         "scale); click a patch first"));
+  // The controls never force a minimum width on the view: at small sizes
+  // (screenshots) they are cut off instead.
+  auto* bar = new QWidget(this);
+  bar->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
+  auto* controls = new QHBoxLayout(bar);
+  controls->setContentsMargins(0, 0, 0, 0);
+  controls->addWidget(new QLabel(tr("Colour by"), this));
+  controls->addWidget(colour_box_);
+  controls->addStretch(1);
+  controls->addWidget(status_);
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(0, 0, 0, 0);
+  layout->addWidget(bar);
+  layout->addWidget(vtk_widget_, 1);
+
+  auto window = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();
+  vtk_widget_->setRenderWindow(window);
+  window->AddRenderer(renderer_);
+  renderer_->SetBackground(0.12, 0.12, 0.14);
+
+  // A unit disc in the y-z plane: vtkGlyph3D turns the glyph's x axis onto
+  // the patch normal and scales it by the patch radius.
+  auto disc = vtkSmartPointer<vtkRegularPolygonSource>::New();
+  disc->SetNumberOfSides(20);
+  disc->SetRadius(1.0);
+  disc->SetNormal(1.0, 0.0, 0.0);
+  glyphs_->SetSourceConnection(disc->GetOutputPort());
+  glyphs_->SetInputData(centres_);
+  glyphs_->SetVectorModeToUseNormal();
+  glyphs_->SetScaleModeToScaleByScalar();
+  glyphs_->SetScaleFactor(1.0);
+  glyphs_->GeneratePointIdsOn();  // "InputPointIds": the patch of each glyph point
+  glyphs_->SetColorModeToColorByScalar();
+  auto disc_mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+  disc_mapper->SetInputConnection(glyphs_->GetOutputPort());
+  disc_mapper->SetScalarModeToUsePointFieldData();
+  disc_mapper->SelectColorArray("colour");
+  disc_mapper->SetColorModeToDirectScalars();
+  disc_mapper->ScalarVisibilityOn();
+  disc_actor_->SetMapper(disc_mapper);
+  disc_actor_->GetProperty()->BackfaceCullingOff();
+  disc_actor_->GetProperty()->SetAmbient(0.35);
+  disc_actor_->GetProperty()->SetDiffuse(0.65);
+  renderer_->AddActor(disc_actor_);
+
+  auto sample_mapper = vtkSmartPointer<vtkPolyDataMapper>::New();
+  sample_mapper->SetInputData(sample_poly_);
+  sample_actor_->SetMapper(sample_mapper);
+  sample_actor_->GetProperty()->SetColor(kSampleColour[0] / 255.0, kSampleColour[1] / 255.0,
+                                         kSampleColour[2] / 255.0);
+  sample_actor_->GetProperty()->SetPointSize(6.0f);
+  sample_actor_->GetProperty()->LightingOff();
+  renderer_->AddActor(sample_actor_);
+
+  picker_->SetTolerance(0.0005);
+  picker_->PickFromListOn();
+  picker_->AddPickList(disc_actor_);
+
+  connect(colour_box_, qOverload<int>(&QComboBox::currentIndexChanged), this,
+          [this](int) { recolour(); });
+
+  // A click without a drag picks; VTK's trackball keeps rotating on drag.
+  auto click = vtkSmartPointer<vtkCallbackCommand>::New();
+  click->SetClientData(this);
+  click->SetCallback([](vtkObject* caller, unsigned long, void* self, void*) {
+    auto* view = static_cast<PatchView*>(self);
+    auto* interactor = static_cast<vtkRenderWindowInteractor*>(caller);
+    if (interactor->GetRepeatCount() != 0) return;
+    const int* pos = interactor->GetEventPosition();
+    // VTK's origin is bottom-left, in device pixels.
+    const double ratio = view->vtk_widget_->devicePixelRatioF();
+    const int x = static_cast<int>(pos[0] / ratio);
+    const int y = view->vtk_widget_->height() - 1 - static_cast<int>(pos[1] / ratio);
+    const int p = view->patch_at(x, y);
+    if (p >= 0) view->select_patch(p);
+  });
+  window->GetInteractor()->AddObserver(vtkCommand::LeftButtonPressEvent, click, 1.0f);
+}
+
+PatchView::~PatchView() = default;
+
+void PatchView::set_data(std::shared_ptr<const BakeViewData> bake) {
+  data_ = std::move(bake);
+  selected_ = -1;
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  auto normals = vtkSmartPointer<vtkFloatArray>::New();
+  normals->SetNumberOfComponents(3);
+  normals->SetName("normal");
+  auto radius = vtkSmartPointer<vtkFloatArray>::New();
+  radius->SetName("radius");
+  const std::size_t n = data_ ? data_->patch_count() : 0;
+  for (std::size_t p = 0; p < n; ++p) {
+    const Patch& patch = data_->bake.patches.patches[p];
+    points->InsertNextPoint(patch.position.x, patch.position.y, patch.position.z);
+    normals->InsertNextTuple3(patch.normal.x, patch.normal.y, patch.normal.z);
+    // A disc of the patch's own area.
+    radius->InsertNextValue(std::sqrt(patch.area / 3.14159265f));
+  }
+  centres_->Initialize();
+  centres_->SetPoints(points);
+  centres_->GetPointData()->SetNormals(normals);
+  centres_->GetPointData()->SetScalars(radius);
+  const bool has_f = data_ && !data_->form_factors.empty();
+  colour_box_->setItemData(3, has_f ? QVariant() : QVariant(0), Qt::UserRole - 1);
+  recolour();
+  if (data_ && data_->scene)
+    apply_scene_camera(*data_->scene, *renderer_);
+  else
+    renderer_->ResetCamera();
+  render();
+}
+
+void PatchView::set_colour_by(ColourBy by) { colour_box_->setCurrentIndex(static_cast<int>(by)); }
+
+void PatchView::select_patch(int p) {
+  selected_ = data_ && p >= 0 && static_cast<std::size_t>(p) < data_->patch_count() ? p : -1;
+  if (selected_ >= 0 && !data_->form_factors.empty())
+    colour_box_->setCurrentIndex(static_cast<int>(ColourBy::FormFactorRow));
+  show_samples();
+  recolour();
+  emit patch_selected(selected_);
+}
+
+void PatchView::recolour() {
+  const std::size_t n = data_ ? data_->patch_count() : 0;
+  colours_.assign(n, {0, 0, 0});
+  auto by = static_cast<ColourBy>(colour_box_->currentIndex());
+  if (by == ColourBy::FormFactorRow && (selected_ < 0 || !data_ || data_->form_factors.empty()))
+    by = ColourBy::Albedo;
+  QString what;
+  if (by == ColourBy::Albedo) {
+    for (std::size_t p = 0; p < n; ++p) colours_[p] = srgb(data_->bake.patches.patches[p].albedo);
+  } else if (by == ColourBy::PatchId) {
+    for (std::size_t p = 0; p < n; ++p) colours_[p] = id_colour(p);
+  } else if (by == ColourBy::Radiosity) {
+    const LoadedBake& b = data_->bake;
+    std::vector<glm::vec3> indirect;
+    const bool lit = !b.probe.first_hit.empty() && !b.dense.empty();
+    if (lit) {
+      std::vector<const float*> matrices;
+      for (const auto& m : b.dense) matrices.push_back(m.data());
+      dense_indirect(matrices, n, b.channel_of_rgb, b.probe.first_hit[0], indirect);
+    }
+    std::vector<glm::vec3> radiosity(n);
+    std::vector<float> lum(n);
+    for (std::size_t p = 0; p < n; ++p) {
+      radiosity[p] = b.patches.patches[p].emission;
+      if (lit) radiosity[p] += b.probe.first_hit[0][p] + indirect[p];
+      lum[p] = luminance(radiosity[p]);
+    }
+    const float exposure = ToneMap::exposure_for(lum);
+    for (std::size_t p = 0; p < n; ++p) colours_[p] = srgb(radiosity[p] * exposure);
+    what = lit ? tr("radiosity under %1")
+                     .arg(QString::fromStdString(
+                         b.manifest.at("scene").at("lights").empty()
+                             ? std::string("the first evaluation light")
+                             : b.manifest.at("scene").at("lights")[0].value("name", "light 1")))
+               : tr("no exact T in this bake: emission only");
+  } else {
+    // F[selected][q]: the share of the picked patch's light that reaches q.
+    const float* row = &data_->form_factors[static_cast<std::size_t>(selected_) * n];
+    const float vmax = *std::max_element(row, row + n);
+    constexpr double kDecades = 4.0;
+    for (std::size_t q = 0; q < n; ++q) {
+      std::uint8_t c[3] = {0, 0, 0};
+      if (row[q] > 0.0f && vmax > 0.0f)
+        colormap(1.0 + std::log10(static_cast<double>(row[q] / vmax)) / kDecades, c);
+      colours_[q] = {c[0], c[1], c[2]};
+    }
+    what = tr("F row of patch %1 (max %2, log scale, 4 decades; black: unseen)")
+               .arg(selected_)
+               .arg(static_cast<double>(vmax), 0, 'g', 3);
+  }
+  auto array = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  array->SetName("colour");
+  array->SetNumberOfComponents(3);
+  for (const auto& c : colours_) array->InsertNextTuple3(c[0], c[1], c[2]);
+  centres_->GetPointData()->RemoveArray("colour");
+  centres_->GetPointData()->AddArray(array);
+  centres_->Modified();
+  QString text = data_ ? tr("%1 patches").arg(n) : tr("no bake");
+  if (selected_ >= 0)
+    text += tr(", patch %1 picked (%2 samples)")
+                .arg(selected_)
+                .arg(data_->bake.patches.member_count(static_cast<std::size_t>(selected_)));
+  if (!what.isEmpty()) text += " - " + what;
+  status_->setText(text);
+  render();
+}
+
+void PatchView::show_samples() {
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  auto verts = vtkSmartPointer<vtkCellArray>::New();
+  if (selected_ >= 0) {
+    const PatchSet& ps = data_->bake.patches;
+    const auto p = static_cast<std::size_t>(selected_);
+    for (std::uint32_t k = ps.member_first[p]; k < ps.member_first[p + 1]; ++k) {
+      const Sample& s = data_->bake.samples.samples[ps.member_samples[k]];
+      // Lifted off the surface along its normal so the disc does not hide it.
+      const glm::vec3 q = s.position + s.normal * (0.02f * data_->cell_size);
+      const vtkIdType id = points->InsertNextPoint(q.x, q.y, q.z);
+      verts->InsertNextCell(1, &id);
+    }
+  }
+  sample_poly_->Initialize();
+  sample_poly_->SetPoints(points);
+  sample_poly_->SetVerts(verts);
+}
+
+int PatchView::patch_at(int x, int y) {
+  const double ratio = vtk_widget_->devicePixelRatioF();
+  const int height = vtk_widget_->renderWindow()->GetSize()[1];
+  if (!picker_->Pick(x * ratio, height - 1 - y * ratio, 0.0, renderer_)) return -1;
+  const vtkIdType cell = picker_->GetCellId();
+  vtkPolyData* out = glyphs_->GetOutput();
+  auto* ids = vtkIdTypeArray::SafeDownCast(out->GetPointData()->GetArray("InputPointIds"));
+  if (cell < 0 || !ids || cell >= out->GetNumberOfCells()) return -1;
+  return static_cast<int>(ids->GetValue(out->GetCell(cell)->GetPointId(0)));
+}
+
+QPoint PatchView::project_patch(int p) {
+  const glm::vec3 c = data_->bake.patches.patches[static_cast<std::size_t>(p)].position;
+  renderer_->SetWorldPoint(c.x, c.y, c.z, 1.0);
+  renderer_->WorldToDisplay();
+  double d[3];
+  renderer_->GetDisplayPoint(d);
+  const double ratio = vtk_widget_->devicePixelRatioF();
+  const int height = vtk_widget_->renderWindow()->GetSize()[1];
+  return {static_cast<int>(d[0] / ratio), static_cast<int>((height - 1 - d[1]) / ratio)};
+}
+
+void PatchView::render() { vtk_widget_->renderWindow()->Render(); }
+
+QImage PatchView::render_image() {
+  render();
+  return vtk_widget_->grabFramebuffer();
+}
+
+}  // namespace bounce::views

@@ -1,0 +1,74 @@
+#pragma once
+// View 2: the virtual patches as oriented discs (centroid, normal, radius of
+// a disc of the patch's area), coloured by albedo, patch id, radiosity under
+// the scene's first light, or - once a patch is picked - by that patch's
+// form-factor row (who it sees). Clicking a disc picks its patch and shows
+// its member samples as points.
+#include <memory>
+
+#include <vtkSmartPointer.h>
+#include <QWidget>
+
+#include "bake_view_data.h"
+
+class QComboBox;
+class QLabel;
+class QVTKOpenGLNativeWidget;
+class vtkActor;
+class vtkCellPicker;
+class vtkGlyph3D;
+class vtkPolyData;
+class vtkRenderer;
+
+namespace bounce::views {
+
+class PatchView : public QWidget {
+  Q_OBJECT
+ public:
+  enum class ColourBy { Albedo, PatchId, Radiosity, FormFactorRow };
+
+  // Colour of the picked patch's member samples.
+  static constexpr unsigned char kSampleColour[3] = {255, 0, 255};
+
+  explicit PatchView(QWidget* parent = nullptr);
+  ~PatchView() override;
+
+  void set_data(std::shared_ptr<const BakeViewData> bake);
+  // FormFactorRow needs F.npy and a picked patch; otherwise it falls back to albedo.
+  void set_colour_by(ColourBy by);
+  // Picks patch `p` (-1: none).
+  void select_patch(int p);
+  int selected_patch() const { return selected_; }
+  // The patch whose disc is under the widget pixel (x, y) (Qt coordinates,
+  // top-left origin), or -1.
+  int patch_at(int x, int y);
+  // Where patch p's centroid lands in widget pixels (Qt coordinates).
+  QPoint project_patch(int p);
+  // RGB of each patch disc as last coloured (for tests).
+  const std::vector<std::array<unsigned char, 3>>& patch_colours() const { return colours_; }
+  QImage render_image();
+
+ signals:
+  void patch_selected(int patch);
+
+ private:
+  void recolour();
+  void show_samples();
+  void render();
+
+  std::shared_ptr<const BakeViewData> data_;
+  QVTKOpenGLNativeWidget* vtk_widget_;
+  QComboBox* colour_box_;
+  QLabel* status_;
+  vtkSmartPointer<vtkRenderer> renderer_;
+  vtkSmartPointer<vtkPolyData> centres_;
+  vtkSmartPointer<vtkGlyph3D> glyphs_;
+  vtkSmartPointer<vtkActor> disc_actor_;
+  vtkSmartPointer<vtkPolyData> sample_poly_;
+  vtkSmartPointer<vtkActor> sample_actor_;
+  vtkSmartPointer<vtkCellPicker> picker_;
+  std::vector<std::array<unsigned char, 3>> colours_;
+  int selected_ = -1;
+};
+
+}  // namespace bounce::views
