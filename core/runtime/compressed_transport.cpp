@@ -1,5 +1,6 @@
 #include "runtime/compressed_transport.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstdint>
@@ -138,6 +139,20 @@ __attribute__((target("avx2,fma"))) inline void bc1_offsets_x8(const Tables& t,
             _mm256_set1_epi32(static_cast<int>(t.bc1_table_offset[static_cast<std::size_t>(s)]))));
 }
 
+// The offsets of the next `count` (1..8) blocks: 8 at once in vectors, or
+// one by one at the end of a block row.
+__attribute__((target("avx2,fma"))) inline void bc1_offsets(const Tables& t,
+                                                            const std::uint8_t* blocks,
+                                                            std::size_t count,
+                                                            std::uint32_t (*offset)[8]) {
+  if (count == 8) return bc1_offsets_x8(t, blocks, offset);
+  for (std::size_t j = 0; j < count; ++j)
+    for (std::size_t s = 0; s < static_cast<std::size_t>(t.slots); ++s)
+      offset[s][j] = static_cast<std::uint32_t>(
+          t.bc1_table_offset[s] +
+          4 * bc1_palette_key(load_u32(blocks + 8 * j), t.bc1_field_shift[s], t.bc1_field_bits[s]));
+}
+
 template <DdsFormat kFormat, int kSlots>
 __attribute__((target("avx2,fma"))) void block_row_avx2(const Tables& t, const float* b,
                                                         std::size_t I, float (*acc)[3]) {
@@ -164,16 +179,7 @@ __attribute__((target("avx2,fma"))) void block_row_avx2(const Tables& t, const f
     const std::size_t lane = J % 8;
     if constexpr (kBc1) {
       if (lane == 0) {
-        if (J + 8 <= nb) {
-          bc1_offsets_x8(t, block, offset);
-        } else {
-          for (std::size_t j = 0; J + j < nb; ++j)
-            for (std::size_t s = 0; s < static_cast<std::size_t>(t.slots); ++s)
-              offset[s][j] = static_cast<std::uint32_t>(t.bc1_table_offset[s] +
-                                                        4 * bc1_palette_key(load_u32(block + 8 * j),
-                                                                            t.bc1_field_shift[s],
-                                                                            t.bc1_field_bits[s]));
-        }
+        bc1_offsets(t, block, std::min<std::size_t>(8, nb - J), offset);
       }
     }
     __m256i control01, control23;
@@ -298,16 +304,7 @@ __attribute__((target("avx512f,avx2,fma"))) void block_row_avx512_bc1(const Tabl
     const std::uint8_t* block = blocks + 8 * J;
     const std::size_t lane = J % 8;
     if (lane == 0) {
-      if (J + 8 <= nb) {
-        bc1_offsets_x8(t, block, offset);
-      } else {
-        for (std::size_t j = 0; J + j < nb; ++j)
-          for (std::size_t s = 0; s < static_cast<std::size_t>(t.slots); ++s)
-            offset[s][j] = static_cast<std::uint32_t>(t.bc1_table_offset[s] +
-                                                      4 * bc1_palette_key(load_u32(block + 8 * j),
-                                                                          t.bc1_field_shift[s],
-                                                                          t.bc1_field_bits[s]));
-      }
+      bc1_offsets(t, block, std::min<std::size_t>(8, nb - J), offset);
     }
     const __m512i control =
         _mm512_srlv_epi32(_mm512_set1_epi32(static_cast<int>(load_u32(block + 4))), shift);
