@@ -255,7 +255,7 @@ void run_report(ReportOptions opt) {
   LitMesh eval_mesh =
       build_transfer_mesh(scene, TransferGrid::from(VoxelGrid(scene.bounds(), opt.quick ? 8 : 16)),
                           TransferSettings{}, &progress);
-  std::vector<SurfacePoint> points;
+  std::vector<ReferencePoint> points;
   for (std::size_t v = 0; v < eval_mesh.positions.size(); ++v)
     points.push_back(
         {eval_mesh.positions[v], eval_mesh.normals[v], glm::vec3(0.0f), glm::vec3(0.0f)});

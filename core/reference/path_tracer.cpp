@@ -187,7 +187,7 @@ glm::vec3 ReferencePathTracer::sample_indirect(const glm::vec3& x, const glm::ve
   return indirect(x, n, rng);
 }
 
-PointReference ReferencePathTracer::estimate_points(const std::vector<SurfacePoint>& points,
+PointReference ReferencePathTracer::estimate_points(const std::vector<ReferencePoint>& points,
                                                     Progress* progress) const {
   const std::size_t count = points.size();
   PointReference out;
@@ -203,7 +203,7 @@ PointReference ReferencePathTracer::estimate_points(const std::vector<SurfacePoi
   for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(count); ++ii) {
     if (progress && progress->should_stop()) continue;
     const auto i = static_cast<std::size_t>(ii);
-    const SurfacePoint& p = points[i];
+    const ReferencePoint& p = points[i];
     glm::dvec3 dsum(0.0), isum(0.0), isq(0.0), bsum(0.0), bsq(0.0);
     for (int s = 0; s < settings_.samples; ++s) {
       Sampler rng(settings_.seed, i, static_cast<std::uint64_t>(s));

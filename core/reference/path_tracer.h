@@ -51,7 +51,7 @@ struct ReferenceSettings {
 
 // A surface point to estimate light at: position, the unit normal of the side
 // that receives, and its albedo (for radiosity).
-struct SurfacePoint {
+struct ReferencePoint {
   glm::vec3 position{0.0f};
   glm::vec3 normal{0.0f, 0.0f, 1.0f};
   glm::vec3 albedo{0.0f};
@@ -82,7 +82,7 @@ class ReferencePathTracer {
 
   // Irradiance and radiosity at the given points (`settings.samples` paths
   // each). Throws Cancelled when progress asks to stop.
-  PointReference estimate_points(const std::vector<SurfacePoint>& points,
+  PointReference estimate_points(const std::vector<ReferencePoint>& points,
                                  Progress* progress = nullptr) const;
 
   const ReferenceSettings& settings() const { return settings_; }

@@ -184,14 +184,14 @@ ReferenceImages cached_reference_images(const ReferencePathTracer& pt, int width
 }
 
 PointReference cached_reference_points(const ReferencePathTracer& pt,
-                                       const std::vector<SurfacePoint>& points,
+                                       const std::vector<ReferencePoint>& points,
                                        const ReferenceCache* cache, Progress* progress, bool* hit) {
   ContentHash h;
   h.text("points");
   hash_scene(h, pt.tracer().scene());
   hash_settings(h, pt.settings());
   h.integer(points.size());
-  for (const SurfacePoint& p : points)
+  for (const ReferencePoint& p : points)
     h.vec(p.position).vec(p.normal).vec(p.albedo).vec(p.emission);
   const std::uint64_t key = h.value();
   const std::size_t n = points.size();

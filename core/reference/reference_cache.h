@@ -67,7 +67,7 @@ ReferenceImages cached_reference_images(const ReferencePathTracer& pt, int width
 
 // The same for point estimates.
 PointReference cached_reference_points(const ReferencePathTracer& pt,
-                                       const std::vector<SurfacePoint>& points,
+                                       const std::vector<ReferencePoint>& points,
                                        const ReferenceCache* cache, Progress* progress = nullptr,
                                        bool* hit = nullptr);
 

@@ -85,7 +85,7 @@ TEST(ReferenceCache, PointsRoundTripAndCorruptEntryIsAMiss) {
   const Scene scene = lit_furnace(1.0f);
   const RayTracer tracer(scene);
   const ReferencePathTracer pt(tracer, settings);
-  const std::vector<SurfacePoint> points = {
+  const std::vector<ReferencePoint> points = {
       {{0.5f, 0.5f, 0.0f}, {0, 0, 1}, glm::vec3(0.5f), glm::vec3(0.0f)},
       {{0.2f, 0.0f, 0.3f}, {0, 1, 0}, glm::vec3(0.5f), glm::vec3(0.0f)}};
   bool hit = true;

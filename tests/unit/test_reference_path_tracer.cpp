@@ -46,7 +46,7 @@ TEST(ReferencePathTracer, FurnacePointsGiveEOverOneMinusRho) {
   ReferenceSettings settings;
   settings.samples = 40000;
   const ReferencePathTracer pt(tracer, settings);
-  std::vector<SurfacePoint> points;
+  std::vector<ReferencePoint> points;
   // Floor centre, near a corner, on a side wall, on the ceiling.
   for (const auto& [p, n] :
        std::vector<std::pair<glm::vec3, glm::vec3>>{{{0.5f, 0.5f, 0.0f}, {0, 0, 1}},
@@ -109,7 +109,7 @@ TEST(ReferencePathTracer, ParallelSquaresMatchTheAnalyticFormFactor) {
   ReferenceSettings settings;
   settings.samples = 4000;
   const ReferencePathTracer pt(tracer, settings);
-  std::vector<SurfacePoint> points;
+  std::vector<ReferencePoint> points;
   std::vector<double> exact;
   for (const auto& [u, v] : std::vector<std::pair<float, float>>{
            {0.5f, 0.5f}, {0.1f, 0.1f}, {0.9f, 0.3f}, {0.25f, 0.75f}, {0.02f, 0.5f}}) {
