@@ -6,6 +6,9 @@
 #   ./dev.sh bake [SCENE] [bake options]  bake a scene (default: the Cornell box), print the report
 #   ./dev.sh test [ctest options]         run the whole test suite with ctest
 #   ./dev.sh build                        set up and build only
+#   ./dev.sh sanitize [ctest options]     unit tests under ASan + UBSan (preset asan, build/asan)
+#   ./dev.sh fuzz [SECONDS]               libFuzzer campaign, SECONDS per target (default 60;
+#                                         clang, preset fuzz, build/fuzz; seed: BOUNCE_FUZZ_SEED)
 set -euo pipefail
 cd "$(dirname "$0")"
 root=$(pwd)
@@ -39,6 +42,49 @@ build() {
   cmake --build --preset release -- -j"$(nproc)"
 }
 
+# Configures preset $1 once (in build/$1) and builds its targets.
+build_preset() {
+  install_missing_packages
+  if [[ ! -f "$root/build/$1/build.ninja" ]]; then
+    log "configuring preset $1 in build/$1"
+    cmake --preset "$1" >/dev/null
+  fi
+  cmake --build --preset "$1" -- -j"$(nproc)"
+}
+
+# Runs every fuzz target for $1 seconds over its seed corpus (tests/fuzz/corpus/<target>).
+# New inputs go to build/fuzz/corpus/<target>, never into the source tree; a crash,
+# sanitizer report, leak, timeout (>10 s per input) or out-of-memory input is written
+# to build/fuzz/artifacts/ and fails the command.
+fuzz() {
+  local seconds=$1 failed=()
+  build_preset fuzz
+  mkdir -p "$root/build/fuzz/artifacts"
+  for target in fuzz_scene_json fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_gltf; do
+    local work="$root/build/fuzz/corpus/$target"
+    mkdir -p "$work"
+    log "fuzzing $target for ${seconds}s"
+    # The targets write each input to a file under TMPDIR; libFuzzer exits
+    # without running destructors, so keep that folder in the build tree.
+    rm -rf "$root/build/fuzz/tmp" && mkdir -p "$root/build/fuzz/tmp"
+    if ! TMPDIR="$root/build/fuzz/tmp" \
+      LSAN_OPTIONS="suppressions=$root/tests/sanitizers/lsan.supp:print_suppressions=0" \
+      "$root/build/fuzz/tests/fuzz/$target" -max_total_time="$seconds" -timeout=10 \
+      -rss_limit_mb=2048 -seed="${BOUNCE_FUZZ_SEED:-1}" -print_final_stats=1 \
+      -artifact_prefix="$root/build/fuzz/artifacts/$target-" \
+      "$work" "$root/tests/fuzz/corpus/$target" 2>"$root/build/fuzz/$target.log"; then
+      tail -n 60 "$root/build/fuzz/$target.log" >&2
+      failed+=("$target")
+    fi
+    grep -E '^stat::(number_of_executed_units|peak_rss_mb)' "$root/build/fuzz/$target.log" |
+      sed "s/^/[dev]   $target /" >&2 || true
+  done
+  if ((${#failed[@]} > 0)); then
+    log "fuzzing found failures in: ${failed[*]} (inputs in build/fuzz/artifacts/)"
+    return 1
+  fi
+}
+
 cmd=${1:-help}
 shift || true
 case "$cmd" in
@@ -60,8 +106,15 @@ case "$cmd" in
     cd "$build_dir"
     exec ctest --output-on-failure -j"$(nproc)" "$@"
     ;;
+  sanitize)
+    build_preset asan
+    exec ctest --preset asan -j"$(nproc)" "$@"
+    ;;
+  fuzz)
+    fuzz "${1:-60}"
+    ;;
   *)
-    sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'
     [[ "$cmd" == help || "$cmd" == -h || "$cmd" == --help ]] || exit 2
     ;;
 esac

@@ -245,9 +245,50 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
   return m;
 }
 
+namespace {
+
+// The folder's contents, written into `dir` (the temporary folder).
+json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const BakeResult& r,
+                      const Diagnostics& diagnostics);
+
+// An error from writing one file names the file by its temporary path
+// (".NAME.partial-PID-N/patches.npy"), which is gone once the failed bake
+// has cleaned up. Say it about the bake folder the user asked for instead.
+[[noreturn]] void rethrow_for_target(const AtomicDirectory& dir, const fs::path& file,
+                                     const std::string& why) {
+  if (file.empty()) throw IoError(dir.target().string(), "cannot write the bake: " + why);
+  fs::path relative = file.lexically_relative(dir.path());
+  if (relative.empty() || *relative.begin() == "..") relative = file;
+  throw IoError(dir.target().string(), "cannot write " + relative.string() + ": " + why);
+}
+
+}  // namespace
+
 json write_bake(const fs::path& out_dir, const Scene& scene, const BakeResult& r,
                 const Diagnostics& diagnostics) {
   AtomicDirectory dir(out_dir);
+  json m;
+  try {
+    m = write_bake_files(dir, scene, r, diagnostics);
+  } catch (const Cancelled&) {
+    throw;
+  } catch (const Error& e) {
+    // Error::what() is "<where>: <why>"; keep <why>, name <where> relative to the folder.
+    std::string why = e.what();
+    if (!e.where().empty() && why.rfind(e.where() + ": ", 0) == 0)
+      why = why.substr(e.where().size() + 2);
+    rethrow_for_target(dir, e.where(), why);
+  } catch (const fs::filesystem_error& e) {
+    rethrow_for_target(dir, e.path1(), e.code().message());
+  }
+  dir.commit();
+  return m;
+}
+
+namespace {
+
+json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const BakeResult& r,
+                      const Diagnostics& diagnostics) {
   json files = json::array();
   auto record = [&](const std::string& name, const std::string& what) {
     files.push_back(
@@ -318,8 +359,9 @@ json write_bake(const fs::path& out_dir, const Scene& scene, const BakeResult& r
     manifest.stream() << m.dump(2) << '\n';
     manifest.commit();
   }
-  dir.commit();
   return m;
 }
+
+}  // namespace
 
 }  // namespace bounce

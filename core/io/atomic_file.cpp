@@ -55,15 +55,29 @@ AtomicDirectory::AtomicDirectory(fs::path target) : target_(std::move(target)) {
   const fs::path parent = target_.has_parent_path() ? target_.parent_path() : fs::path(".");
   fs::create_directories(parent, ec);
   if (ec) throw IoError(parent.string(), "cannot create folder: " + ec.message());
-  if (fs::exists(target_) && !fs::is_directory(target_))
+  // error_code overloads throughout: a folder we may not read or search must
+  // become an IoError naming it, not a std::filesystem_error.
+  const fs::file_status status = fs::status(target_, ec);
+  if (ec && status.type() != fs::file_type::not_found)
+    throw IoError(target_.string(), "cannot inspect: " + ec.message());
+  if (fs::exists(status) && !fs::is_directory(status))
     throw IoError(target_.string(), "exists and is not a folder");
-  if (fs::is_directory(target_) && !fs::is_empty(target_) && !fs::exists(target_ / "manifest.json"))
-    throw IoError(target_.string(),
-                  "exists, is not empty and is not a bake folder (no manifest.json); refusing to "
-                  "replace it");
+  if (fs::is_directory(status)) {
+    const bool empty = fs::is_empty(target_, ec);
+    if (ec) throw IoError(target_.string(), "cannot read folder: " + ec.message());
+    const bool is_bake = fs::exists(target_ / "manifest.json", ec);
+    if (!empty && !is_bake)
+      throw IoError(target_.string(),
+                    "exists, is not empty and is not a bake folder (no manifest.json); refusing "
+                    "to replace it");
+  }
   temp_ = temp_name(target_, "partial");
   fs::create_directory(temp_, ec);
-  if (ec) throw IoError(temp_.string(), "cannot create folder: " + ec.message());
+  // Named after the target: the temporary name means nothing to the user.
+  if (ec)
+    throw IoError(target_.string(), "cannot create the folder's temporary sibling " +
+                                        temp_.filename().string() + " in " + parent.string() +
+                                        ": " + ec.message());
 }
 
 AtomicDirectory::~AtomicDirectory() {
@@ -76,7 +90,7 @@ AtomicDirectory::~AtomicDirectory() {
 void AtomicDirectory::commit() {
   std::error_code ec;
   fs::path old;
-  if (fs::exists(target_)) {
+  if (fs::exists(target_, ec)) {
     old = temp_name(target_, "old");
     fs::rename(target_, old, ec);
     if (ec) throw IoError(target_.string(), "cannot move the previous bake aside: " + ec.message());

@@ -61,13 +61,21 @@ std::string file_name_of(const std::string& file) {
 // nlohmann would otherwise resolve silently by keeping the last value.
 class DuplicateKeyWatcher {
  public:
+  static constexpr int kMaxDepth = 64;
+
   explicit DuplicateKeyWatcher(const JsonReader& reader) : reader_(reader) {}
 
-  bool operator()(int /*depth*/, nlohmann::json::parse_event_t event, Json& parsed) {
+  bool operator()(int depth, nlohmann::json::parse_event_t event, Json& parsed) {
     using Event = nlohmann::json::parse_event_t;
     switch (event) {
       case Event::object_start:
       case Event::array_start:
+        // Each frame holds its full key path, so nesting costs depth^2; a
+        // hostile file 100000 levels deep took minutes (found by the hostile
+        // input tests). No scene.json needs more than a few levels.
+        if (depth >= kMaxDepth)
+          reader_.fail(child_path(), "nested deeper than " + std::to_string(kMaxDepth) +
+                                         " levels; a scene.json needs at most a few");
         frames_.push_back({event == Event::object_start, child_path(), {}, {}, 0});
         break;
       case Event::object_end:

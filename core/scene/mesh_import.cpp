@@ -11,6 +11,7 @@
 #include <assimp/Importer.hpp>
 
 #include "scene/mtl_scan.h"
+#include "scene/ply_check.h"
 #include "scene/scene_loader.h"
 
 namespace bounce::scene_internal {
@@ -20,8 +21,35 @@ namespace {
 // Triangulate polygons and merge the per-corner copies Assimp makes for OBJ.
 // Deliberately not FindDegenerates/FindInvalidData: they drop or alter
 // geometry without saying so; the builder reports degenerate triangles instead.
-constexpr unsigned kImportFlags =
-    aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_ValidateDataStructure;
+// Applied in two steps (see FileImporter::run): validation while reading, the
+// rest after restate_primitive_types.
+constexpr unsigned kReadFlags = aiProcess_ValidateDataStructure;
+constexpr unsigned kPostProcessFlags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices;
+
+// Sets each mesh's primitive-type flags from its faces, refusing faces with
+// no index. Assimp 5.2's PLY reader turns a corrupt face list into index-less
+// faces in a mesh flagged as holding polygons; ValidateDataStructure lets
+// that through and Triangulate then fails an ai_assert that aborts the whole
+// process (found by fuzz_mesh_ply). Flags that match the faces are what
+// Triangulate assumes.
+void restate_primitive_types(aiScene& scene, const std::string& where) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    aiMesh& mesh = *scene.mMeshes[m];
+    unsigned types = 0;
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const unsigned n = mesh.mFaces[f].mNumIndices;
+      if (n == 0)
+        throw SceneLoader::LoadError(where, "corrupt file: face " + std::to_string(f) +
+                                                " of mesh " + std::to_string(m) +
+                                                " has no vertex indices");
+      types |= n == 1   ? aiPrimitiveType_POINT
+               : n == 2 ? aiPrimitiveType_LINE
+               : n == 3 ? aiPrimitiveType_TRIANGLE
+                        : aiPrimitiveType_POLYGON;
+    }
+    mesh.mPrimitiveTypes = types;
+  }
+}
 
 // Assimp's OBJ importer puts geometry outside any `o`/`g` into this object.
 constexpr const char* kObjDefaultObject = "defaultobject";
@@ -59,8 +87,13 @@ class FileImporter {
       : file_(file), where_(file.string()), transform_(transform), diagnostics_(diagnostics) {}
 
   ImportedFile run(const std::string& name) {
+    // Assimp crashes on some truncated PLY files instead of failing; refuse
+    // them first (by content too: Assimp picks a reader by signature when
+    // the extension is unknown).
+    if (lower(file_.extension().string()) == ".ply" || looks_like_ply(file_))
+      check_ply_structure(file_);
     Assimp::Importer importer;
-    const aiScene* scene = importer.ReadFile(where_, kImportFlags);
+    const aiScene* scene = importer.ReadFile(where_, kReadFlags);
     if (!scene)
       throw SceneLoader::LoadError(
           where_, std::string("Assimp cannot read this file: ") + importer.GetErrorString());
@@ -68,6 +101,13 @@ class FileImporter {
       throw SceneLoader::LoadError(where_,
                                    "Assimp read this file only partially (scene incomplete); "
                                    "it holds no usable meshes");
+    // The importer owns a non-const scene and hands out a const pointer;
+    // ApplyPostProcessing works on that same scene.
+    restate_primitive_types(const_cast<aiScene&>(*scene), where_);
+    scene = importer.ApplyPostProcessing(kPostProcessFlags);
+    if (!scene)
+      throw SceneLoader::LoadError(
+          where_, std::string("Assimp cannot process this file: ") + importer.GetErrorString());
     scene_ = scene;
     out_.path = file_;
     read_materials();
