@@ -298,38 +298,45 @@ __attribute__((target("avx512f,avx2,fma"))) void block_row_avx512_bc1(const Tabl
   const __m512i shift =
       _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
   const float *b_r = b, *b_g = b + padded, *b_b = b + 2 * padded;
-  __m512 acc_r[2] = {_mm512_setzero_ps(), _mm512_setzero_ps()};
-  __m512 acc_g[2] = {acc_r[0], acc_r[0]}, acc_b[2] = {acc_r[0], acc_r[0]};
-  for (std::size_t J = 0; J < nb; ++J) {
-    const std::uint8_t* block = blocks + 8 * J;
+  // Named accumulators, two sets: GCC keeps an array of them indexed by
+  // J & 1 on the stack, and the store-to-load chain then bounds the loop.
+  __m512 r0 = _mm512_setzero_ps(), g0 = r0, b0 = r0, r1 = r0, g1 = r0, b1 = r0;
+  const auto step = [&](std::size_t J, __m512 & ar, __m512 & ag, __m512 & ab)
+      __attribute__((always_inline, target("avx512f,avx2,fma"))) {
     const std::size_t lane = J % 8;
-    if (lane == 0) {
-      bc1_offsets(t, block, std::min<std::size_t>(8, nb - J), offset);
-    }
     const __m512i control =
-        _mm512_srlv_epi32(_mm512_set1_epi32(static_cast<int>(load_u32(block + 4))), shift);
+        _mm512_srlv_epi32(_mm512_set1_epi32(static_cast<int>(load_u32(blocks + 8 * J + 4))), shift);
     const __m512 br = _mm512_broadcast_f32x4(_mm_loadu_ps(b_r + 4 * J));
     const __m512 bg = _mm512_broadcast_f32x4(_mm_loadu_ps(b_g + 4 * J));
     const __m512 bb = _mm512_broadcast_f32x4(_mm_loadu_ps(b_b + 4 * J));
-    const std::size_t h = J & 1;
     if constexpr (kSlots == 1) {
       const __m512 v = _mm512_permutevar_ps(
           _mm512_broadcast_f32x4(_mm_loadu_ps(tables + offset[0][lane])), control);
-      acc_r[h] = _mm512_fmadd_ps(v, br, acc_r[h]);
-      acc_g[h] = _mm512_fmadd_ps(v, bg, acc_g[h]);
-      acc_b[h] = _mm512_fmadd_ps(v, bb, acc_b[h]);
+      ar = _mm512_fmadd_ps(v, br, ar);
+      ag = _mm512_fmadd_ps(v, bg, ag);
+      ab = _mm512_fmadd_ps(v, bb, ab);
     } else {
       const __m512 pr = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + offset[slot_r][lane]));
       const __m512 pg = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + offset[slot_g][lane]));
       const __m512 pb = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + offset[slot_b][lane]));
-      acc_r[h] = _mm512_fmadd_ps(_mm512_permutevar_ps(pr, control), br, acc_r[h]);
-      acc_g[h] = _mm512_fmadd_ps(_mm512_permutevar_ps(pg, control), bg, acc_g[h]);
-      acc_b[h] = _mm512_fmadd_ps(_mm512_permutevar_ps(pb, control), bb, acc_b[h]);
+      ar = _mm512_fmadd_ps(_mm512_permutevar_ps(pr, control), br, ar);
+      ag = _mm512_fmadd_ps(_mm512_permutevar_ps(pg, control), bg, ag);
+      ab = _mm512_fmadd_ps(_mm512_permutevar_ps(pb, control), bb, ab);
     }
+  };
+  for (std::size_t J0 = 0; J0 < nb; J0 += 8) {
+    const std::size_t count = std::min<std::size_t>(8, nb - J0);
+    bc1_offsets(t, blocks + 8 * J0, count, offset);
+    std::size_t J = J0;
+    for (; J + 1 < J0 + count; J += 2) {
+      step(J, r0, g0, b0);
+      step(J + 1, r1, g1, b1);
+    }
+    if (J < J0 + count) step(J, r0, g0, b0);
   }
-  add_rows(_mm512_add_ps(acc_r[0], acc_r[1]), acc, 0);
-  add_rows(_mm512_add_ps(acc_g[0], acc_g[1]), acc, 1);
-  add_rows(_mm512_add_ps(acc_b[0], acc_b[1]), acc, 2);
+  add_rows(_mm512_add_ps(r0, r1), acc, 0);
+  add_rows(_mm512_add_ps(g0, g1), acc, 1);
+  add_rows(_mm512_add_ps(b0, b1), acc, 2);
 }
 
 #pragma GCC diagnostic pop
