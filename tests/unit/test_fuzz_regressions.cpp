@@ -25,16 +25,33 @@ struct Regression {
   const char* reason;  // expected in the error message
 };
 
-// Assimp 5.2 read past its buffer (SEGV) on a binary PLY whose header has no
-// end_header; the PLY structure check refuses it first.
-// Assimp leaked an aiMesh on this malformed OBJ (suppressed, third-party);
-// the loader still refuses it with Assimp's message.
+// Each input, what Assimp 5.2 did with it, and what refuses it now. The PLY
+// header check (core/scene/ply_check) reads a PLY header before Assimp does
+// and accepts only the keywords the format has, so the damaged header lines
+// of the first three now stop there.
 const Regression kKnownInputs[] = {
-    {"ply-header-without-end-header.ply", "malformed PLY: the header has no 'end_header' line"},
+    // Binary PLY, a damaged property line and no end_header: Assimp read past
+    // its buffer (SEGV).
+    {"ply-header-without-end-header.ply", "malformed PLY: unknown header keyword 'pro?"},
+    // Assimp leaked an aiMesh on this malformed OBJ (suppressed, third-party);
+    // the loader still refuses it with Assimp's message.
     {"obj-assimp-leaks-on-error.obj", "Assimp"},
-    // A face list whose first face has no indices: Assimp's Triangulate
-    // aborted the process (ai_assert) on it.
-    {"ply-face-without-indices.ply", "corrupt file: face 0 of mesh 0 has no vertex indices"},
+    // A damaged property line ("propertyal oft ny") shifted the binary layout
+    // so that face 0 had no indices: Assimp's Triangulate aborted the process
+    // (ai_assert). The mesh import also refuses index-less faces itself.
+    {"ply-face-without-indices.ply", "malformed PLY: unknown header keyword 'propertyal'"},
+    // Damaged 'property' lines ("propert999...9y float x"): Assimp corrupted
+    // its heap on them (ASan: a freed chunk in the wrong state, found by CI's
+    // fuzz campaign).
+    {"ply-unknown-header-keyword.ply", "malformed PLY: unknown header keyword 'propert9999"},
+    // "end_header", a vertical tab, then the ascii body on the same line:
+    // Assimp worked on it for more than 10 s (libFuzzer timeout).
+    {"ply-end-header-followed-by-vertical-tab.ply",
+     "malformed PLY: the 'end_header' line has more on it"},
+    // Ascii, "element face 24444444444444" in a 335-byte file: Assimp
+    // allocated for the declared count first (ASan: out of memory, 63 GB).
+    {"ply-ascii-face-count-beyond-the-file.ply",
+     "malformed PLY: truncated: the header declares values needing at least"},
 };
 
 class FuzzRegression : public ::testing::TestWithParam<Regression> {};
