@@ -7,8 +7,9 @@
 #   ./dev.sh test [ctest options]         run the whole test suite with ctest
 #   ./dev.sh build                        set up and build only
 #   ./dev.sh sanitize [ctest options]     unit tests under ASan + UBSan (preset asan, build/asan)
-#   ./dev.sh fuzz [SECONDS]               libFuzzer campaign, SECONDS per target (default 60;
-#                                         clang, preset fuzz, build/fuzz; seed: BOUNCE_FUZZ_SEED)
+#   ./dev.sh fuzz [SECONDS|ci]            libFuzzer campaign, SECONDS per target (default 60;
+#                                         clang, preset fuzz, build/fuzz; seed: BOUNCE_FUZZ_SEED);
+#                                         ci: a fixed number of runs per target, same result every time
 set -euo pipefail
 cd "$(dirname "$0")"
 root=$(pwd)
@@ -56,6 +57,12 @@ build_preset() {
 # New inputs go to build/fuzz/corpus/<target>, never into the source tree; a crash,
 # sanitizer report, leak, timeout (>10 s per input) or out-of-memory input is written
 # to build/fuzz/artifacts/ and fails the command.
+# "ci" instead of seconds: a fixed number of inputs per target (about a minute
+# each here) with the fixed seed, so the campaign is deterministic: CI fails on
+# what the code does, not on how far a time limit let libFuzzer get. Longer
+# open-ended campaigns (./dev.sh fuzz 600) are how new inputs are found.
+declare -A ci_fuzz_runs=([fuzz_scene_json]=60000 [fuzz_mesh_obj]=500 [fuzz_mesh_ply]=40000
+                         [fuzz_mesh_gltf]=3000)
 fuzz() {
   local seconds=$1 failed=()
   build_preset fuzz
@@ -63,13 +70,19 @@ fuzz() {
   for target in fuzz_scene_json fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_gltf; do
     local work="$root/build/fuzz/corpus/$target"
     mkdir -p "$work"
-    log "fuzzing $target for ${seconds}s"
+    local budget=(-max_total_time="$seconds")
+    if [[ "$seconds" == ci ]]; then
+      budget=(-runs="${ci_fuzz_runs[$target]}")
+      log "fuzzing $target for ${ci_fuzz_runs[$target]} inputs"
+    else
+      log "fuzzing $target for ${seconds}s"
+    fi
     # The targets write each input to a file under TMPDIR; libFuzzer exits
     # without running destructors, so keep that folder in the build tree.
     rm -rf "$root/build/fuzz/tmp" && mkdir -p "$root/build/fuzz/tmp"
     if ! TMPDIR="$root/build/fuzz/tmp" \
       LSAN_OPTIONS="suppressions=$root/tests/sanitizers/lsan.supp:print_suppressions=0" \
-      "$root/build/fuzz/tests/fuzz/$target" -max_total_time="$seconds" -timeout=10 \
+      "$root/build/fuzz/tests/fuzz/$target" "${budget[@]}" -timeout=10 \
       -rss_limit_mb=2048 -seed="${BOUNCE_FUZZ_SEED:-1}" -print_final_stats=1 \
       -artifact_prefix="$root/build/fuzz/artifacts/$target-" \
       "$work" "$root/tests/fuzz/corpus/$target" 2>"$root/build/fuzz/$target.log"; then
