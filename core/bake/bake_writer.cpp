@@ -228,6 +228,7 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                                  {"row_sum_mean", c.row_sum_mean},
                                  {"rows_above_one", c.rows_above_one},
                                  {"value_max", c.value_max},
+                                 {"clamped_to_one", c.clamped_to_one},
                                  {"reciprocity_error_max", c.reciprocity_error_max},
                                  {"reciprocity_error_rel", c.reciprocity_error_rel},
                                  {"non_finite", c.non_finite},

@@ -37,20 +37,57 @@ struct VoxelSamples {
 };
 
 // The Voronoi cell of samples[mine] among `all` (samples on one planar part),
-// clipped to the part's polygon.
+// clipped to the part's polygon. Computed in double, relative to the sample:
+// the bisector written in absolute float coordinates, n.x <= (|q|^2 - |p|^2)/2,
+// cancels (|q|^2 ~ the scene's size squared, the difference ~ its size times
+// |q - p|), so a one-ulp change of the coordinates (a decimal rescale of the
+// scene) moved the bisectors of close samples by ~1e-7 scene / |q - p| and
+// changed small cells' areas by up to 0.4% (docs/stability.md).
 std::vector<glm::vec3> voronoi_cell(const std::vector<glm::vec3>& part,
                                     const std::vector<Sample>& samples,
                                     const std::vector<std::uint32_t>& all, std::uint32_t mine) {
-  std::vector<glm::vec3> cell = part;
-  const glm::vec3 p = samples[mine].position;
+  const glm::dvec3 p(samples[mine].position);
+  std::vector<glm::dvec3> cell, next;
+  for (const glm::vec3& x : part) cell.push_back(glm::dvec3(x) - p);
   for (std::uint32_t other : all) {
     if (other == mine || cell.size() < 3) continue;
-    const glm::vec3 q = samples[other].position;
-    const glm::vec3 n = q - p;
-    if (glm::dot(n, n) <= 0.0f) continue;  // coincident samples: split below by count
-    cell = clip_polygon(cell, n, 0.5f * (glm::dot(q, q) - glm::dot(p, p)));
+    const glm::dvec3 n = glm::dvec3(samples[other].position) - p;
+    const double offset = 0.5 * glm::dot(n, n);  // the bisector: n.y = |n|^2 / 2
+    if (offset <= 0.0) continue;                 // coincident samples: split below by count
+    next.clear();
+    for (std::size_t k = 0; k < cell.size(); ++k) {
+      const glm::dvec3& a = cell[k];
+      const glm::dvec3& b = cell[(k + 1) % cell.size()];
+      const double da = glm::dot(n, a) - offset, db = glm::dot(n, b) - offset;
+      if (da <= 0.0) next.push_back(a);
+      if ((da <= 0.0) != (db <= 0.0)) next.push_back(a + (da / (da - db)) * (b - a));
+    }
+    cell.swap(next);
   }
-  return cell;
+  std::vector<glm::vec3> out;
+  out.reserve(cell.size());
+  for (const glm::dvec3& y : cell) out.push_back(glm::vec3(p + y));
+  return out;
+}
+
+// Where the ray meets the plane of the triangle it hit, in double. Embree's
+// float hit distance has its own error of a few ulps of the ray's length,
+// which a ray grazing the surface stretches along it; the plane intersection
+// in double leaves only the rounding of the result. (The ray origin's own
+// rounding is stretched the same way and stays: docs/stability.md.)
+glm::vec3 hit_on_plane(const Scene& scene, std::uint32_t triangle, const glm::vec3& origin,
+                       const glm::vec3& dir, float t) {
+  const glm::dvec3 v0(scene.vertex(triangle, 0)), v1(scene.vertex(triangle, 1)),
+      v2(scene.vertex(triangle, 2));
+  const glm::dvec3 n = glm::cross(v1 - v0, v2 - v0);
+  const glm::dvec3 o(origin), d(dir);
+  const double den = glm::dot(n, d);
+  const double exact_t = den != 0.0 ? glm::dot(n, v0 - o) / den : static_cast<double>(t);
+  // Keep Embree's distance if the plane disagrees by more than a rounding
+  // error would (a degenerate triangle).
+  if (!(std::abs(exact_t - static_cast<double>(t)) <= 1e-3 * std::abs(static_cast<double>(t))))
+    return origin + t * dir;
+  return glm::vec3(o + exact_t * d);
 }
 
 VoxelSamples sample_voxel(const Scene& scene, const RayTracer& tracer, const Voxelization& vox,
@@ -93,7 +130,7 @@ VoxelSamples sample_voxel(const Scene& scene, const RayTracer& tracer, const Vox
           if (!front && !scene.two_sided(h.triangle)) continue;
           const Material& m = scene.material_of(h.triangle);
           Sample s{};
-          s.position = origin + h.t * dir;
+          s.position = hit_on_plane(scene, h.triangle, origin, dir, h.t);
           s.normal = front ? h.geometric_normal : -h.geometric_normal;
           s.albedo = m.albedo;
           s.emission = m.emission;

@@ -214,27 +214,18 @@ TEST(StabilityExtreme, PowerOfTwoScaleGivesBitIdenticalFormFactorsAndTransport) 
   }
 }
 
-TEST(StabilityExtreme, DecimalScaleMovesAFewFormFactorsBy1e3) {
-  // Scaling by 1e-4 or 1e4 rounds every coordinate (the factor is not a power
-  // of two): a perturbation of one float ulp (~6e-8 relative). Expected from
-  // the math: F changes by float rounding only (~1e-6 relative). Measured:
-  // ~50 of 28224 entries move by up to 6e-4 of their value (max |dF| 1.7e-4
-  // at 1e4 on an entry of 0.41): some discrete choice in the pipeline flips
-  // on a one-ulp change of the geometry (the box's faces lie exactly on voxel
-  // boundaries at scale 1). Same patch count. This test holds the measured
-  // size (1e-3 of F max) so that it cannot grow unnoticed; the float-tolerance
-  // expectation is DISABLED_DecimalScaleGivesTheSameFormFactorsToFloatTolerance
-  // below, failing today (docs/stability.md).
-  for (const float factor : {1e-4f, 1e4f}) {
-    const ScaleDifference d = scale_difference(factor);
-    ASSERT_EQ(d.n, d.ref_n) << "scale " << factor;
-    EXPECT_LE(d.df, 1e-3 * d.f_max) << "scale " << factor;
-    EXPECT_LE(d.dt, 1e-3 * d.t_max) << "scale " << factor;
-  }
-}
-
-TEST(StabilityExtreme, DISABLED_DecimalScaleGivesTheSameFormFactorsToFloatTolerance) {
-  // The expectation from the math (see above); fails: 4e-4 relative at 1e4.
+TEST(StabilityExtreme, DecimalScaleGivesTheSameFormFactorsToFloatTolerance) {
+  // Scaling by 1e-4 or 1e4 (not powers of two) rounds the grid, the sampling
+  // rays' origins and every derived coordinate differently: one float ulp,
+  // 2^-24 ~ 6e-8 of the scene. No discrete choice flips (same voxels,
+  // samples, triangles, patch members). A sampling ray that grazes a wall
+  // turns its origin's ulp into a shift along the wall of 1/tan(angle) ulps
+  // (measured: sample positions move by up to 2e-6 of the scene, ~34 ulps);
+  // F, a smooth function of those positions, must then agree to that order:
+  // 1e-5 of its largest entry (170 ulps) leaves a margin of ~5 for the sums.
+  // Before the Voronoi cells and hit points were computed in double relative
+  // to the sample (patches/samples.cpp), cancellation in absolute float
+  // coordinates moved entries by up to 4e-4 of F max.
   for (const float factor : {1e-4f, 1e4f}) {
     const ScaleDifference d = scale_difference(factor);
     ASSERT_EQ(d.n, d.ref_n) << "scale " << factor;
@@ -254,28 +245,33 @@ BakeResult almost_touching() {
 TEST(StabilityExtreme, AlmostTouchingParallelSquares) {
   // Two unit squares 1e-3 apart (analytic F between them 0.998). Expected:
   // no NaN/Inf, entries >= 0, rows <= 1.02 (the near-field quadrature error
-  // the bake tolerates before warning, bake.cpp). Measured: rows 0.976..1.0045,
-  // but one entry is 1.0008: a single form factor above 1, which is
-  // impossible physically (F_pq <= 1). It is within the same 2% quadrature
-  // tolerance as the rows, so it is held to 1.02 here, and the physical
-  // bound is DISABLED_AlmostTouchingFormFactorsAreAtMostOne, failing today.
+  // the bake tolerates before warning, bake.cpp).
   const BakeResult r = almost_touching();
   const RowSums rs = row_sums(r.form_factors);
-  std::printf("stability: almost-touching n=%zu rows=[%.5f,%.5f] F max=%.5f non_finite=%zu\n",
-              r.patches.size(), rs.min, rs.max, r.checks.value_max, r.checks.non_finite);
+  std::printf(
+      "stability: almost-touching n=%zu rows=[%.5f,%.5f] F max=%.5f clamped_to_one=%zu "
+      "non_finite=%zu\n",
+      r.patches.size(), rs.min, rs.max, r.checks.value_max, r.checks.clamped_to_one,
+      r.checks.non_finite);
   EXPECT_EQ(r.checks.non_finite, 0u);
   EXPECT_EQ(non_finite(r.form_factors.values), 0u);
-  for (const float v : r.form_factors.values) {
-    EXPECT_GE(v, 0.0f);
-    EXPECT_LE(v, 1.02f);
-  }
+  for (const float v : r.form_factors.values) EXPECT_GE(v, 0.0f);
   EXPECT_LE(rs.max, 1.02);
   EXPECT_EQ(non_finite(r.transport.channels[0].t), 0u);
 }
 
-TEST(StabilityExtreme, DISABLED_AlmostTouchingFormFactorsAreAtMostOne) {
+TEST(StabilityExtreme, AlmostTouchingFormFactorsAreAtMostOne) {
+  // F_pq is the mean over P of the form factor from a point of P to Q, at
+  // most 1 everywhere, so F_pq <= 1 exactly. The near-field quadrature (each
+  // receiver piece refines the source its own way, and the integrand drops
+  // from ~1 to ~0 within 1e-3 of a receiver's edge) estimated one entry at
+  // 1.0008; the bake sets such entries to 1 (never further from the exact
+  // value) and counts them in the manifest. They must stay rare: clamping
+  // mends quadrature error, it is not how F is made.
   const BakeResult r = almost_touching();
   for (const float v : r.form_factors.values) EXPECT_LE(v, 1.0f);
+  EXPECT_LE(r.checks.value_max, 1.0);
+  EXPECT_LE(r.checks.clamped_to_one, r.form_factors.values.size() / 100);
 }
 
 TEST(StabilityExtreme, SingleTriangleFailsWithAClearError) {
