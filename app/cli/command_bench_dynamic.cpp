@@ -4,15 +4,31 @@
 // like the paper's Table 2, then the local-matrix update against LU
 // recomputation and the transient memory with and without aliasing (the
 // paper's Table 1). Needs the exact matrices: bake with --dump-matrices.
+// With the scene (the manifest's path, or --scene) it also renders the scene
+// camera's indirect picture of every method the way `bounce solve` does
+// (runtime/camera_image.h) and compares it with the full product's (SSIM,
+// relative RMSE) and with the path-traced reference (core/reference, cached).
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
 #include "bake/bake_reader.h"
+#include "base/diagnostics.h"
 #include "base/error.h"
 #include "bench_commands.h"
+#include "console_progress.h"
 #include "dynamic/dynamic_bench.h"
 #include "io/npy.h"
+#include "metrics/image_metrics.h"
+#include "raytrace/ray_tracer.h"
+#include "reference/reference_cache.h"
+#include "runtime/area_lights.h"
+#include "runtime/camera_image.h"
+#include "runtime/direct_light.h"
+#include "runtime/patch_gather.h"
+#include "scene/scene_loader.h"
 
 namespace bounce::cli {
 
@@ -27,6 +43,11 @@ struct DynamicBenchOptions {
   int bounces = 16;
   bool no_local = false;
   bool json = false;
+  std::string scene;  // empty: the manifest's scene path
+  int width = 96, height = 72;
+  bool no_images = false;
+  int reference_samples = 256;  // 0: no reference
+  bool quiet = false;
 };
 
 void run(const DynamicBenchOptions& opt) {
@@ -36,6 +57,11 @@ void run(const DynamicBenchOptions& opt) {
   if (opt.repeats < 1 || opt.repeats > 10000)
     throw Error("--repeats", "must be between 1 and 10000");
   if (opt.bounces < 1 || opt.bounces > 1000) throw Error("--bounces", "must be between 1 and 1000");
+  if (opt.width < 16 || opt.width > 4096 || opt.height < 16 || opt.height > 4096)
+    throw Error("--width/--height",
+                "must be between 16 and 4096 (SSIM compares pixels at least 5 from the border)");
+  if (opt.reference_samples < 0 || opt.reference_samples > 1 << 16)
+    throw Error("--reference-samples", "must be between 0 and 65536");
   const LoadedBake b = BakeReader::read(opt.bake, true);
   if (b.dense.empty())
     throw Error(opt.bake, "holds no exact transport matrix T.npy: bake with --dump-matrices");
@@ -62,6 +88,68 @@ void run(const DynamicBenchOptions& opt) {
     if (f.data.size() != in.n * in.n) throw Error(f_path.string(), "is not N x N");
     in.form_factors = f.data.data();
   }
+  // The pictures: the scene as baked, its camera, the gather `bounce solve`
+  // uses; the reference under the scene's own lights.
+  std::unique_ptr<Scene> scene;
+  std::unique_ptr<RayTracer> tracer;
+  ConsoleProgress console(opt.quiet || opt.json);
+  bool reference_cached = false;
+  if (!opt.no_images) {
+    const std::filesystem::path scene_path =
+        opt.scene.empty()
+            ? std::filesystem::path(b.manifest.at("scene").at("path").get<std::string>())
+            : std::filesystem::path(opt.scene);
+    if (!std::filesystem::exists(scene_path))
+      throw Error(scene_path.string(),
+                  "the baked scene is not there any more (give it with --scene PATH, or "
+                  "--no-images)");
+    Diagnostics diag;
+    scene = std::make_unique<Scene>(SceneLoader(diag).load(scene_path));
+    const auto baked_triangles = b.manifest.at("scene").at("triangles").get<std::size_t>();
+    if (scene->triangle_count() != baked_triangles)
+      throw Error(scene_path.string(), "has " + std::to_string(scene->triangle_count()) +
+                                           " triangles, the bake was made from " +
+                                           std::to_string(baked_triangles) +
+                                           ": not the same scene");
+    tracer = std::make_unique<RayTracer>(*scene);
+    const TransferGrid grid = TransferGrid::from_manifest(b.manifest);
+    CameraImageSettings cs;
+    cs.width = opt.width;
+    cs.height = opt.height;
+    cs.samples_per_side = 1;
+    const RayTracer* t = tracer.get();
+    const std::vector<Patch>* patches = &b.patches.patches;
+    in.render_indirect = [t, patches, grid, cs](const std::vector<glm::vec3>& indirect) {
+      const PatchGather gather(*patches, indirect, grid, t, GatherSettings{});
+      return render_camera(*t, gather, cs).indirect;
+    };
+    const std::vector<AreaLight> area = area_lights(*scene);
+    in.scene_light = first_bounce(
+        b.patches, direct_irradiance(*tracer, b.samples, b.patches, scene->lights, area));
+    // A scene without lights has a black reference: nothing to compare.
+    const bool lit = !scene->lights.empty() || !area.empty();
+    if (opt.reference_samples > 0 && lit) {
+      ReferenceSettings rs;
+      rs.samples = opt.reference_samples;
+      const ReferencePathTracer pt(*tracer, rs);
+      const ReferenceCache cache(ReferenceCache::default_dir());
+      const ReferenceImages ref = cached_reference_images(pt, opt.width, opt.height, &cache,
+                                                          &console.progress(), &reference_cached);
+      in.reference_indirect = ref.indirect;
+      in.reference_variance = ref.indirect_variance;
+      in.image_mask = mask_from_coverage(ref.coverage);
+    } else {
+      const PatchGather none(b.patches.patches, std::vector<glm::vec3>(in.n, glm::vec3(0.0f)), grid,
+                             tracer.get(), GatherSettings{});
+      in.image_mask = mask_from_coverage(render_camera(*tracer, none, cs).coverage);
+    }
+    if (!lit) in.scene_light.clear();
+    if (std::none_of(in.image_mask.begin(), in.image_mask.end(), [](std::uint8_t m) { return m; }))
+      throw Error(scene_path.string(),
+                  "the scene camera sees no geometry: nothing to compare "
+                  "(use --no-images)");
+  }
+
   DynamicBenchSettings settings;
   settings.temporal.samples_per_patch = opt.samples;
   settings.temporal.history_weight = opt.weight;
@@ -80,6 +168,17 @@ void run(const DynamicBenchOptions& opt) {
                          {"ghosting_frames", r.ghosting_frames},
                          {"persistent_bytes", r.persistent_bytes},
                          {"transient_bytes", r.transient_bytes}});
+    for (std::size_t i = 0; i < bench.methods.size(); ++i) {
+      const DynamicMethodRow& r = bench.methods[i];
+      if (r.images) {
+        methods[i]["image_ssim_after_1_4_16_64"] = r.image_ssim;
+        methods[i]["image_relative_rmse_after_1_4_16_64"] = r.image_error;
+      }
+      if (r.against_reference) {
+        methods[i]["reference_relative_rmse"] = r.reference_error;
+        methods[i]["reference_ssim"] = r.reference_ssim;
+      }
+    }
     nlohmann::json local = nlohmann::json::array();
     for (const LocalMatrixRow& r : bench.local)
       local.push_back({{"patch", r.patch},
@@ -95,12 +194,17 @@ void run(const DynamicBenchOptions& opt) {
                         {"patches", r.patches},
                         {"unaliased_bytes", r.unaliased_bytes},
                         {"aliased_bytes", r.aliased_bytes}});
-    std::cout << nlohmann::json{{"bake", opt.bake},          {"patches", bench.n},
-                                {"samples", opt.samples},    {"weight", opt.weight},
-                                {"methods", methods},        {"local_matrix", local},
-                                {"transient_memory", memory}}
-                     .dump(2)
-              << '\n';
+    nlohmann::json summary{{"bake", opt.bake},          {"patches", bench.n},
+                           {"samples", opt.samples},    {"weight", opt.weight},
+                           {"methods", methods},        {"local_matrix", local},
+                           {"transient_memory", memory}};
+    if (bench.image_width > 0)
+      summary["pictures"] = {{"width", bench.image_width},
+                             {"height", bench.image_height},
+                             {"reference_samples", opt.reference_samples},
+                             {"reference_cached", reference_cached},
+                             {"reference_noise", bench.reference_noise}};
+    std::cout << summary.dump(2) << '\n';
     return;
   }
   std::printf(
@@ -115,6 +219,9 @@ void run(const DynamicBenchOptions& opt) {
       "1.5x its err@64 (at least 1e-3); persist: matrices/tables and the history; transient: "
       "the frame graph's per-frame buffers incl. a local-matrix update, without aliasing except "
       "in the aliasing row.\n");
+  if (bench.image_width > 0 && bench.reference_noise > 0.0)
+    std::printf("reference: %d paths per pixel%s, under the scene's own lights\n",
+                opt.reference_samples, reference_cached ? " (cached)" : "");
 }
 
 }  // namespace
@@ -125,8 +232,10 @@ void register_bench_dynamic(CLI::App& bench) {
       "dynamic",
       "Dynamic radiosity (paper 003): full multi-bounce product vs temporal radiosity (alias "
       "tables, C++ and OpenCL, with and without frame-graph memory aliasing) vs classic; ms per "
-      "frame, error after 1/4/16/64 frames, ghosting after a light jump, memory; local-matrix "
-      "rank-1 updates vs LU. Needs a bake made with --dump-matrices");
+      "frame, error after 1/4/16/64 frames (per patch, and SSIM / relative RMSE of the scene "
+      "camera's picture), ghosting after a light jump, error and SSIM against the path-traced "
+      "reference, memory; local-matrix rank-1 updates vs LU. Needs a bake made with "
+      "--dump-matrices");
   cmd->add_option("bake", opt->bake, "Bake folder with T.npy (and F.npy)")->required();
   cmd->add_option("--samples", opt->samples, "Temporal radiosity: samples per patch and frame")
       ->capture_default_str();
@@ -140,6 +249,19 @@ void register_bench_dynamic(CLI::App& bench) {
   cmd->add_option("--bounces", opt->bounces, "K of the classic baseline")->capture_default_str();
   cmd->add_flag("--no-local", opt->no_local,
                 "Skip the local-matrix rows (they factorise T twice by LU)");
+  cmd->add_option("--scene", opt->scene,
+                  "The scene the bake was made from, if it moved (default: the path in the "
+                  "bake's manifest)");
+  cmd->add_option("--width", opt->width, "Width of the compared camera pictures")
+      ->capture_default_str();
+  cmd->add_option("--height", opt->height, "Height of the compared camera pictures")
+      ->capture_default_str();
+  cmd->add_option("--reference-samples", opt->reference_samples,
+                  "Paths per pixel of the path-traced reference (cached; 0: none)")
+      ->capture_default_str();
+  cmd->add_flag("--no-images", opt->no_images,
+                "Compare per-patch light only: no camera pictures, no reference");
+  cmd->add_flag("--quiet,-q", opt->quiet, "No progress bars");
   cmd->add_flag("--json", opt->json, "Machine-readable output");
   cmd->callback([opt]() { run(*opt); });
 }

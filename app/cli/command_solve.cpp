@@ -9,6 +9,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <span>
 #include <sstream>
 #include <string>
 
@@ -80,6 +81,7 @@ void move_light(Scene& scene, const std::string& spec) {
 struct Multiplier {
   std::string what;
   IndirectMultiply multiply;
+  IndirectMultiplySpan multiply_into;  // the same, into the frame graph's arena
   std::shared_ptr<void> keep_alive;
   std::vector<const float*> dense;
 };
@@ -97,6 +99,9 @@ Multiplier make_multiplier(const LoadedBake& b, const std::string& choice, Diagn
     const auto map = b.channel_of_rgb;
     const auto dense = m.dense;
     m.multiply = [dense, n, map](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
+      dense_indirect(dense, n, map, in, out);
+    };
+    m.multiply_into = [dense, n, map](std::span<const glm::vec3> in, std::span<glm::vec3> out) {
       dense_indirect(dense, n, map, in, out);
     };
     m.what = "dense float32 (OpenBLAS sgemv)";
@@ -124,6 +129,9 @@ Multiplier make_multiplier(const LoadedBake& b, const std::string& choice, Diagn
       m.multiply = [cl](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
         cl->multiply(in, out);
       };
+      m.multiply_into = [cl](std::span<const glm::vec3> in, std::span<glm::vec3> out) {
+        cl->multiply(in, out);
+      };
       m.keep_alive = cl;
       return m;
     } catch (const Error& e) {
@@ -134,6 +142,9 @@ Multiplier make_multiplier(const LoadedBake& b, const std::string& choice, Diagn
   auto cpp = std::make_shared<CompressedTransport>(*b.compressed, b.channel_of_rgb);
   m.what = std::string("compressed, C++ (") + cpp->block_loop() + ")";
   m.multiply = [cpp](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
+    cpp->multiply(in, out);
+  };
+  m.multiply_into = [cpp](std::span<const glm::vec3> in, std::span<glm::vec3> out) {
     cpp->multiply(in, out);
   };
   m.keep_alive = cpp;
@@ -179,7 +190,12 @@ void run_solve(const SolveOptions& opt) {
 
   const std::vector<AreaLight> area = area_lights(scene);
   t = Clock::now();
-  RuntimeFrame frame(tracer, bake.samples, bake.patches, multiplier.multiply);
+  // b and T b are read from the record after the frame (it is written out
+  // anyway), so the frame keeps no published copies of them: its only
+  // persistent buffers are the record and the exitance.
+  RuntimeFrameSettings frame_settings;
+  frame_settings.publish = false;
+  RuntimeFrame frame(tracer, bake.samples, bake.patches, multiplier.multiply_into, frame_settings);
   timings["compile_frame_graph"] = since(t);
   frame.solve(scene.lights, area);
   // Pass times, grouped as before the graph: direct light + first hit (and
@@ -202,6 +218,10 @@ void run_solve(const SolveOptions& opt) {
   const std::size_t n = bake.size();
   // The graph recorded E, b and T b per patch in this layout.
   write_npy(out / "patch_light.npy", frame.record(), {n, 3, 3});
+  const auto recorded = [&frame](std::size_t p, std::size_t slot) {
+    const float* r = frame.record().data() + 9 * p + 3 * slot;
+    return glm::vec3(r[0], r[1], r[2]);
+  };
   json files = json::array({"patch_light.npy"});
 
   const TransferGrid grid = TransferGrid::from_manifest(bake.manifest);
@@ -217,8 +237,9 @@ void run_solve(const SolveOptions& opt) {
   if (!opt.no_images) {
     t = Clock::now();
     // The camera adds the direct light itself: gather only the indirect.
-    const PatchGather indirect(bake.patches.patches, frame.indirect(), grid, &tracer,
-                               GatherSettings{});
+    std::vector<glm::vec3> tb(n);
+    for (std::size_t p = 0; p < n; ++p) tb[p] = recorded(p, 2);
+    const PatchGather indirect(bake.patches.patches, tb, grid, &tracer, GatherSettings{});
     CameraImageSettings cs;
     cs.width = opt.width;
     cs.height = opt.height;
@@ -239,7 +260,7 @@ void run_solve(const SolveOptions& opt) {
   double direct_sum = 0.0, indirect_sum = 0.0;
   for (std::size_t p = 0; p < n; ++p) {
     const float a = bake.patches.patches[p].area;
-    const glm::vec3 b = frame.first_hit()[p], tb = frame.indirect()[p];
+    const glm::vec3 b = recorded(p, 1), tb = recorded(p, 2);
     direct_sum += a * (b.r + b.g + b.b);
     indirect_sum += a * (tb.r + tb.g + tb.b);
   }

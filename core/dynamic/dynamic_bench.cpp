@@ -12,6 +12,7 @@
 #include "dynamic/frame_graph.h"
 #include "dynamic/local_transport.h"
 #include "dynamic/temporal_radiosity_cl.h"
+#include "metrics/image_metrics.h"
 #include "runtime/classic_radiosity.h"
 #include "runtime/dense_transport.h"
 #include "transport/inverse_transport.h"
@@ -50,18 +51,37 @@ struct FrameMethod {
 // Errors after 1, 4, 16, 64 frames on the first light; then the light
 // jumps and ghosting lasts until the error is back under `threshold` (1.5x
 // this method's own error after 64 frames, or 1e-3 for exact methods);
-// then the best time of `repeats` frames.
+// then the best time of `repeats` frames. With `full_image` (the full
+// product's camera picture of the first light) the pictures at the same
+// marks are compared with it, and with a reference the picture after
+// in.reference_frames frames of the scene's lights with the path tracer's.
 void measure(DynamicMethodRow& row, const FrameMethod& m, const DynamicBenchInput& in,
              const DynamicBenchSettings& s, const std::vector<glm::vec3>& ref0,
-             const std::vector<glm::vec3>& ref1) {
+             const std::vector<glm::vec3>& ref1, const RgbFloatImage* full_image) {
   std::vector<glm::vec3> out;
   m.reset();
-  int next = 0;
+  std::size_t next = 0;
   const int marks[4] = {1, 4, 16, 64};
   for (int f = 1; f <= 64; ++f) {
     m.frame(in.light, out);
-    if (f == marks[next])
-      row.error[static_cast<std::size_t>(next++)] = relative_rms(out, ref0, in.area);
+    if (f != marks[next]) continue;
+    row.error[next] = relative_rms(out, ref0, in.area);
+    if (full_image) {
+      const ImageErrors e = image_errors(in.render_indirect(out), *full_image, in.image_mask);
+      row.images = true;
+      row.image_ssim[next] = e.ssim;
+      row.image_error[next] = e.relative_rmse;
+    }
+    ++next;
+  }
+  if (full_image && !in.scene_light.empty() && in.reference_indirect.width > 0) {
+    m.reset();
+    for (int f = 0; f < in.reference_frames; ++f) m.frame(in.scene_light, out);
+    const RgbFloatImage picture = in.render_indirect(out);
+    row.against_reference = true;
+    row.reference_error = noise_corrected_relative_rmse(picture, in.reference_indirect,
+                                                        in.reference_variance, in.image_mask);
+    row.reference_ssim = image_errors(picture, in.reference_indirect, in.image_mask).ssim;
   }
   const double threshold = std::max(1.5 * row.error[3], 1e-3);
   row.ghosting_frames = -1;
@@ -165,6 +185,27 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
   std::vector<glm::vec3> ref0, ref1;
   dense_indirect(in.transport, n, in.channel_of_rgb, in.light, ref0);
   dense_indirect(in.transport, n, in.channel_of_rgb, in.jumped_light, ref1);
+  if (!in.scene_light.empty() && in.scene_light.size() != n)
+    throw Error("bench dynamic", "the scene's light vector does not match the patch count");
+  RgbFloatImage full_picture;
+  const RgbFloatImage* full_image = nullptr;
+  if (in.render_indirect) {
+    full_picture = in.render_indirect(ref0);
+    full_image = &full_picture;
+    out.image_width = full_picture.width;
+    out.image_height = full_picture.height;
+    if (in.reference_indirect.width > 0) {
+      double var = 0.0, sq = 0.0;
+      for (std::size_t i = 0; i < in.reference_indirect.pixels.size(); ++i)
+        if (in.image_mask.empty() || in.image_mask[i])
+          for (glm::length_t c = 0; c < 3; ++c) {
+            var += in.reference_variance.pixels[i][c];
+            sq += static_cast<double>(in.reference_indirect.pixels[i][c]) *
+                  in.reference_indirect.pixels[i][c];
+          }
+      out.reference_noise = sq > 0.0 ? std::sqrt(var / sq) : 0.0;
+    }
+  }
 
   {
     DynamicMethodRow row;
@@ -175,7 +216,7 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
              [&](const std::vector<glm::vec3>& b, std::vector<glm::vec3>& y) {
                dense_indirect(in.transport, n, in.channel_of_rgb, b, y);
              }},
-            in, s, ref0, ref1);
+            in, s, ref0, ref1, full_image);
     row.persistent_bytes = matrix_bytes(n, channels);
     row.transient_bytes = graph_transient_bytes(n, ch, false, false);
     out.methods.push_back(row);
@@ -197,7 +238,7 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
                temporal.step(b, history);
                y = history;
              }},
-            in, s, ref0, ref1);
+            in, s, ref0, ref1, full_image);
     row.persistent_bytes = tables + vec;
     row.transient_bytes = graph_transient_bytes(n, ch, true, false);
     out.methods.push_back(row);
@@ -214,7 +255,7 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
                  cl.step(b);
                  cl.read_history(y);
                }},
-              in, s, ref0, ref1);
+              in, s, ref0, ref1, full_image);
       row.persistent_bytes = tables + vec;
       row.transient_bytes = graph_transient_bytes(n, ch, true, false);
     } catch (const Error& e) {
@@ -263,7 +304,7 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
                temporal.advance_frame();
                y = applied;
              }},
-            in, s, ref0, ref1);
+            in, s, ref0, ref1, full_image);
     row.persistent_bytes = tables + vec;
     row.transient_bytes = graph_transient_bytes(n, ch, true, true);
     out.methods.push_back(row);
@@ -280,7 +321,7 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
       measure(row,
               {[] {}, [&](const std::vector<glm::vec3>& b,
                           std::vector<glm::vec3>& y) { classic.multiply(b, y); }},
-              in, s, ref0, ref1);
+              in, s, ref0, ref1, full_image);
       row.persistent_bytes = n * n * sizeof(float) + n * sizeof(glm::vec3);
       row.transient_bytes = 2 * n * sizeof(float) + 2 * vec;  // v, w; E, B
     }
@@ -333,6 +374,39 @@ std::string dynamic_bench_table(const DynamicBench& b) {
       std::snprintf(line, sizeof line, "%8zu %8.4f %11.2f %9.2f %14.1f %16.2e %12.2e\n", r.patch,
                     r.sigma, r.remove_ms, r.add_ms, r.recompute_ms, r.remove_vs_recompute,
                     r.round_trip);
+      s += line;
+    }
+  }
+  if (b.image_width > 0) {
+    std::snprintf(line, sizeof line,
+                  "\nscene camera's indirect picture (%dx%d) against the full product's: SSIM "
+                  "and relative RMSE after f frames%s\n",
+                  b.image_width, b.image_height,
+                  b.reference_noise > 0.0 ? "; and after 64 frames of the scene's lights "
+                                            "against the path-traced reference"
+                                          : "");
+    s += line;
+    std::snprintf(line, sizeof line, "%-42s %7s %7s %7s %7s %9s %9s %9s %9s %9s %8s\n", "method",
+                  "SSIM@1", "SSIM@4", "SSIM@16", "SSIM@64", "rel@1", "rel@4", "rel@16", "rel@64",
+                  "ref err", "ref SSIM");
+    s += line;
+    for (const DynamicMethodRow& r : b.methods) {
+      if (!r.available || !r.images) continue;
+      char reference[64] = "";
+      if (r.against_reference)
+        std::snprintf(reference, sizeof reference, "%9.3f %8.4f", r.reference_error,
+                      r.reference_ssim);
+      std::snprintf(line, sizeof line, "%-42s %7.4f %7.4f %7.4f %7.4f %9.2e %9.2e %9.2e %9.2e %s\n",
+                    r.method.c_str(), r.image_ssim[0], r.image_ssim[1], r.image_ssim[2],
+                    r.image_ssim[3], r.image_error[0], r.image_error[1], r.image_error[2],
+                    r.image_error[3], reference);
+      s += line;
+    }
+    if (b.reference_noise > 0.0) {
+      std::snprintf(line, sizeof line,
+                    "  ref err: noise-corrected relative RMSE (the reference's own noise %.3f); "
+                    "the full product's is the bake's own error\n",
+                    b.reference_noise);
       s += line;
     }
   }

@@ -8,19 +8,25 @@
 //    classic K iterations on F; ms per frame, the area-weighted relative RMS
 //    error against the full product after 1, 4, 16 and 64 frames, the
 //    ghosting time after the light jumps, and memory (persistent and
-//    transient);
+//    transient); given a renderer, also SSIM and relative RMSE of the scene
+//    camera's indirect picture against the full product's after 1, 4, 16
+//    and 64 frames, and, given the path-traced reference, each method's
+//    picture after 64 frames of the scene's own lights against it;
 //  * the local matrix: removing and adding one patch by the rank-1 update
 //    against recomputing T by LU;
 //  * transient memory with and without aliasing (the paper's Table 1) for
 //    the bake's patch count and the paper's scene sizes.
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "dynamic/temporal_radiosity.h"
+#include "io/exr_writer.h"
 
 namespace bounce {
 
@@ -33,6 +39,18 @@ struct DynamicBenchInput {
   int classic_bounces = 16;
   std::vector<float> area;                     // patch areas, the error weights
   std::vector<glm::vec3> light, jumped_light;  // b before and after the jump
+
+  // Optional image measures. render_indirect: the scene camera's indirect
+  // picture of per-patch indirect light T b (as `bounce solve` renders it);
+  // image_mask: the pixels to compare (1 = geometry).
+  std::function<RgbFloatImage(const std::vector<glm::vec3>& indirect)> render_indirect;
+  std::vector<std::uint8_t> image_mask;
+  // Optional, with render_indirect: b of the scene's own lights and the
+  // path-traced reference of the indirect picture under them (mean and
+  // variance of the mean per pixel).
+  std::vector<glm::vec3> scene_light;
+  RgbFloatImage reference_indirect, reference_variance;
+  int reference_frames = 64;  // frames of scene_light before the comparison
 };
 
 struct DynamicBenchSettings {
@@ -50,6 +68,14 @@ struct DynamicMethodRow {
   std::array<double, 4> error{};  // after 1, 4, 16, 64 frames
   int ghosting_frames = 0;        // -1: not ended within the limit
   std::size_t persistent_bytes = 0, transient_bytes = 0;
+  // With render_indirect: the camera's indirect picture after 1, 4, 16, 64
+  // frames against the full product's (mean SSIM, relative RMSE).
+  bool images = false;
+  std::array<double, 4> image_ssim{}, image_error{};
+  // With the reference: after reference_frames frames of the scene's
+  // lights, noise-corrected relative RMSE and SSIM against the path tracer.
+  bool against_reference = false;
+  double reference_error = 0.0, reference_ssim = 0.0;
 };
 
 struct LocalMatrixRow {
@@ -71,7 +97,9 @@ struct DynamicBench {
   std::vector<DynamicMethodRow> methods;
   std::vector<LocalMatrixRow> local;
   std::vector<TransientMemoryRow> memory;
-  double ghosting_threshold = 0.0;  // the error level that ends ghosting
+  double ghosting_threshold = 0.0;        // the error level that ends ghosting
+  int image_width = 0, image_height = 0;  // 0: no image measures
+  double reference_noise = 0.0;           // the reference's own relative noise
 };
 
 DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSettings& settings);

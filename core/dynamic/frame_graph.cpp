@@ -1,5 +1,7 @@
 #include "dynamic/frame_graph.h"
 
+#include <algorithm>
+#include <limits>
 #include <string>
 
 #include "base/error.h"
@@ -71,8 +73,21 @@ void FrameGraph::compile(bool alias, std::size_t alignment) {
 void FrameGraph::execute() const {
   if (!compiled_) throw Error("frame graph", "execute() before compile()");
   const Context context(*this);
-  for (const Pass& pass : passes_)
-    if (pass.run) pass.run(context);
+  if (!poison_) {
+    for (const Pass& pass : passes_)
+      if (pass.run) pass.run(context);
+    return;
+  }
+  auto* floats = reinterpret_cast<float*>(arena_.data());
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::fill(floats, floats + arena_.size() * 4, nan);
+  for (std::size_t p = 0; p < passes_.size(); ++p) {
+    if (passes_[p].run) passes_[p].run(context);
+    for (std::size_t r = 0; r < resources_.size(); ++r)
+      if (resources_[r].transient && lifetimes_[r].last == p)
+        std::fill_n(floats + placement_.offsets[r] / sizeof(float),
+                    (resources_[r].bytes + sizeof(float) - 1) / sizeof(float), nan);
+  }
 }
 
 void* FrameGraph::data(ResourceId id) const {

@@ -49,6 +49,13 @@ class FrameGraph {
   void compile(bool alias, std::size_t alignment = 256);
   // Runs every pass in order (compile() first).
   void execute() const;
+  // Checking mode (tests, debugging): execute() first fills the whole arena
+  // with NaN and, after each pass, the range of every transient whose
+  // lifetime ended with that pass. A pass that read memory no live resource
+  // owns, or an aliasing that let a dead buffer's range cover a live one,
+  // then shows as NaN in the outputs. Off by default (it costs a write of
+  // the arena per frame).
+  void set_poison_dead_transients(bool on) { poison_ = on; }
 
   // After compile(): the arena size, and what the transients would take
   // without aliasing; the imported resources' bytes (not in the arena).
@@ -56,6 +63,9 @@ class FrameGraph {
   std::size_t unaliased_transient_bytes() const;
   std::size_t max_live_transient_bytes() const;
   std::size_t imported_bytes() const;
+  // The memory actually allocated for the arena (transient_bytes() rounded
+  // up to the storage's 16-byte units).
+  std::size_t arena_bytes() const { return arena_.size() * sizeof(glm::vec4); }
 
   struct Resource {
     std::string name;
@@ -83,6 +93,7 @@ class FrameGraph {
   TransientPlacement placement_;
   std::size_t alignment_ = 256;
   bool compiled_ = false;
+  bool poison_ = false;
   // 16-byte aligned storage; offsets are multiples of the alignment.
   mutable std::vector<glm::vec4> arena_;
 };

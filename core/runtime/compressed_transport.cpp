@@ -20,9 +20,19 @@ namespace bounce {
 namespace {
 
 using Tables = CompressedTransportTables;
-// Accumulates block row I of T~ times b (stored order, colour-major) into
-// acc[row within the block row][colour].
-using BlockRowFn = void (*)(const Tables&, const float*, std::size_t, float (*)[3]);
+// What a block loop reads besides the tables: b in stored order, colour-major
+// (float32), and for the bfloat16 loop the same b and the BC1 palette tables
+// rounded to bfloat16 (b16_stride entries per colour, zero past the padding).
+struct BlockRowInput {
+  const Tables& t;
+  const float* b;
+  const std::uint16_t* b16 = nullptr;
+  std::size_t b16_stride = 0;
+  const std::uint16_t* tables16 = nullptr;
+};
+// Accumulates block row I of T~ times b into acc[row within the block
+// row][colour].
+using BlockRowFn = void (*)(const BlockRowInput&, std::size_t, float (*)[3]);
 // Adds the kept entries' corrections of block row I (b: 4 floats per stored
 // column, R, G, B, 0) to the same accumulators.
 using CorrectionsFn = void (*)(const Tables&, const float*, std::size_t, float (*)[3]);
@@ -42,7 +52,9 @@ std::uint64_t load_u64(const std::uint8_t* p) {
 }
 
 template <DdsFormat kFormat, int kSlots>
-void block_row_portable(const Tables& t, const float* b, std::size_t I, float (*acc)[3]) {
+void block_row_portable(const BlockRowInput& in, std::size_t I, float (*acc)[3]) {
+  const Tables& t = in.t;
+  const float* b = in.b;
   constexpr int kLevels = kFormat == DdsFormat::kBc1 ? 4 : 8;
   constexpr int kBits = kFormat == DdsFormat::kBc1 ? 2 : 3;
   const std::size_t nb = t.block_rows, padded = t.padded;
@@ -154,8 +166,10 @@ __attribute__((target("avx2,fma"))) inline void bc1_offsets(const Tables& t,
 }
 
 template <DdsFormat kFormat, int kSlots>
-__attribute__((target("avx2,fma"))) void block_row_avx2(const Tables& t, const float* b,
-                                                        std::size_t I, float (*acc)[3]) {
+__attribute__((target("avx2,fma"))) void block_row_avx2(const BlockRowInput& in, std::size_t I,
+                                                        float (*acc)[3]) {
+  const Tables& t = in.t;
+  const float* b = in.b;
   constexpr bool kBc1 = kFormat == DdsFormat::kBc1;
   constexpr std::size_t kLevels = kBc1 ? 4 : 8;
   const std::size_t nb = t.block_rows, padded = t.padded;
@@ -284,55 +298,174 @@ __attribute__((target("avx512f"))) inline void add_rows(__m512 rows, float (*acc
     acc[r][k] += (lanes[4 * r] + lanes[4 * r + 1]) + (lanes[4 * r + 2] + lanes[4 * r + 3]);
 }
 
+// The palette-table offsets (in entries of bc1_tables) of every block of a
+// block row, per colour: offsets[kSlots * J + k] for colour k (one per block
+// with one slot, which every colour uses), computed before the block loop.
+// Computing them 8 blocks at a time inside the loop, from vector stores
+// read back as scalars, stalled on store-to-load forwarding: the whole loop
+// was 1.3x slower on this machine's AMD EPYC (docs/benchmarks.md).
 template <int kSlots>
-__attribute__((target("avx512f,avx2,fma"))) void block_row_avx512_bc1(const Tables& t,
-                                                                      const float* b, std::size_t I,
+inline void bc1_row_offsets(const Tables& t, const std::uint8_t* blocks, std::uint32_t* offsets) {
+  std::array<std::uint32_t, 3> base{}, shift{}, bits{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const auto s = static_cast<std::size_t>(kSlots == 1 ? 0 : t.slot_of_colour[k]);
+    base[k] = static_cast<std::uint32_t>(t.bc1_table_offset[s]);
+    shift[k] = t.bc1_field_shift[s];
+    bits[k] = t.bc1_field_bits[s];
+  }
+  for (std::size_t J = 0; J < t.block_rows; ++J) {
+    const std::uint32_t endpoints = load_u32(blocks + 8 * J);
+    for (std::size_t k = 0; k < static_cast<std::size_t>(kSlots); ++k)
+      offsets[kSlots * J + k] = base[k] + 4 * bc1_palette_key(endpoints, shift[k], bits[k]);
+  }
+}
+
+// Per-thread scratch for a block row's offsets (the product runs block rows
+// on OpenMP threads; one allocation per thread, reused by every product).
+inline std::uint32_t* row_offsets_scratch(std::size_t count) {
+  thread_local std::vector<std::uint32_t> scratch;
+  if (scratch.size() < count) scratch.resize(count);
+  return scratch.data();
+}
+
+template <int kSlots>
+__attribute__((target("avx512f,avx2,fma"))) void block_row_avx512_bc1(const BlockRowInput& in,
+                                                                      std::size_t I,
                                                                       float (*acc)[3]) {
+  const Tables& t = in.t;
   const std::size_t nb = t.block_rows, padded = t.padded;
   const std::uint8_t* blocks = &t.blocks[I * nb * 8];
   const float* tables = t.bc1_tables.data();
-  alignas(32) std::uint32_t offset[3][8] = {};
-  const std::size_t slot_r = kSlots == 1 ? 0 : static_cast<std::size_t>(t.slot_of_colour[0]);
-  const std::size_t slot_g = kSlots == 1 ? 0 : static_cast<std::size_t>(t.slot_of_colour[1]);
-  const std::size_t slot_b = kSlots == 1 ? 0 : static_cast<std::size_t>(t.slot_of_colour[2]);
+  std::uint32_t* offsets = row_offsets_scratch(kSlots * nb);
+  bc1_row_offsets<kSlots>(t, blocks, offsets);
   const __m512i shift =
       _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
-  const float *b_r = b, *b_g = b + padded, *b_b = b + 2 * padded;
+  const float *b_r = in.b, *b_g = in.b + padded, *b_b = in.b + 2 * padded;
   // Named accumulators, two sets: GCC keeps an array of them indexed by
   // J & 1 on the stack, and the store-to-load chain then bounds the loop.
   __m512 r0 = _mm512_setzero_ps(), g0 = r0, b0 = r0, r1 = r0, g1 = r0, b1 = r0;
   const auto step = [&](std::size_t J, __m512 & ar, __m512 & ag, __m512 & ab)
       __attribute__((always_inline, target("avx512f,avx2,fma"))) {
-    const std::size_t lane = J % 8;
     const __m512i control =
         _mm512_srlv_epi32(_mm512_set1_epi32(static_cast<int>(load_u32(blocks + 8 * J + 4))), shift);
     const __m512 br = _mm512_broadcast_f32x4(_mm_loadu_ps(b_r + 4 * J));
     const __m512 bg = _mm512_broadcast_f32x4(_mm_loadu_ps(b_g + 4 * J));
     const __m512 bb = _mm512_broadcast_f32x4(_mm_loadu_ps(b_b + 4 * J));
+    const std::uint32_t* o = offsets + kSlots * J;
     if constexpr (kSlots == 1) {
-      const __m512 v = _mm512_permutevar_ps(
-          _mm512_broadcast_f32x4(_mm_loadu_ps(tables + offset[0][lane])), control);
+      const __m512 v =
+          _mm512_permutevar_ps(_mm512_broadcast_f32x4(_mm_loadu_ps(tables + o[0])), control);
       ar = _mm512_fmadd_ps(v, br, ar);
       ag = _mm512_fmadd_ps(v, bg, ag);
       ab = _mm512_fmadd_ps(v, bb, ab);
     } else {
-      const __m512 pr = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + offset[slot_r][lane]));
-      const __m512 pg = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + offset[slot_g][lane]));
-      const __m512 pb = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + offset[slot_b][lane]));
+      const __m512 pr = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + o[0]));
+      const __m512 pg = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + o[1]));
+      const __m512 pb = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + o[2]));
       ar = _mm512_fmadd_ps(_mm512_permutevar_ps(pr, control), br, ar);
       ag = _mm512_fmadd_ps(_mm512_permutevar_ps(pg, control), bg, ag);
       ab = _mm512_fmadd_ps(_mm512_permutevar_ps(pb, control), bb, ab);
     }
   };
-  for (std::size_t J0 = 0; J0 < nb; J0 += 8) {
-    const std::size_t count = std::min<std::size_t>(8, nb - J0);
-    bc1_offsets(t, blocks + 8 * J0, count, offset);
-    std::size_t J = J0;
-    for (; J + 1 < J0 + count; J += 2) {
-      step(J, r0, g0, b0);
-      step(J + 1, r1, g1, b1);
+  std::size_t J = 0;
+  for (; J + 1 < nb; J += 2) {
+    step(J, r0, g0, b0);
+    step(J + 1, r1, g1, b1);
+  }
+  if (J < nb) step(J, r0, g0, b0);
+  add_rows(_mm512_add_ps(r0, r1), acc, 0);
+  add_rows(_mm512_add_ps(g0, g1), acc, 1);
+  add_rows(_mm512_add_ps(b0, b1), acc, 2);
+}
+
+// AVX-512 with bfloat16 products (BlockLoop::kBf16): two neighbouring blocks
+// (J, J + 1) of the block row in one 32-lane register of 16-bit values per
+// colour. vpmultishiftqb picks each texel's 2-bit index out of the two
+// blocks' 64-bit words (qwords alternate block J, block J + 1; qword 2r and
+// 2r + 1 hold row r), one vpternlogd keeps the 2 bits and adds 4 in block
+// J + 1's lanes, and vpermw reads the texel values from the two palettes
+// (bfloat16 tables, block J's in words 0-3, J + 1's in 4-7). vdpbf16ps
+// multiplies pairs of texels by b (bfloat16) and adds both products into a
+// float32 lane: one instruction per colour for 2 blocks, where the float32
+// loop needs two FMAs and two permutes. Lanes 4r..4r+3 still hold row r, so
+// add_rows() sums them as above. Rounding: palettes and b to 8-bit
+// mantissas (relative 2^-9 each), sums in float32.
+template <int kSlots>
+__attribute__((target("avx512f,avx512bw,avx512vl,avx512vbmi,avx512bf16,avx2,fma"))) void
+block_row_avx512_bf16(const BlockRowInput& in, std::size_t I, float (*acc)[3]) {
+  const Tables& t = in.t;
+  const std::size_t nb = t.block_rows;
+  const std::uint8_t* blocks = &t.blocks[I * nb * 8];
+  const std::uint16_t* tables = in.tables16;
+  // One block past the row's end: an odd last block pairs with a block of
+  // zero indices whose b is the zero padding of b16 (its offsets repeat the
+  // last block's, any valid palette: finite values times 0).
+  std::uint32_t* offsets = row_offsets_scratch(kSlots * (nb + 1));
+  bc1_row_offsets<kSlots>(t, blocks, offsets);
+  for (int k = 0; k < kSlots; ++k) offsets[kSlots * nb + k] = offsets[kSlots * (nb - 1) + k];
+  alignas(64) std::uint8_t control_bytes[64];
+  for (int q = 0; q < 8; ++q)
+    for (int m = 0; m < 4; ++m) {
+      // Word m of qword q: texel (row q / 2, column m) of its block, whose
+      // indices are the block word's bits 32 + 2 * (4 * row + column).
+      control_bytes[8 * q + 2 * m] = static_cast<std::uint8_t>(32 + 8 * (q / 2) + 2 * m);
+      control_bytes[8 * q + 2 * m + 1] = 0;
     }
-    if (J < J0 + count) step(J, r0, g0, b0);
+  const __m512i select = _mm512_load_si512(control_bytes);
+  const __m512i low2 = _mm512_set1_epi16(3);
+  const __m512i second_block = _mm512_set_epi64(0x0004000400040004LL, 0, 0x0004000400040004LL, 0,
+                                                0x0004000400040004LL, 0, 0x0004000400040004LL, 0);
+  const std::uint16_t *b_r = in.b16, *b_g = in.b16 + in.b16_stride,
+                      *b_b = in.b16 + 2 * in.b16_stride;
+  __m512 r0 = _mm512_setzero_ps(), g0 = r0, b0 = r0, r1 = r0, g1 = r0, b1 = r0;
+  const auto palettes = [&](std::uint32_t first, std::uint32_t second)
+      __attribute__((always_inline, target("avx512f,avx512bw,avx512vl,avx2"))) {
+    return _mm512_castsi128_si512(
+        _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(tables + first)),
+                           _mm_loadl_epi64(reinterpret_cast<const __m128i*>(tables + second))));
+  };
+  const auto b_pair = [&](const std::uint16_t* b, std::size_t J)
+      __attribute__((always_inline, target("avx512f,avx512bw,avx512vl,avx512bf16,avx2"))) {
+    return reinterpret_cast<__m512bh>(
+        _mm512_broadcast_i32x4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(b + 4 * J))));
+  };
+  const auto step = [&](const std::uint8_t* pair, std::size_t J, __m512& ar, __m512& ag, __m512& ab)
+      __attribute__((always_inline,
+                     target("avx512f,avx512bw,avx512vl,avx512vbmi,avx512bf16,avx2,fma"))) {
+    const __m512i words =
+        _mm512_broadcast_i32x4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(pair)));
+    // (indices & 3) | 4 in the second block's lanes.
+    const __m512i control = _mm512_ternarylogic_epi32(_mm512_multishift_epi64_epi8(select, words),
+                                                      low2, second_block, 0xEA);
+    const std::uint32_t* o = offsets + kSlots * J;
+    if constexpr (kSlots == 1) {
+      const auto v =
+          reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(control, palettes(o[0], o[1])));
+      ar = _mm512_dpbf16_ps(ar, v, b_pair(b_r, J));
+      ag = _mm512_dpbf16_ps(ag, v, b_pair(b_g, J));
+      ab = _mm512_dpbf16_ps(ab, v, b_pair(b_b, J));
+    } else {
+      ar = _mm512_dpbf16_ps(
+          ar, reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(control, palettes(o[0], o[3]))),
+          b_pair(b_r, J));
+      ag = _mm512_dpbf16_ps(
+          ag, reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(control, palettes(o[1], o[4]))),
+          b_pair(b_g, J));
+      ab = _mm512_dpbf16_ps(
+          ab, reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(control, palettes(o[2], o[5]))),
+          b_pair(b_b, J));
+    }
+  };
+  std::size_t J = 0;
+  for (; J + 4 <= nb; J += 4) {
+    step(blocks + 8 * J, J, r0, g0, b0);
+    step(blocks + 8 * J + 16, J + 2, r1, g1, b1);
+  }
+  for (; J + 2 <= nb; J += 2) step(blocks + 8 * J, J, r0, g0, b0);
+  if (J < nb) {
+    alignas(16) std::uint8_t last[16] = {};
+    std::memcpy(last, blocks + 8 * J, 8);
+    step(last, J, r0, g0, b0);
   }
   add_rows(_mm512_add_ps(r0, r1), acc, 0);
   add_rows(_mm512_add_ps(g0, g1), acc, 1);
@@ -342,15 +475,22 @@ __attribute__((target("avx512f,avx2,fma"))) void block_row_avx512_bc1(const Tabl
 #pragma GCC diagnostic pop
 
 bool cpu_has_avx512() { return __builtin_cpu_supports("avx512f") && cpu_has_avx2(); }
+bool cpu_has_avx512_bf16() {
+  return cpu_has_avx512() && __builtin_cpu_supports("avx512bw") &&
+         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512vbmi") &&
+         __builtin_cpu_supports("avx512bf16");
+}
 
 #else
 bool cpu_has_avx2() { return false; }
 bool cpu_has_avx512() { return false; }
+bool cpu_has_avx512_bf16() { return false; }
 #endif
 
-BlockRowFn block_row_function(const Tables& t, bool avx2, bool avx512) {
+BlockRowFn block_row_function(const Tables& t, bool avx2, bool avx512, bool bf16) {
   const bool bc1 = t.format == DdsFormat::kBc1;
 #ifdef BOUNCE_AVX2_BLOCK_LOOP
+  if (bf16 && bc1) return t.slots == 3 ? block_row_avx512_bf16<3> : block_row_avx512_bf16<1>;
   if (avx512 && bc1) return t.slots == 3 ? block_row_avx512_bc1<3> : block_row_avx512_bc1<1>;
   if (avx2) {
     if (!bc1) return block_row_avx2<DdsFormat::kBc4, 1>;
@@ -359,6 +499,7 @@ BlockRowFn block_row_function(const Tables& t, bool avx2, bool avx512) {
 #else
   (void)avx2;
   (void)avx512;
+  (void)bf16;
 #endif
   if (!bc1) return block_row_portable<DdsFormat::kBc4, 1>;
   return t.slots == 3 ? block_row_portable<DdsFormat::kBc1, 3>
@@ -387,6 +528,19 @@ CorrectionsFn corrections_function(const Tables& t, bool avx2) {
 
 }  // namespace
 
+std::uint16_t to_bfloat16(float x) {
+  // Round to nearest, ties to even, on the bit pattern: adding 0x7FFF plus
+  // the lowest kept bit carries into the kept half exactly when the dropped
+  // half is above one half ulp, or equal to it with an odd kept half.
+  std::uint32_t u = std::bit_cast<std::uint32_t>(x);
+  u += 0x7FFFu + ((u >> 16) & 1u);
+  return static_cast<std::uint16_t>(u >> 16);
+}
+
+float from_bfloat16(std::uint16_t h) {
+  return std::bit_cast<float>(static_cast<std::uint32_t>(h) << 16);
+}
+
 CompressedTransport::CompressedTransport(const CompressedMatrix& m,
                                          const std::array<int, 3>& channel_of_rgb, BlockLoop loop)
     : CompressedTransport(build_compressed_transport_tables(m, channel_of_rgb), loop) {}
@@ -394,26 +548,50 @@ CompressedTransport::CompressedTransport(const CompressedMatrix& m,
 CompressedTransport::CompressedTransport(CompressedTransportTables tables, BlockLoop loop)
     : tables_(std::move(tables)),
       avx2_(loop != BlockLoop::kPortable && cpu_has_avx2()),
-      avx512_(loop == BlockLoop::kFastest && cpu_has_avx512()),
+      avx512_((loop == BlockLoop::kFastest || loop == BlockLoop::kBf16) && cpu_has_avx512()),
+      bf16_(loop == BlockLoop::kBf16 && tables_.format == DdsFormat::kBc1 && cpu_has_avx512_bf16()),
       b_stored_(3 * tables_.padded, 0.0f),
-      b_quad_(4 * tables_.padded, 0.0f) {}
+      b_quad_(4 * tables_.padded, 0.0f) {
+  if (bf16_) {
+    bc1_tables16_.resize(tables_.bc1_tables.size());
+    for (std::size_t i = 0; i < bc1_tables16_.size(); ++i)
+      bc1_tables16_[i] = to_bfloat16(tables_.bc1_tables[i]);
+    // 8 zero entries past the padding per colour: the last block pair of a
+    // row with an odd block count reads b of 4 columns past the end.
+    b16_.assign(3 * (tables_.padded + 8), 0);
+  }
+}
+
+bool CompressedTransport::has_bf16_loop() { return cpu_has_avx512_bf16(); }
 
 const char* CompressedTransport::block_loop() const {
+  if (bf16_) return "avx512-bf16";
   if (avx512_ && tables_.format == DdsFormat::kBc1) return "avx512";
   return avx2_ ? "avx2" : "portable";
 }
 
 std::size_t CompressedTransport::bytes_per_product() const {
-  return tables_.bytes() + tables_.n * sizeof(glm::vec3);
+  // The bfloat16 loop reads its half-size copy of the BC1 palette tables.
+  const std::size_t tables16_saving =
+      bf16_ ? tables_.bc1_tables.size() * (sizeof(float) - sizeof(std::uint16_t)) : 0;
+  return tables_.bytes() - tables16_saving + tables_.n * sizeof(glm::vec3);
 }
 
 void CompressedTransport::multiply(const std::vector<glm::vec3>& b,
                                    std::vector<glm::vec3>& indirect) const {
+  if (b.size() == tables_.n && indirect.size() != tables_.n) indirect.resize(tables_.n);
+  multiply(std::span<const glm::vec3>(b), std::span<glm::vec3>(indirect));
+}
+
+void CompressedTransport::multiply(std::span<const glm::vec3> b,
+                                   std::span<glm::vec3> indirect) const {
   const Tables& t = tables_;
   if (b.size() != t.n)
     throw Error("compressed transport", "b has " + std::to_string(b.size()) + " entries for " +
                                             std::to_string(t.n) + " patches");
-  if (indirect.size() != t.n) indirect.resize(t.n);
+  if (indirect.size() != t.n)
+    throw Error("compressed transport", "the output has " + std::to_string(indirect.size()) +
+                                            " entries for " + std::to_string(t.n) + " patches");
   // Gather into stored order, colour-major for the blocks and 4 floats per
   // column for the corrections; padding columns stay 0 from construction.
   float* bs = b_stored_.data();
@@ -425,7 +603,13 @@ void CompressedTransport::multiply(const std::vector<glm::vec3>& b,
     bs[padded + i] = b4[4 * i + 1] = v.y;
     bs[2 * padded + i] = b4[4 * i + 2] = v.z;
   }
-  const BlockRowFn block_row = block_row_function(t, avx2_, avx512_);
+  const std::size_t b16_stride = padded + 8;
+  if (bf16_)
+    for (std::size_t k = 0; k < 3; ++k)
+      for (std::size_t i = 0; i < padded; ++i)
+        b16_[k * b16_stride + i] = to_bfloat16(bs[k * padded + i]);
+  const BlockRowInput input{t, bs, b16_.data(), b16_stride, bc1_tables16_.data()};
+  const BlockRowFn block_row = block_row_function(t, avx2_, avx512_, bf16_);
   const CorrectionsFn corrections = corrections_function(t, avx2_);
   glm::vec3* out = indirect.data();
   // Block rows write disjoint patches (the permutation is a bijection).
@@ -435,7 +619,7 @@ void CompressedTransport::multiply(const std::vector<glm::vec3>& b,
   for (std::ptrdiff_t row = 0; row < static_cast<std::ptrdiff_t>(t.block_rows); ++row) {
     const auto I = static_cast<std::size_t>(row);
     float acc[4][3] = {};
-    block_row(t, bs, I, acc);
+    block_row(input, I, acc);
     corrections(t, b4, I, acc);
     for (std::size_t r = 0; r < 4 && 4 * I + r < t.n; ++r)
       out[t.permutation[4 * I + r]] = glm::vec3(acc[r][0], acc[r][1], acc[r][2]);

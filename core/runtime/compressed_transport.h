@@ -18,6 +18,8 @@
 // loop does the same one texel at a time.
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -27,10 +29,20 @@
 
 namespace bounce {
 
-// The block loop: the fastest this CPU runs (AVX-512 for BC1, else AVX2,
-// else portable), AVX2 at most, or the portable one (the last two for tests
-// of the slower loops on CPUs that would take a faster one).
-enum class BlockLoop { kFastest, kAvx2, kPortable };
+// The block loop: the fastest float32 loop this CPU runs (AVX-512 for BC1,
+// else AVX2, else portable), AVX2 at most, or the portable one (the last two
+// for tests of the slower loops on CPUs that would take a faster one).
+// kBf16: BC1 products in bfloat16 with float32 sums (AVX-512 BF16 + VBMI;
+// has_bf16_loop() tells; else as kFastest): palettes and b are rounded to
+// 8-bit mantissas, a relative error of at most 2^-8 of sum |T~||b| per row
+// (measured ~5e-4 mean on the Cornell box, 30x below the compression error),
+// for fewer instructions per block (docs/benchmarks.md).
+enum class BlockLoop { kFastest, kAvx2, kPortable, kBf16 };
+
+// float <-> bfloat16 (the top 16 bits of a float32), rounding to nearest even;
+// for finite values.
+std::uint16_t to_bfloat16(float x);
+float from_bfloat16(std::uint16_t h);
 
 class CompressedTransport {
  public:
@@ -47,24 +59,35 @@ class CompressedTransport {
   // is resized only when its size differs, and nothing else is allocated.
   // Uses a scratch buffer of the object: one call at a time per object.
   void multiply(const std::vector<glm::vec3>& b, std::vector<glm::vec3>& indirect) const;
+  // The same into caller-owned memory (e.g. a frame graph's arena): both
+  // spans one entry per patch, throws bounce::Error otherwise. b must not
+  // overlap indirect.
+  void multiply(std::span<const glm::vec3> b, std::span<glm::vec3> indirect) const;
 
   std::size_t size() const { return tables_.n; }
   const CompressedTransportTables& tables() const { return tables_; }
   // Bytes one product reads: the tables plus b (in patch order, 12 per patch).
   std::size_t bytes_per_product() const;
-  // "avx512", "avx2" or "portable": the block loop multiply() runs.
+  // "avx512-bf16", "avx512", "avx2" or "portable": the block loop multiply() runs.
   const char* block_loop() const;
+  // Whether this CPU runs the bfloat16 loop (BlockLoop::kBf16).
+  static bool has_bf16_loop();
 
  private:
   CompressedTransportTables tables_;
   bool avx2_ = false;    // AVX2 block loop and corrections
   bool avx512_ = false;  // AVX-512 block loop (BC1)
+  bool bf16_ = false;    // AVX-512 bfloat16 block loop (BC1)
+  // BC1 palette tables rounded to bfloat16 (bf16_ only), same layout.
+  std::vector<std::uint16_t> bc1_tables16_;
   // b in stored order, padding columns 0, twice: colour-major (R of every
   // stored column, then G, then B), the block loop reads 4 columns of one
   // colour at once; and R, G, B, 0 per column, a kept entry reads its column's
   // 3 colours at once.
   mutable std::vector<float> b_stored_;
   mutable std::vector<float> b_quad_;
+  // bf16_ only: b_stored_ rounded to bfloat16, padded + 8 entries per colour.
+  mutable std::vector<std::uint16_t> b16_;
 };
 
 }  // namespace bounce

@@ -159,11 +159,19 @@ std::size_t ClCompressedTransport::bytes_per_product() const {
 
 void ClCompressedTransport::multiply(const std::vector<glm::vec3>& b,
                                      std::vector<glm::vec3>& indirect) const {
+  if (b.size() == impl_->n && indirect.size() != impl_->n) indirect.resize(impl_->n);
+  multiply(std::span<const glm::vec3>(b), std::span<glm::vec3>(indirect));
+}
+
+void ClCompressedTransport::multiply(std::span<const glm::vec3> b,
+                                     std::span<glm::vec3> indirect) const {
   const Impl& d = *impl_;
   if (b.size() != d.n)
     throw Error("compressed transport", "b has " + std::to_string(b.size()) + " entries for " +
                                             std::to_string(d.n) + " patches");
-  if (indirect.size() != d.n) indirect.resize(d.n);
+  if (indirect.size() != d.n)
+    throw Error("compressed transport", "the output has " + std::to_string(indirect.size()) +
+                                            " entries for " + std::to_string(d.n) + " patches");
   if (d.n == 0) return;
   std::lock_guard lock(d.cl.queue_mutex());
   for (std::size_t i = 0; i < d.n; ++i) {

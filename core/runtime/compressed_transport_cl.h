@@ -12,6 +12,7 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,7 @@ class ClCompressedTransport {
   // As CompressedTransport::multiply. Thread-safe (calls are serialised on
   // the shared queue).
   void multiply(const std::vector<glm::vec3>& b, std::vector<glm::vec3>& indirect) const;
+  void multiply(std::span<const glm::vec3> b, std::span<glm::vec3> indirect) const;
 
   std::size_t size() const;
   const std::string& device_name() const;

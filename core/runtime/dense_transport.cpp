@@ -15,6 +15,14 @@ static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "glm::vec3 must be three p
 void dense_indirect(const std::vector<const float*>& matrices, std::size_t n,
                     const std::array<int, 3>& channel_of_rgb, const std::vector<glm::vec3>& b,
                     std::vector<glm::vec3>& indirect) {
+  if (b.size() == n && indirect.size() != n) indirect.resize(n);
+  dense_indirect(matrices, n, channel_of_rgb, std::span<const glm::vec3>(b),
+                 std::span<glm::vec3>(indirect));
+}
+
+void dense_indirect(const std::vector<const float*>& matrices, std::size_t n,
+                    const std::array<int, 3>& channel_of_rgb, std::span<const glm::vec3> b,
+                    std::span<glm::vec3> indirect) {
   if (b.size() != n)
     throw Error("dense transport", "b has " + std::to_string(b.size()) + " entries for " +
                                        std::to_string(n) + " patches");
@@ -27,7 +35,9 @@ void dense_indirect(const std::vector<const float*>& matrices, std::size_t n,
                                          " to stored channel " + std::to_string(channel[k]) +
                                          " of " + std::to_string(matrices.size()));
   }
-  if (indirect.size() != n) indirect.resize(n);
+  if (indirect.size() != n)
+    throw Error("dense transport", "the output has " + std::to_string(indirect.size()) +
+                                       " entries for " + std::to_string(n) + " patches");
   if (n == 0) return;
   const int dim = blas_dim(n, "cblas_sgemv");
   const float* x = &b[0].x;

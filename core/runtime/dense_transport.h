@@ -6,6 +6,7 @@
 // (DESIGN 6: ~45-50 GB/s here).
 #include <array>
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -20,5 +21,10 @@ namespace bounce {
 void dense_indirect(const std::vector<const float*>& matrices, std::size_t n,
                     const std::array<int, 3>& channel_of_rgb, const std::vector<glm::vec3>& b,
                     std::vector<glm::vec3>& indirect);
+// The same into caller-owned memory (e.g. a frame graph's arena): both spans
+// n entries (throws bounce::Error otherwise), not overlapping.
+void dense_indirect(const std::vector<const float*>& matrices, std::size_t n,
+                    const std::array<int, 3>& channel_of_rgb, std::span<const glm::vec3> b,
+                    std::span<glm::vec3> indirect);
 
 }  // namespace bounce

@@ -6,6 +6,8 @@
 #include <numbers>
 #include <string>
 
+#include "base/error.h"
+
 namespace bounce {
 
 namespace {
@@ -48,6 +50,17 @@ std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSe
                                          const std::vector<AreaLight>& area_lights,
                                          int area_strata) {
   std::vector<glm::vec3> e(patches.size(), glm::vec3(0.0f));
+  direct_irradiance(tracer, samples, patches, lights, area_lights, area_strata,
+                    std::span<glm::vec3>(e));
+  return e;
+}
+
+void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const PatchSet& patches,
+                       const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights,
+                       int area_strata, std::span<glm::vec3> e) {
+  if (e.size() != patches.size())
+    throw Error("direct light", "the output has " + std::to_string(e.size()) + " entries for " +
+                                    std::to_string(patches.size()) + " patches");
   const float eps = 10.0f * tracer.epsilon();
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(patches.size()); ++pi) {
@@ -66,7 +79,6 @@ std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSe
     }
     e[p] = area > 0.0f ? sum / area : glm::vec3(0.0f);
   }
-  return e;
 }
 
 glm::vec3 irradiance_at(const RayTracer& tracer, const glm::vec3& p, const glm::vec3& n,

@@ -4,6 +4,7 @@
 // (area-weighted), so a patch half in shadow gets half the light.
 // b_c = albedo_c * E_c is the light leaving each patch after the first hit,
 // the vector the multi-bounce matrix multiplies.
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -22,6 +23,11 @@ std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSe
                                          const PatchSet& patches, const std::vector<Light>& lights,
                                          const std::vector<AreaLight>& area = {},
                                          int area_strata = 4);
+// The same into caller-owned memory (e.g. a frame graph's arena), one entry
+// per patch (throws bounce::Error otherwise).
+void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const PatchSet& patches,
+                       const std::vector<Light>& lights, const std::vector<AreaLight>& area,
+                       int area_strata, std::span<glm::vec3> irradiance);
 
 // Irradiance (per colour channel) at one surface point p with unit normal n
 // (the side that receives), shadow rays included: what every patch sample

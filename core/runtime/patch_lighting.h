@@ -4,6 +4,7 @@
 // whichever multiplier the caller chose (compressed OpenCL, compressed C++,
 // dense), and what each patch finally sends out.
 #include <functional>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -18,6 +19,11 @@ namespace bounce {
 // indirect = T b, per patch and colour channel.
 using IndirectMultiply =
     std::function<void(const std::vector<glm::vec3>& b, std::vector<glm::vec3>& indirect)>;
+// The same into caller-owned memory (both n entries, not overlapping): what
+// lets the runtime frame keep b and T b in its aliased arena
+// (runtime/runtime_frame.h).
+using IndirectMultiplySpan =
+    std::function<void(std::span<const glm::vec3> b, std::span<glm::vec3> indirect)>;
 
 struct PatchLighting {
   std::vector<glm::vec3> irradiance;  // direct, at each patch

@@ -125,6 +125,19 @@ RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 
   cpu_entry.max_rel_diff = max_rel_diff(out, reference);
   bench.entries.push_back(cpu_entry);
 
+  // The bfloat16 loop where the CPU has it: its rel diff column is its
+  // rounding against the float32 product.
+  if (m.format == DdsFormat::kBc1 && CompressedTransport::has_bf16_loop()) {
+    const CompressedTransport bf16(cpu.tables(), BlockLoop::kBf16);
+    RuntimeBenchEntry e;
+    e.what = std::string("compressed, C++ (") + bf16.block_loop() + ")";
+    e.bytes = bf16.bytes_per_product();
+    time_product([&bf16](const auto& x, auto& y) { bf16.multiply(x, y); }, b, bench.repeats, out,
+                 e);
+    e.max_rel_diff = max_rel_diff(out, reference);
+    bench.entries.push_back(e);
+  }
+
   if (!dense.empty()) {
     RuntimeBenchEntry dense_entry;
     dense_entry.what = "dense, OpenBLAS sgemv";

@@ -1,7 +1,10 @@
 #include "runtime/runtime_frame.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <utility>
 
 #include "base/error.h"
@@ -9,8 +12,37 @@
 
 namespace bounce {
 
+namespace {
+
+// A vector multiply behind the span interface: b is copied into a scratch
+// vector and T b out of one (both sized on the first frame, then reused).
+IndirectMultiplySpan through_vectors(IndirectMultiply multiply) {
+  if (!multiply) return {};
+  struct Scratch {
+    std::vector<glm::vec3> in, out;
+  };
+  auto scratch = std::make_shared<Scratch>();
+  return [multiply = std::move(multiply), scratch](std::span<const glm::vec3> b,
+                                                   std::span<glm::vec3> indirect) {
+    scratch->in.assign(b.begin(), b.end());
+    multiply(scratch->in, scratch->out);
+    if (scratch->out.size() != indirect.size())
+      throw Error("runtime frame", "the multiply returned " + std::to_string(scratch->out.size()) +
+                                       " values for " + std::to_string(indirect.size()) +
+                                       " patches");
+    std::copy(scratch->out.begin(), scratch->out.end(), indirect.begin());
+  };
+}
+
+}  // namespace
+
 RuntimeFrame::RuntimeFrame(const RayTracer& tracer, const SampleSet& samples,
                            const PatchSet& patches, IndirectMultiply multiply,
+                           RuntimeFrameSettings settings)
+    : RuntimeFrame(tracer, samples, patches, through_vectors(std::move(multiply)), settings) {}
+
+RuntimeFrame::RuntimeFrame(const RayTracer& tracer, const SampleSet& samples,
+                           const PatchSet& patches, IndirectMultiplySpan multiply,
                            RuntimeFrameSettings settings)
     : tracer_(tracer),
       samples_(samples),
@@ -32,72 +64,82 @@ RuntimeFrame::RuntimeFrame(const RayTracer& tracer, const SampleSet& samples,
                                        std::to_string(samples_.samples.size()) +
                                        ": the samples are not the patches' own");
   if (settings_.area_strata < 1) throw Error("runtime frame", "area_strata must be at least 1");
+  build();
+}
 
-  // Persistent buffers, sized once: the multiplies fill the vectors they are
-  // given and resize them only when the size differs.
+void RuntimeFrame::build() {
+  // Persistent outputs, sized once.
   const std::size_t colour = n_ * sizeof(glm::vec3);
-  first_hit_.assign(n_, glm::vec3(0.0f));
-  indirect_.assign(n_, glm::vec3(0.0f));
   exitance_.assign(n_, glm::vec3(0.0f));
+  if (settings_.publish) {
+    first_hit_.assign(n_, glm::vec3(0.0f));
+    indirect_.assign(n_, glm::vec3(0.0f));
+  }
   if (settings_.record) record_.assign(n_ * 9, 0.0f);
 
   const auto lights = graph_.add_imported("lights", nullptr, 0);
   const auto transport = graph_.add_imported("T", nullptr, 0);
   const auto e = graph_.add_transient("E", colour);
-  const auto b = graph_.add_imported("b", first_hit_.data(), colour);
-  const auto tb = graph_.add_imported("T b", indirect_.data(), colour);
+  const auto b = graph_.add_transient("b", colour);
+  const auto tb = graph_.add_transient("T b", colour);
   const auto out = graph_.add_imported("exitance", exitance_.data(), colour);
   const auto record = settings_.record ? graph_.add_imported("record", record_.data(),
                                                              record_.size() * sizeof(float))
                                        : FrameGraph::ResourceId{};
+  const std::size_t n = n_;
+  const auto span = [n](const FrameGraph::Context& c, FrameGraph::ResourceId id) {
+    return std::span<glm::vec3>(c.get<glm::vec3>(id), n);
+  };
 
-  add_timed_pass("direct light", {lights}, {e}, [this, e](const FrameGraph::Context& c) {
-    // As direct_irradiance(), into the arena: the area-weighted mean of the
-    // irradiance at the patch's member samples.
-    glm::vec3* irradiance = c.get<glm::vec3>(e);
-#pragma omp parallel for schedule(dynamic, 16)
-    for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(n_); ++pi) {
-      const auto p = static_cast<std::size_t>(pi);
-      glm::vec3 sum(0.0f);
-      float area = 0.0f;
-      for (std::uint32_t k = patches_.member_first[p]; k < patches_.member_first[p + 1]; ++k) {
-        const std::uint32_t index = patches_.member_samples[k];
-        const Sample& s = samples_.samples[index];
-        sum += s.area * irradiance_at(tracer_, s.position, s.normal, *lights_, *area_,
-                                      settings_.area_strata, index);
-        area += s.area;
-      }
-      irradiance[p] = area > 0.0f ? sum / area : glm::vec3(0.0f);
-    }
+  add_timed_pass("direct light", {lights}, {e}, [this, e, span](const FrameGraph::Context& c) {
+    direct_irradiance(tracer_, samples_, patches_, *lights_, *area_, settings_.area_strata,
+                      span(c, e));
   });
-  add_timed_pass("first hit", {e}, {b}, [this, e](const FrameGraph::Context& c) {
-    const glm::vec3* irradiance = c.get<glm::vec3>(e);
-    for (std::size_t p = 0; p < n_; ++p) first_hit_[p] = patches_.patches[p].albedo * irradiance[p];
+  add_timed_pass("first hit", {e}, {b}, [this, e, b, span](const FrameGraph::Context& c) {
+    const auto irradiance = span(c, e);
+    const auto first_hit = span(c, b);
+    for (std::size_t p = 0; p < n_; ++p) first_hit[p] = patches_.patches[p].albedo * irradiance[p];
   });
   if (settings_.record)
-    add_timed_pass("record direct", {e, b}, {record}, [this, e](const FrameGraph::Context& c) {
-      const glm::vec3* irradiance = c.get<glm::vec3>(e);
-      for (std::size_t p = 0; p < n_; ++p)
-        for (int k = 0; k < 3; ++k) {
-          record_[9 * p + static_cast<std::size_t>(k)] = irradiance[p][k];
-          record_[9 * p + 3 + static_cast<std::size_t>(k)] = first_hit_[p][k];
-        }
-    });
-  add_timed_pass("indirect product", {transport, b}, {tb},
-                 [this](const FrameGraph::Context&) { multiply_(first_hit_, indirect_); });
-  add_timed_pass("apply", {b, tb}, {out}, [this](const FrameGraph::Context&) {
-    if (indirect_.size() != n_)
-      throw Error("runtime frame", "the multiply returned " + std::to_string(indirect_.size()) +
-                                       " values for " + std::to_string(n_) + " patches");
+    add_timed_pass("record direct", {e, b}, {record},
+                   [this, e, b, span](const FrameGraph::Context& c) {
+                     const auto irradiance = span(c, e);
+                     const auto first_hit = span(c, b);
+                     for (std::size_t p = 0; p < n_; ++p)
+                       for (int k = 0; k < 3; ++k) {
+                         record_[9 * p + static_cast<std::size_t>(k)] = irradiance[p][k];
+                         record_[9 * p + 3 + static_cast<std::size_t>(k)] = first_hit[p][k];
+                       }
+                   });
+  add_timed_pass(
+      "indirect product", {transport, b}, {tb},
+      [this, b, tb, span](const FrameGraph::Context& c) { multiply_(span(c, b), span(c, tb)); });
+  add_timed_pass("apply", {b, tb}, {out}, [this, b, tb, span](const FrameGraph::Context& c) {
+    const auto first_hit = span(c, b);
+    const auto indirect = span(c, tb);
     for (std::size_t p = 0; p < n_; ++p)
-      exitance_[p] = patches_.patches[p].emission + first_hit_[p] + indirect_[p];
+      exitance_[p] = patches_.patches[p].emission + first_hit[p] + indirect[p];
   });
   if (settings_.record)
-    add_timed_pass("record indirect", {tb}, {record}, [this](const FrameGraph::Context&) {
-      for (std::size_t p = 0; p < n_; ++p)
-        for (int k = 0; k < 3; ++k)
-          record_[9 * p + 6 + static_cast<std::size_t>(k)] = indirect_[p][k];
-    });
+    add_timed_pass("record indirect", {tb}, {record},
+                   [this, tb, span](const FrameGraph::Context& c) {
+                     const auto indirect = span(c, tb);
+                     for (std::size_t p = 0; p < n_; ++p)
+                       for (int k = 0; k < 3; ++k)
+                         record_[9 * p + 6 + static_cast<std::size_t>(k)] = indirect[p][k];
+                   });
+  if (settings_.publish) {
+    const auto b_out = graph_.add_imported("first hit (published)", first_hit_.data(), colour);
+    const auto tb_out = graph_.add_imported("T b (published)", indirect_.data(), colour);
+    add_timed_pass("publish", {b, tb}, {b_out, tb_out},
+                   [this, b, tb, span](const FrameGraph::Context& c) {
+                     const auto first_hit = span(c, b);
+                     const auto indirect = span(c, tb);
+                     std::copy(first_hit.begin(), first_hit.end(), first_hit_.begin());
+                     std::copy(indirect.begin(), indirect.end(), indirect_.begin());
+                   });
+  }
+  graph_.set_poison_dead_transients(settings_.poison_dead_transients);
   graph_.compile(settings_.alias);
 }
 

@@ -11,15 +11,20 @@
 //   indirect product  T, b              -> T b      the caller's multiply
 //   apply             b, T b            -> exitance emission + b + T b
 //   record indirect   T b               -> record   (optional) T b per patch
+//   publish           b, T b            -> first_hit(), indirect() (optional)
 //
-// E lives only in the graph's arena (transient). b and T b are persistent
-// vectors owned by the frame and imported into the graph, because the
-// multiply paths (IndirectMultiply: compressed C++, OpenCL, dense) take and
-// fill std::vector; they are sized once here, and the multipliers resize
-// their output only when its size differs, so no frame allocates. The
-// results equal light_patches() (runtime/patch_lighting.h): the same
-// irradiance per sample (irradiance_at with the sample's index as seed), the
-// same sums in the same order.
+// E, b and T b are transients: they live in the graph's one arena at the
+// offsets of the aliasing allocator, so E (dead after "record direct") and
+// T b (born in "indirect product") share one range, and the arena holds two
+// per-patch colour buffers instead of three. The multiply writes T b
+// straight into the arena (IndirectMultiplySpan); a multiply that takes
+// std::vector (IndirectMultiply) still works, through two scratch vectors
+// (one copy of b and T b per frame). The exitance and the record are the
+// frame's persistent outputs; first_hit() and indirect() are copies of b
+// and T b made by the last pass (settings.publish), which a caller that
+// reads the record instead can turn off. Nothing is allocated per frame.
+// The results equal light_patches() (runtime/patch_lighting.h): the same
+// direct_irradiance() per patch, the same sums in the same order.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -42,6 +47,14 @@ struct RuntimeFrameSettings {
   // `bounce solve`'s patch_light.npy); off: only b, T b and the exitance.
   bool record = true;
   int area_strata = 4;  // as direct_irradiance()
+  // Copy b and T b out of the arena for first_hit() and indirect() (two
+  // persistent per-patch buffers); off: those stay empty, and b and T b are
+  // in record() (when settings.record) and exitance().
+  bool publish = true;
+  // FrameGraph::set_poison_dead_transients: NaN into every dead transient's
+  // range after each pass (tests: proves no pass reads a dead or overwritten
+  // buffer).
+  bool poison_dead_transients = false;
 };
 
 class RuntimeFrame {
@@ -51,6 +64,11 @@ class RuntimeFrame {
   // samples table to match.
   RuntimeFrame(const RayTracer& tracer, const SampleSet& samples, const PatchSet& patches,
                IndirectMultiply multiply, RuntimeFrameSettings settings = {});
+  // The same with a multiply that writes into the arena (no copies). Pass an
+  // IndirectMultiplySpan object: a lambda taking spans also converts to
+  // IndirectMultiply (vectors convert to spans), so it would be ambiguous.
+  RuntimeFrame(const RayTracer& tracer, const SampleSet& samples, const PatchSet& patches,
+               IndirectMultiplySpan multiply, RuntimeFrameSettings settings = {});
   // The passes capture `this`.
   RuntimeFrame(const RuntimeFrame&) = delete;
   RuntimeFrame& operator=(const RuntimeFrame&) = delete;
@@ -60,6 +78,7 @@ class RuntimeFrame {
   void solve(const std::vector<Light>& lights, const std::vector<AreaLight>& area = {});
 
   std::size_t size() const { return n_; }
+  // Empty unless settings.publish.
   const std::vector<glm::vec3>& first_hit() const { return first_hit_; }
   const std::vector<glm::vec3>& indirect() const { return indirect_; }
   const std::vector<glm::vec3>& exitance() const { return exitance_; }
@@ -70,19 +89,21 @@ class RuntimeFrame {
   const std::vector<double>& pass_seconds() const { return pass_seconds_; }
   const FrameGraph& graph() const { return graph_; }
   // The arena (with the settings' aliasing), what the transients would take
-  // each in its own range, and the imported (persistent) per-patch buffers.
+  // each in its own range, and the imported (persistent) per-patch buffers:
+  // exitance, record, and the published b and T b.
   std::size_t transient_bytes() const { return graph_.transient_bytes(); }
   std::size_t unaliased_transient_bytes() const { return graph_.unaliased_transient_bytes(); }
   std::size_t imported_bytes() const { return graph_.imported_bytes(); }
 
  private:
+  void build();
   void add_timed_pass(std::string name, std::vector<FrameGraph::ResourceId> reads,
                       std::vector<FrameGraph::ResourceId> writes, FrameGraph::PassFunction run);
 
   const RayTracer& tracer_;
   const SampleSet& samples_;
   const PatchSet& patches_;
-  IndirectMultiply multiply_;
+  IndirectMultiplySpan multiply_;
   RuntimeFrameSettings settings_;
   std::size_t n_ = 0;
   // The current frame's lights, set by solve() for the direct-light pass.

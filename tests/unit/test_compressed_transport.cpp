@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -223,6 +224,59 @@ TEST(CompressedTransport, MatchesTheDenseProductOfTheDecompressedMatrix) {
       EXPECT_LE(worst, kTolerance) << c.name << ", " << t.block_loop() << " loop";
     }
   }
+}
+
+// The bfloat16 loop rounds each palette value and each b to 8-bit mantissas
+// (relative error <= 2^-9 each), so each product is off by at most
+// (2 * 2^-9 + 2^-18) |T||b| and a row by ~2^-8 of sum |T||b|, plus the
+// float32 sums above. A wrong index, palette or block pairing (the loop pairs
+// neighbouring blocks, kN gives 51 block columns: pairs, a pair of pairs and
+// an odd last block) is off by far more, as the float32 loops' tolerance
+// argument says.
+TEST(CompressedTransport, Bf16LoopIsWithinItsRoundingBound) {
+  if (!CompressedTransport::has_bf16_loop()) GTEST_SKIP() << "no AVX-512 BF16 + VBMI on this CPU";
+  const double bound = std::ldexp(1.0, -8) + std::ldexp(1.0, -18) + kTolerance;
+  const std::vector<glm::vec3> b = random_light(kN, 13);
+  for (const Case& c : cases()) {
+    const Reference r = dense_reference(c.m, c.channel_of_rgb, b);
+    const CompressedTransport t(c.m, c.channel_of_rgb, BlockLoop::kBf16);
+    if (c.m.format != DdsFormat::kBc1) {
+      EXPECT_STRNE(t.block_loop(), "avx512-bf16") << c.name << ": BC4 has no bfloat16 loop";
+      continue;
+    }
+    ASSERT_STREQ(t.block_loop(), "avx512-bf16") << c.name;
+    std::vector<glm::vec3> y;
+    t.multiply(b, y);
+    const double worst = worst_error(y, r);
+    std::printf("%-40s bf16 loop: worst error / sum |T||b| = %.2e (bound %.2e)\n", c.name.c_str(),
+                worst, bound);
+    EXPECT_LE(worst, bound) << c.name;
+    // Zero light still gives exactly zero.
+    t.multiply(std::vector<glm::vec3>(kN, glm::vec3(0.0f)), y);
+    for (const glm::vec3& v : y) ASSERT_TRUE(v == glm::vec3(0.0f)) << c.name;
+  }
+}
+
+// Round to nearest even against the definition: the nearer of the two
+// bfloat16 neighbours (truncation and the next one up), the even one on a tie.
+TEST(Bfloat16, RoundsToNearestEven) {
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<std::uint32_t> bits(0, 0xFFFFFFFFu);
+  for (int i = 0; i < 200000; ++i) {
+    float x = std::bit_cast<float>(bits(rng));
+    if (!std::isfinite(x) || std::abs(x) > 3.3e38f) continue;
+    const std::uint32_t u = std::bit_cast<std::uint32_t>(x);
+    const auto down = static_cast<std::uint16_t>(u >> 16);
+    const auto up = static_cast<std::uint16_t>(down + 1);
+    const double dd = std::abs(static_cast<double>(from_bfloat16(down)) - x);
+    const double du = std::abs(static_cast<double>(from_bfloat16(up)) - x);
+    const std::uint16_t expected = dd < du ? down : du < dd ? up : (down % 2 == 0 ? down : up);
+    ASSERT_EQ(to_bfloat16(x), expected) << x;
+  }
+  EXPECT_EQ(from_bfloat16(to_bfloat16(1.0f)), 1.0f);
+  EXPECT_EQ(from_bfloat16(to_bfloat16(-0.0f)), -0.0f);
+  EXPECT_EQ(from_bfloat16(to_bfloat16(1.0f + 0x1.0p-8f)), 1.0f);  // tie: to even
+  EXPECT_EQ(from_bfloat16(to_bfloat16(1.0f + 0x1.8p-8f)), 1.0f + 0x1.0p-7f);
 }
 
 TEST(CompressedTransport, ZeroLightGivesZeroAndRepeatsAreIdentical) {

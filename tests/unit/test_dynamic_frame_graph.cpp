@@ -4,6 +4,9 @@
 // computes the same with and without aliasing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <string>
 #include <vector>
 
 #include "base/error.h"
@@ -123,6 +126,76 @@ TEST(DynamicFrameGraph, ExecutesTheSameWithAndWithoutAliasing) {
     EXPECT_EQ(out_plain[i], c * c + a);
     EXPECT_EQ(out_alias[i], out_plain[i]);
   }
+}
+
+// Random graphs executed in the checking mode: every transient is filled with
+// its own value by its first pass and checked, element by element, by every
+// later pass of its lifetime; after each pass the dead transients' ranges
+// are overwritten with NaN. A live buffer sharing memory with another live
+// one, or with a dead one, would fail a check. The arena is exactly the
+// allocator's peak.
+TEST(DynamicFrameGraph, PoisonedExecutionFindsNoClobberedLiveBuffer) {
+  Rng rng(2024, 0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const auto l = random_lifetimes(rng, trial % 2 == 0);
+    std::size_t passes = 0;
+    for (const auto& x : l) passes = std::max(passes, x.last + 1);
+    FrameGraph g;
+    std::vector<FrameGraph::ResourceId> ids;
+    for (std::size_t t = 0; t < l.size(); ++t)
+      ids.push_back(g.add_transient("t" + std::to_string(t), l[t].bytes));
+    std::size_t bad = 0, checked = 0;
+    for (std::size_t p = 0; p < passes; ++p) {
+      std::vector<FrameGraph::ResourceId> reads, writes;
+      for (std::size_t t = 0; t < l.size(); ++t) {
+        if (l[t].first == p) writes.push_back(ids[t]);
+        if (l[t].first < p && p <= l[t].last) reads.push_back(ids[t]);
+      }
+      g.add_pass("p" + std::to_string(p), reads, writes, [&, p](const FrameGraph::Context& c) {
+        for (std::size_t t = 0; t < l.size(); ++t) {
+          if (l[t].first > p || p > l[t].last) continue;
+          unsigned char* m = c.get<unsigned char>(ids[t]);
+          const auto value = static_cast<unsigned char>(t + 1);
+          if (l[t].first == p) {
+            std::fill_n(m, l[t].bytes, value);
+            continue;
+          }
+          ++checked;
+          for (std::size_t i = 0; i < l[t].bytes; ++i)
+            if (m[i] != value) {
+              ++bad;
+              break;
+            }
+        }
+      });
+    }
+    g.set_poison_dead_transients(true);
+    g.compile(true, 64);
+    EXPECT_EQ(g.arena_bytes(), g.transient_bytes());
+    EXPECT_EQ(g.transient_bytes(), place_transients(l, 64).peak);
+    g.execute();
+    EXPECT_EQ(bad, 0u) << "trial " << trial << ", " << checked << " checks";
+  }
+}
+
+// The checking mode can fail: a pass that reads a transient after its
+// declared lifetime (an undeclared read) gets the NaN written at its death.
+TEST(DynamicFrameGraph, PoisonShowsAReadAfterTheLifetime) {
+  FrameGraph g;
+  float out = 0.0f;
+  const auto result = g.add_imported("out", &out, sizeof(float));
+  const auto a = g.add_transient("a", 64 * sizeof(float));
+  g.add_pass("write a", {}, {a},
+             [a](const FrameGraph::Context& c) { std::fill_n(c.get<float>(a), 64, 1.0f); });
+  g.add_pass("read a, undeclared", {}, {result}, [a, result](const FrameGraph::Context& c) {
+    *c.get<float>(result) = c.get<float>(a)[7];
+  });
+  g.compile(true);
+  g.execute();
+  EXPECT_EQ(out, 1.0f);  // unchecked: the stale value goes unnoticed
+  g.set_poison_dead_transients(true);
+  g.execute();
+  EXPECT_TRUE(std::isnan(out));
 }
 
 TEST(DynamicFrameGraph, DynamicRadiosityGraphAliasesTheLocalUpdate) {

@@ -1,7 +1,8 @@
 // Temporal radiosity (dynamic/temporal_radiosity.h, alias_table.h): the alias
 // tables represent each row's distribution exactly and sample it (chi-square),
 // the per-frame estimate is unbiased, the blend converges to the full product
-// T b, and the OpenCL kernel reproduces the C++ path on the same stream.
+// T b, and the OpenCL kernel reproduces the C++ path on the same stream; the
+// bench's picture measures agree with its patch errors.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include "compute/opencl_context.h"
 #include "dynamic/alias_table.h"
 #include "dynamic/counter_hash.h"
+#include "dynamic/dynamic_bench.h"
 #include "dynamic/temporal_radiosity.h"
 #include "dynamic/temporal_radiosity_cl.h"
 
@@ -258,6 +260,67 @@ TEST(DynamicTemporal, OpenClMatchesCpp) {
       }
     EXPECT_EQ(cl.frame(), 5u);
   }
+}
+
+// `bench dynamic`'s picture measures with a "camera" that shows patch i in
+// pixel i (16 x 16 pixels, 256 patches of unit area): the picture's relative
+// RMSE must then equal the patch error (area-weighted relative RMS) of the
+// same frame; the full product's picture is its own (SSIM 1, error 0), and
+// against a noise-free reference that is the full product of the scene's
+// light it scores error 0 and SSIM 1, while temporal radiosity's picture
+// gets closer from 1 to 64 frames.
+TEST(DynamicBench, PictureMeasuresAgreeWithThePatchErrors) {
+  const int side = 16;
+  const std::size_t n = static_cast<std::size_t>(side * side);
+  const TemporalCase c = make_case(n, 3, {0, 1, 2});
+  const auto picture = [side](const std::vector<glm::vec3>& y) {
+    RgbFloatImage image(side, side);
+    image.pixels = y;
+    return image;
+  };
+  DynamicBenchInput in;
+  in.n = n;
+  in.transport = c.ptrs;
+  in.channel_of_rgb = c.map;
+  in.albedo.assign(n, glm::vec3(0.5f));
+  in.area.assign(n, 1.0f);
+  in.light = c.b;
+  in.jumped_light = random_light(n, 77);
+  in.render_indirect = picture;
+  in.scene_light = random_light(n, 5);
+  in.reference_indirect = picture(full_product(c.ptrs, n, c.map, in.scene_light));
+  in.reference_variance = RgbFloatImage(side, side);
+  DynamicBenchSettings s;
+  s.repeats = 1;
+  s.local_matrix = false;
+  s.temporal.samples_per_patch = 8;
+  const DynamicBench b = run_dynamic_bench(in, s);
+  EXPECT_EQ(b.image_width, side);
+  EXPECT_EQ(b.reference_noise, 0.0);
+  std::size_t measured = 0;
+  for (const DynamicMethodRow& r : b.methods) {
+    if (!r.available) continue;
+    SCOPED_TRACE(r.method);
+    ++measured;
+    ASSERT_TRUE(r.images);
+    ASSERT_TRUE(r.against_reference);
+    for (std::size_t k = 0; k < 4; ++k)
+      EXPECT_NEAR(r.image_error[k], r.error[k], 1e-5 * std::max(1.0, r.error[k])) << k;
+  }
+  EXPECT_GE(measured, 3u);  // full product, temporal C++, temporal through the graph
+  const DynamicMethodRow& full = b.methods[0];
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_NEAR(full.image_ssim[k], 1.0, 1e-9);
+    EXPECT_EQ(full.image_error[k], 0.0);
+  }
+  // float32 sgemv against the float64 sums of full_product().
+  EXPECT_LT(full.reference_error, 1e-5);
+  EXPECT_NEAR(full.reference_ssim, 1.0, 1e-6);
+  const DynamicMethodRow& temporal = b.methods[1];
+  EXPECT_LT(temporal.image_ssim[0], temporal.image_ssim[3]);
+  EXPECT_LT(temporal.image_ssim[3], 1.0);
+  EXPECT_GT(temporal.image_error[0], temporal.image_error[3]);
+  EXPECT_GT(temporal.reference_error, 10.0 * full.reference_error);
 }
 
 }  // namespace

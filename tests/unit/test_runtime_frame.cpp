@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include "bake/bake.h"
 #include "base/error.h"
@@ -113,8 +114,8 @@ TEST(RuntimeFrame, GraphSolveEqualsTheDirectCallPathWithAndWithoutAliasing) {
     RuntimeFrame frame(f.tracer, f.bake.samples, f.bake.patches, f.multiply, s);
     frame.solve(lights, f.area);
     expect_same(frame, want);
-    // The graph's arena never exceeds the transients laid end to end; E is
-    // the only transient (n colours, rounded up to the alignment).
+    // The graph's arena never exceeds the transients laid end to end (E, b
+    // and T b: n colours each, rounded up to the alignment).
     EXPECT_LE(frame.transient_bytes(), frame.unaliased_transient_bytes());
     EXPECT_GE(frame.unaliased_transient_bytes(), f.bake.patches.size() * sizeof(glm::vec3));
     EXPECT_EQ(frame.pass_seconds().size(), frame.graph().passes().size());
@@ -166,11 +167,76 @@ TEST(RuntimeFrame, WithoutRecordingKeepsTheSameExitance) {
       ASSERT_NEAR(frame.exitance()[p][k], want.exitance[p][k], tol) << p;
 }
 
+// b and T b live in the arena with E: E (dead after "record direct") and T b
+// (born in "indirect product") share one range. The arena is exactly the
+// allocator's peak, which is the max-live bound (two colour buffers), below
+// the three of the unaliased layout; the aliased and unaliased frames compute
+// the same bits; with every dead transient overwritten by NaN after each
+// pass (and the arena NaN before the first), no NaN reaches any output, so
+// no pass read memory another live buffer had overwritten.
+TEST(RuntimeFrame, TransientsShareTheArenaAndNeverClobberLiveData) {
+  const Fixture& f = fixture();
+  std::vector<const float*> m;
+  for (const ChannelTransport& c : f.bake.transport.channels) m.push_back(c.t.data());
+  const auto map = f.bake.probe.channel_of_rgb;
+  const std::size_t n = f.bake.transport.n;
+  const IndirectMultiplySpan into = [m, map, n](std::span<const glm::vec3> b,
+                                                std::span<glm::vec3> y) {
+    dense_indirect(m, n, map, b, y);
+  };
+  const std::vector<Light> lights = {point({0.3f, 0.6f, 0.4f})};
+  const PatchLighting want =
+      light_patches(f.tracer, f.bake.samples, f.bake.patches, lights, f.area, f.multiply);
+  const std::size_t colour = (n * sizeof(glm::vec3) + 255) / 256 * 256;
+  std::vector<std::vector<glm::vec3>> exitance, indirect;
+  for (bool alias : {true, false}) {
+    SCOPED_TRACE(alias ? "aliased" : "unaliased");
+    RuntimeFrameSettings s;
+    s.alias = alias;
+    s.poison_dead_transients = true;
+    RuntimeFrame frame(f.tracer, f.bake.samples, f.bake.patches, into, s);
+    frame.solve(lights, f.area);
+    expect_same(frame, want);
+    for (const float x : frame.record()) ASSERT_FALSE(std::isnan(x));
+    EXPECT_EQ(frame.graph().arena_bytes(), frame.transient_bytes());
+    EXPECT_EQ(frame.unaliased_transient_bytes(), 3 * colour);
+    EXPECT_EQ(frame.transient_bytes(), alias ? 2 * colour : 3 * colour);
+    if (alias) {
+      EXPECT_EQ(frame.transient_bytes(), frame.graph().max_live_transient_bytes());
+    }
+    exitance.push_back(frame.exitance());
+    indirect.push_back(frame.indirect());
+  }
+  for (std::size_t p = 0; p < n; ++p) {
+    ASSERT_EQ(exitance[0][p], exitance[1][p]) << p;
+    ASSERT_EQ(indirect[0][p], indirect[1][p]) << p;
+  }
+  // The lean set-up of `bounce solve` (no published copies) and the
+  // vector-multiply adapter give the same record.
+  RuntimeFrameSettings lean;
+  lean.publish = false;
+  lean.poison_dead_transients = true;
+  RuntimeFrame a(f.tracer, f.bake.samples, f.bake.patches, into, lean);
+  RuntimeFrame b(f.tracer, f.bake.samples, f.bake.patches, f.multiply, lean);
+  a.solve(lights, f.area);
+  b.solve(lights, f.area);
+  EXPECT_TRUE(a.first_hit().empty());
+  EXPECT_TRUE(a.indirect().empty());
+  ASSERT_EQ(a.record().size(), 9 * n);
+  for (std::size_t i = 0; i < a.record().size(); ++i) {
+    ASSERT_FALSE(std::isnan(a.record()[i])) << i;
+    ASSERT_EQ(a.record()[i], b.record()[i]) << i;
+  }
+  EXPECT_EQ(a.transient_bytes(), 2 * colour);
+}
+
 TEST(RuntimeFrame, PatchesFromOtherSamplesAreAnError) {
   const Fixture& f = fixture();
   const SampleSet empty;
   EXPECT_THROW(RuntimeFrame(f.tracer, empty, f.bake.patches, f.multiply), Error);
   EXPECT_THROW(RuntimeFrame(f.tracer, f.bake.samples, f.bake.patches, IndirectMultiply{}), Error);
+  EXPECT_THROW(RuntimeFrame(f.tracer, f.bake.samples, f.bake.patches, IndirectMultiplySpan{}),
+               Error);
 }
 
 }  // namespace
