@@ -27,6 +27,22 @@ find_package(CLBlast REQUIRED)
 # broken on Debian 12, find the library directly; stb_dxt is header-only.
 find_library(SQUISH_LIB squish REQUIRED)
 find_path(STB_INCLUDE_DIR stb/stb_dxt.h REQUIRED)
+# Distributed bake (core/distributed, docs/cluster.md): OpenMPI and
+# ScaLAPACK built against it (libscalapack-openmpi-dev, whose CMake config is
+# for configuration "None" only: find the library itself). Built by default
+# when both are installed; `bounce bake` under mpirun then shares the bake.
+option(BOUNCE_MPI "Distributed bake with MPI and ScaLAPACK (needs openmpi and scalapack)" ON)
+set(BOUNCE_MPI_ENABLED OFF)
+if(BOUNCE_MPI)
+  find_package(MPI COMPONENTS C QUIET)
+  find_library(SCALAPACK_LIBRARY NAMES scalapack-openmpi scalapack)
+  if(MPI_C_FOUND AND SCALAPACK_LIBRARY)
+    set(BOUNCE_MPI_ENABLED ON)
+  else()
+    message(WARNING "Distributed bake skipped: MPI or ScaLAPACK not found; install openmpi-bin "
+                    "libopenmpi-dev libscalapack-openmpi-dev")
+  endif()
+endif()
 # Bounce Studio (views/, app/studio/, tests/render/): Qt 5 Widgets and VTK 9.
 # VTK 9.1 on Debian 12 is built against Qt 5 and MPI: its config needs
 # MPI::MPI_C to exist, so MPI (C only) is found first. The studio is skipped,
@@ -39,7 +55,8 @@ if(BOUNCE_STUDIO)
   if(Qt5_FOUND AND MPI_C_FOUND)
     find_package(VTK QUIET COMPONENTS CommonCore CommonDataModel FiltersCore FiltersSources
                  FiltersGeneral GUISupportQt InteractionStyle RenderingCore RenderingOpenGL2
-                 RenderingAnnotation RenderingFreeType)
+                 RenderingAnnotation RenderingFreeType ChartsCore ViewsContext2D
+                 RenderingContext2D RenderingContextOpenGL2 IOImage)
   endif()
   if(Qt5_FOUND AND VTK_FOUND)
     set(BOUNCE_STUDIO_ENABLED ON)

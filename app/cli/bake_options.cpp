@@ -63,6 +63,13 @@ void BakeOptions::add_to(CLI::App& cmd, bool with_output) {
                  "budget)")
       ->check(CLI::IsMember({"auto", "dense", "paper", "ours"}))
       ->capture_default_str();
+  cmd.add_option("--ordering", ordering,
+                 "Row/column ordering before block encoding (paper and ours): auto (the codec's "
+                 "own: paper-2-passes for paper, ours for ours), none, paper-1-pass, "
+                 "paper-2-passes (the published greedy L1 tour) or ours (sketch + tour + 4-row "
+                 "refinement)")
+      ->check(CLI::IsMember({"auto", "none", "paper-1-pass", "paper-2-passes", "ours"}))
+      ->capture_default_str();
   kept_fraction_option = cmd.add_option(
       "--kept-fraction", kept_fraction,
       "Share of each channel's largest entries kept exactly (default: the paper's 0.04 for "
@@ -123,6 +130,9 @@ BakeSettings BakeOptions::settings() const {
             : codec == "paper" ? CodecChoice::Paper
             : codec == "ours"  ? CodecChoice::Ours
                                : CodecChoice::Auto;
+  for (OrderingMethod m :
+       {OrderingMethod::None, OrderingMethod::Paper1, OrderingMethod::Paper2, OrderingMethod::Ours})
+    if (ordering == ordering_name(m)) s.ordering = m;
   if (kept_fraction_option->count() > 0) s.kept_fraction = kept_fraction;
   if (error_budget_option->count() > 0) s.error_budget = error_budget;
   return s;

@@ -1,7 +1,9 @@
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -13,6 +15,10 @@
 #include "console_progress.h"
 #include "reference_check.h"
 #include "scene/scene_loader.h"
+#ifdef BOUNCE_HAVE_MPI
+#include "distributed/mpi_bake_distribution.h"
+#include "distributed/mpi_session.h"
+#endif
 
 namespace bounce::cli {
 
@@ -29,18 +35,30 @@ struct Outcome {
   std::string reference;  // --reference: one line against the path-traced reference
 };
 
+// A distributed bake (mpirun): this process's share, and the agreement on
+// errors every rank must see. Null members: a single-process bake.
+struct Distributed {
+  BakeDistribution* distribution = nullptr;
+  // Loads the scene on every rank; throws on every rank if any failed.
+  std::function<Scene(const std::string&, Diagnostics&)> load_everywhere;
+  bool root() const { return !distribution || distribution->is_root(); }
+};
+
 // `out` is the bake folder itself, or with `nest` the parent of one folder
 // per scene (batch mode); `taken` holds the folder names a batch has used.
 Outcome bake_one(const std::string& path, const fs::path& out, bool nest, const BakeOptions& opt,
-                 ConsoleProgress& console, std::set<std::string>& taken) {
+                 ConsoleProgress& console, std::set<std::string>& taken,
+                 const Distributed& distributed = {}) {
   Outcome o;
   o.scene = path;
   Diagnostics diagnostics;
+  const bool root = distributed.root();  // only the root speaks and writes
   diagnostics.set_listener([&](const Diagnostic& d) {
-    if (d.kind == Diagnostic::Kind::Warning)
+    if (root && d.kind == Diagnostic::Kind::Warning)
       std::fprintf(stderr, "bounce: warning: %s: %s\n", d.where.c_str(), d.message.c_str());
   });
-  const Scene scene = SceneLoader(diagnostics).load(path);
+  const Scene scene = distributed.load_everywhere ? distributed.load_everywhere(path, diagnostics)
+                                                  : SceneLoader(diagnostics).load(path);
   o.scene = scene.name;
   std::string folder = scene.name;
   // Two scenes of a batch with one name (scans/a/mesh.ply, scans/b/mesh.ply)
@@ -51,10 +69,16 @@ Outcome bake_one(const std::string& path, const fs::path& out, bool nest, const 
                                "': baked into '" + folder + "'");
   taken.insert(folder);
   const fs::path target = nest ? out / folder : out.empty() ? fs::path("bakes") / scene.name : out;
-  if (!opt.quiet)
+  if (!opt.quiet && root)
     std::fprintf(stderr, "Baking %s (%zu triangles) into %s\n", path.c_str(),
                  scene.triangle_count(), target.string().c_str());
-  const BakeResult result = Baker(scene, opt.settings(), diagnostics).run(console.progress());
+  Baker baker(scene, opt.settings(), diagnostics);
+  baker.set_distribution(distributed.distribution);
+  const BakeResult result = baker.run(console.progress());
+  if (!root) {
+    o.ok = true;  // this rank's share is done; the root writes the bake
+    return o;
+  }
   o.manifest = write_bake(target, scene, result, diagnostics);
   if (opt.reference)
     o.manifest["reference_check"] =
@@ -67,19 +91,85 @@ Outcome bake_one(const std::string& path, const fs::path& out, bool nest, const 
   return o;
 }
 
+void print_single(const BakeOptions& opt, const Outcome& o) {
+  if (opt.json)
+    std::cout << o.manifest.dump(2) << '\n';
+  else
+    print_bake_report(stdout, o.manifest);
+  if (!opt.json && !o.reference.empty()) std::printf("%s\n", o.reference.c_str());
+}
+
+#ifdef BOUNCE_HAVE_MPI
+// `mpirun -np R bounce bake SCENE`: one scene shared by R ranks
+// (core/distributed, docs/cluster.md). Errors every rank meets (a bad scene,
+// ranks that disagree) are agreed on and reported once by rank 0; an error
+// only one rank meets ends the whole job, since the others may be waiting for
+// it. The bake folder is written by rank 0, after the bake, atomically.
+int run_distributed_bake(const BakeOptions& opt, const std::vector<std::string>& scenes,
+                         const MpiSession& mpi) {
+  if (scenes.size() != 1 && !mpi.is_root()) throw ExitCode{1};  // rank 0 says why
+  if (scenes.size() != 1)
+    throw Error("bake", "a distributed bake (mpirun) takes one scene, got " +
+                            std::to_string(scenes.size()) + "; bake them one by one");
+  MpiBakeDistribution distribution(mpi);
+  Distributed distributed;
+  distributed.distribution = &distribution;
+  distributed.load_everywhere = [&](const std::string& path, Diagnostics& diagnostics) {
+    std::optional<Scene> scene;
+    std::string error;
+    try {
+      scene = SceneLoader(diagnostics).load(path);
+    } catch (const Error& e) {
+      error = e.what();
+    }
+    mpi.agree(scene.has_value(), error);
+    return std::move(*scene);
+  };
+  ConsoleProgress console(opt.quiet || opt.json || !mpi.is_root());
+  try {
+    std::set<std::string> taken;
+    const Outcome o = bake_one(scenes[0], opt.out, false, opt, console, taken, distributed);
+    if (mpi.is_root()) print_single(opt, o);
+    return 0;
+  } catch (const RankFailure& e) {
+    if (e.reported_here()) throw;  // rank 0 prints the one line
+    throw ExitCode{1};
+  } catch (const std::exception& e) {
+    const bool cancelled = dynamic_cast<const Cancelled*>(&e) != nullptr;
+    if (mpi.is_root())
+      std::fprintf(stderr, "bounce: %s%s\n", cancelled ? "" : "error: ", e.what());
+    else
+      std::fprintf(stderr, "bounce: error: rank %d of %d: %s\n", mpi.rank(), mpi.size(), e.what());
+    mpi.abort(cancelled ? 130 : 1);
+  }
+}
+#endif
+
 int run_bake(const BakeOptions& opt) {
+#ifdef BOUNCE_HAVE_MPI
+  // Started by mpirun/srun: join the job; one rank is the plain bake.
+  std::optional<MpiSession> mpi;
+  if (MpiSession::launched_by_mpi()) mpi.emplace();
+  if (mpi && mpi->size() > 1) {
+    std::vector<std::string> scenes;
+    try {
+      opt.settings().validate();
+      scenes = expand_globs(opt.scenes);
+    } catch (const Error&) {
+      if (!mpi->is_root()) throw ExitCode{1};  // every rank fails alike: rank 0 says it
+      throw;
+    }
+    return run_distributed_bake(opt, scenes, *mpi);
+  }
+#endif
   opt.settings().validate();  // absurd options fail before any scene is read
   const std::vector<std::string> scenes = expand_globs(opt.scenes);
   ConsoleProgress console(opt.quiet || opt.json);
   if (scenes.size() == 1) {
     // One scene: errors propagate to main(), which prints one line and exits 1.
     std::set<std::string> taken;
-    Outcome o = bake_one(scenes[0], opt.out, false, opt, console, taken);
-    if (opt.json)
-      std::cout << o.manifest.dump(2) << '\n';
-    else
-      print_bake_report(stdout, o.manifest);
-    if (!opt.json && !o.reference.empty()) std::printf("%s\n", o.reference.c_str());
+    const Outcome o = bake_one(scenes[0], opt.out, false, opt, console, taken);
+    print_single(opt, o);
     return 0;
   }
   // Batch: one folder per scene; a failing scene does not stop the others.

@@ -29,6 +29,7 @@ struct BakeOptions {
   bool dump_matrices = false;
   std::string bounces = "auto";
   std::string codec = "auto";
+  std::string ordering = "auto";
   double kept_fraction = 0.04;
   double error_budget = BakeSettings::kDefaultErrorBudget;
   std::string gemm = "auto";

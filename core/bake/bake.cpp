@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -68,14 +70,52 @@ int Baker::resolution_for_patch_count(const Scene& scene, int patches_total, int
   return dist(lo) <= dist(hi) ? lo : hi;
 }
 
-BakeResult Baker::run(Progress& progress) const {
+BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
   const auto start = std::chrono::steady_clock::now();
   BakeResult r;
+  RebakePlan plan;  // a full bake
+  if (previous) {
+    plan = plan_rebake(scene_, previous->settings, settings_);
+    if (plan.first != BakeStage::Geometry) {
+      r = *previous;
+      r.stages.clear();
+      // The reused stages, timed when they ran, and what they said then.
+      const auto reused = [&](std::initializer_list<const char*> names, BakeStage stage) {
+        for (const StageStats& st : previous->stages)
+          for (const char* name : names)
+            if (st.name == name) {
+              r.stages.push_back(st);
+              r.stages.back().name += " (reused)";
+            }
+        for (const Diagnostic& d : previous->stage_diagnostics[static_cast<std::size_t>(stage)]) {
+          if (d.kind == Diagnostic::Kind::Warning)
+            diagnostics_.warn(d.where, d.message);
+          else
+            diagnostics_.left_out(d.where, d.message);
+        }
+      };
+      reused({"voxelize", "ray tracer (BVH build)", "sample", "patches"}, BakeStage::Geometry);
+      if (!plan.runs(BakeStage::FormFactors))
+        reused({"form factors", "checks", "evaluation lights"}, BakeStage::FormFactors);
+      if (!plan.runs(BakeStage::Transport)) reused({"transport"}, BakeStage::Transport);
+      if (!plan.runs(BakeStage::Compress)) reused({"compress"}, BakeStage::Compress);
+    }
+  }
+  const std::optional<int> resolved_resolution =
+      plan.runs(BakeStage::Geometry) ? std::nullopt : r.settings.voxel_resolution;
   r.settings = settings_;
   r.settings.apply_scene_defaults(scene_.defaults);
   r.settings.validate();
-
-  {
+  if (resolved_resolution) r.settings.voxel_resolution = resolved_resolution;
+  r.plan = plan;
+  // Collects the diagnostics a stage raises into r.stage_diagnostics.
+  const auto record_from = [&](BakeStage stage, std::size_t first) {
+    const std::vector<Diagnostic> all = diagnostics_.all();
+    auto& out = r.stage_diagnostics[static_cast<std::size_t>(stage)];
+    out.assign(all.begin() + static_cast<std::ptrdiff_t>(std::min(first, all.size())), all.end());
+  };
+  std::size_t diagnostics_before = diagnostics_.all().size();
+  if (plan.runs(BakeStage::Geometry)) {
     StageTimer timer("voxelize");
     int resolution = BakeSettings::kDefaultVoxelResolution;
     if (r.settings.voxel_resolution) {
@@ -96,16 +136,21 @@ BakeResult Baker::run(Progress& progress) const {
     r.stages.push_back(timer.finish());
   }
 
-  StageTimer bvh_timer("ray tracer (BVH build)");
-  const RayTracer tracer(scene_);
-  r.stages.push_back(bvh_timer.finish());
+  // Only geometry and the stages after it that need rays use the tracer
+  // (plan_rebake never starts at FormFactors: see there).
+  std::optional<RayTracer> tracer;
+  if (plan.runs(BakeStage::Geometry)) {
+    StageTimer bvh_timer("ray tracer (BVH build)");
+    tracer.emplace(scene_);
+    r.stages.push_back(bvh_timer.finish());
+  }
 
-  {
+  if (plan.runs(BakeStage::Geometry)) {
     StageTimer timer("sample");
     SamplingSettings s;
     s.samples_per_face = *r.settings.samples_per_face;
     s.seed = r.settings.seed;
-    r.samples = generate_samples(scene_, tracer, r.voxels, s, &progress);
+    r.samples = generate_samples(scene_, *tracer, r.voxels, s, &progress);
     if (r.samples.samples.empty())
       throw Error(scene_.path,
                   "no surface samples: no ray hit the scene's surfaces from inside any voxel");
@@ -116,12 +161,12 @@ BakeResult Baker::run(Progress& progress) const {
     r.stages.push_back(timer.finish());
   }
 
-  {
+  if (plan.runs(BakeStage::Geometry)) {
     StageTimer timer("patches");
     if (r.settings.patch_mode == PatchMode::Virtual) {
       ClusteringSettings c;
       c.patches_per_voxel = *r.settings.patches_per_voxel;
-      r.patches = cluster_virtual_patches(tracer, r.voxels, r.samples, c, r.clustering, &progress);
+      r.patches = cluster_virtual_patches(*tracer, r.voxels, r.samples, c, r.clustering, &progress);
       if (r.clustering.voxels_above_target > 0)
         diagnostics_.warn("patches", std::to_string(r.clustering.voxels_above_target) +
                                          " voxels kept more than " +
@@ -134,18 +179,38 @@ BakeResult Baker::run(Progress& progress) const {
       progress.end_stage();
     }
     r.stages.push_back(timer.finish());
+    record_from(BakeStage::Geometry, diagnostics_before);
   }
 
-  {
+  diagnostics_before = diagnostics_.all().size();
+  // Distributed bake: the root's executor, created as soon as the other
+  // processes wait for it and destroyed (releasing them) however run() ends.
+  std::unique_ptr<TransportExecutor> executor;
+  if (distribution_ && !plan.runs(BakeStage::FormFactors))
+    throw Error("bake", "a distributed bake cannot reuse an earlier bake's form factors");
+  if (plan.runs(BakeStage::FormFactors)) {
     StageTimer timer("form factors");
     FormFactorSettings fs;
     fs.visibility_rays = r.settings.visibility_rays;
+    if (distribution_) {
+      distribution_->check_same_patches(r.patches);
+      fs.row_offset = distribution_->row_offset();
+      fs.row_stride = distribution_->row_stride();
+    }
     r.form_factors =
-        compute_form_factors(scene_, tracer, r.voxels, r.samples, r.patches, fs, &progress);
+        compute_form_factors(scene_, *tracer, r.voxels, r.samples, r.patches, fs, &progress);
+    if (distribution_) {
+      distribution_->merge_form_factors(r.form_factors);
+      if (!distribution_->is_root()) {
+        distribution_->serve_transport();
+        return r;  // the root holds the bake
+      }
+      executor = distribution_->transport_executor();
+    }
     r.stages.push_back(timer.finish());
   }
 
-  {
+  if (plan.runs(BakeStage::FormFactors)) {
     StageTimer timer("checks");
     // A patch that sees nothing also receives nothing (F is reciprocal), so it
     // can never carry indirect light: leave it out.
@@ -187,43 +252,52 @@ BakeResult Baker::run(Progress& progress) const {
     r.stages.push_back(timer.finish());
   }
 
-  {
-    StageTimer timer("transport");
-    std::vector<glm::vec3> albedo;
-    albedo.reserve(r.patches.size());
-    for (const Patch& p : r.patches.patches) albedo.push_back(p.albedo);
-    r.transport =
-        compute_transport(r.form_factors, albedo, r.settings.transport, &progress, diagnostics_);
-    r.stages.push_back(timer.finish());
-  }
-
-  {
+  if (plan.runs(BakeStage::FormFactors)) {
     StageTimer timer("evaluation lights");
+    // The first-hit light of the evaluation lights depends on the patches
+    // only; channel_of_rgb is filled in after the transport stage.
     const std::vector<Light> lights = evaluation_lights(scene_);
     // The emissive triangles together count as one more light.
     const std::vector<AreaLight> area = area_lights(scene_);
     progress.begin_stage("direct light of the evaluation lights", lights.size() + 1);
+    r.probe = IndirectLightProbe{};
     r.probe_lights_total = lights.size() + (area.empty() ? 0 : 1);
-    r.probe.channel_of_rgb = channel_of_rgb(r.transport);
     for (const Patch& p : r.patches.patches) r.probe.area.push_back(p.area);
     for (const Light& light : lights) {
       progress.check();
       r.probe.first_hit.push_back(
-          first_bounce(r.patches, direct_irradiance(tracer, r.samples, r.patches, {light})));
+          first_bounce(r.patches, direct_irradiance(*tracer, r.samples, r.patches, {light})));
       progress.advance();
     }
     if (!area.empty())
       r.probe.first_hit.push_back(
-          first_bounce(r.patches, direct_irradiance(tracer, r.samples, r.patches, {}, area)));
+          first_bounce(r.patches, direct_irradiance(*tracer, r.samples, r.patches, {}, area)));
     progress.advance();
     progress.end_stage();
     r.stages.push_back(timer.finish());
+    record_from(BakeStage::FormFactors, diagnostics_before);
   }
 
-  {
+  diagnostics_before = diagnostics_.all().size();
+  if (plan.runs(BakeStage::Transport)) {
+    StageTimer timer("transport");
+    std::vector<glm::vec3> albedo;
+    albedo.reserve(r.patches.size());
+    for (const Patch& p : r.patches.patches) albedo.push_back(p.albedo);
+    r.transport = compute_transport(r.form_factors, albedo, r.settings.transport, &progress,
+                                    diagnostics_, executor.get());
+    executor.reset();  // the other processes are done
+    r.probe.channel_of_rgb = channel_of_rgb(r.transport);
+    r.stages.push_back(timer.finish());
+    record_from(BakeStage::Transport, diagnostics_before);
+  }
+
+  diagnostics_before = diagnostics_.all().size();
+  if (plan.runs(BakeStage::Compress)) {
     StageTimer timer("compress");
     r.storage = store_transport(r.transport, r.probe, r.settings, &progress, diagnostics_);
     r.stages.push_back(timer.finish());
+    record_from(BakeStage::Compress, diagnostics_before);
   }
   r.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;

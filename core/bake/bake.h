@@ -3,10 +3,13 @@
 // baseline), form factors, checks, the multi-bounce transport matrix and its
 // storage (dense or compressed, with errors). The CLI and the
 // studio both call Baker::run.
+#include <array>
 #include <vector>
 
+#include "bake/bake_distribution.h"
 #include "bake/bake_settings.h"
 #include "bake/matrix_storage.h"
+#include "bake/rebake_plan.h"
 #include "base/diagnostics.h"
 #include "base/progress.h"
 #include "base/stage_stats.h"
@@ -36,8 +39,14 @@ struct BakeResult {
   IndirectLightProbe probe;
   std::size_t probe_lights_total = 0;  // evaluation lights, dark ones included
   MatrixStorage storage;               // how T is stored, and its errors
+  // Stages of this run; those taken from a previous bake carry "(reused)".
   std::vector<StageStats> stages;
-  double total_seconds = 0.0;
+  double total_seconds = 0.0;  // of this run only
+  // What this run re-ran (first = Geometry for a full bake) and why.
+  RebakePlan plan;
+  // The warnings and left-out notes each stage raised (indexed by BakeStage),
+  // repeated into the diagnostics of a re-bake that reuses the stage.
+  std::array<std::vector<Diagnostic>, 4> stage_diagnostics;
 };
 
 class Baker {
@@ -46,7 +55,12 @@ class Baker {
       : scene_(scene), settings_(std::move(settings)), diagnostics_(diagnostics) {}
 
   // Runs every stage; throws Cancelled if progress asks to stop.
-  BakeResult run(Progress& progress) const;
+  BakeResult run(Progress& progress) const { return run(progress, nullptr); }
+  // Re-bake: with `previous` (an earlier bake of the same scene), runs only
+  // the stages plan_rebake says the settings change affects and takes the
+  // earlier ones from `previous`. The result equals a full bake with these
+  // settings (tests/unit/test_rebake.cpp).
+  BakeResult run(Progress& progress, const BakeResult* previous) const;
 
   // Grid resolution for a target patch count: the resolution whose predicted
   // patch count (occupied voxels x patches per voxel, or voxel-direction
@@ -54,10 +68,17 @@ class Baker {
   static int resolution_for_patch_count(const Scene& scene, int patches_total,
                                         int patches_per_voxel, PatchMode mode);
 
+  // Shares the bake with other processes (bake_distribution.h; a full bake
+  // only, no `previous`). On a process that is not the root, run() returns
+  // after the transport stage with the geometry only; the root's result is
+  // the bake.
+  void set_distribution(BakeDistribution* distribution) { distribution_ = distribution; }
+
  private:
   const Scene& scene_;
   BakeSettings settings_;
   Diagnostics& diagnostics_;
+  BakeDistribution* distribution_ = nullptr;
 };
 
 }  // namespace bounce

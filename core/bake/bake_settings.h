@@ -5,6 +5,7 @@
 #include <string>
 
 #include "base/error.h"
+#include "compress/codec.h"
 #include "scene/scene.h"
 #include "transport/transport_settings.h"
 
@@ -47,6 +48,9 @@ struct BakeSettings {
   // Relative Frobenius error ||T~ - T||_F / ||T||_F the compressed matrix may
   // have (ours). Unset: kDefaultErrorBudget.
   std::optional<double> error_budget;
+  // Row/column ordering before block encoding (paper, ours). Unset: the
+  // codec's own (paper: the greedy tour, 2 passes; ours: sketch + tour).
+  std::optional<OrderingMethod> ordering;
   // Matrix pictures (PNG) in the bake folder.
   bool pictures = true;
 

@@ -43,9 +43,14 @@ std::array<int, 3> channel_of_rgb(const TransportResult& transport) {
 MatrixStorage store_transport(const TransportResult& transport, const IndirectLightProbe& probe,
                               const BakeSettings& settings, Progress* progress,
                               Diagnostics& diagnostics) {
+  return store_matrices(stored_channels(transport), transport.n, probe, settings, progress,
+                        diagnostics);
+}
+
+MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t n,
+                             const IndirectLightProbe& probe, const BakeSettings& settings,
+                             Progress* progress, Diagnostics& diagnostics) {
   const auto start = Clock::now();
-  const std::size_t n = transport.n;
-  const std::vector<const float*> exact = stored_channels(transport);
   MatrixStorage s;
   s.dense_bytes = exact.size() * n * n * sizeof(float);
   s.dense_rgb_bytes = 3 * n * n * sizeof(float);
@@ -80,6 +85,7 @@ MatrixStorage store_transport(const TransportResult& transport, const IndirectLi
 
   CodecSettings codec;
   codec.kind = choice == CodecChoice::Paper ? CodecKind::Paper : CodecKind::Ours;
+  codec.ordering = settings.ordering;
   Trial chosen;
   if (settings.kept_fraction || choice == CodecChoice::Paper) {
     codec.kept_fraction = settings.kept_fraction.value_or(0.04);
@@ -140,7 +146,8 @@ MatrixStorage store_transport(const TransportResult& transport, const IndirectLi
       {text_format("ordering: %s, encoder: %s, format: %s", chosen.compressed.ordering.c_str(),
                    chosen.compressed.encoder.c_str(),
                    chosen.compressed.format == DdsFormat::kBc4 ? "BC4" : "BC1"),
-       choice == CodecChoice::Paper
+       settings.ordering ? "ordering requested"
+       : choice == CodecChoice::Paper
            ? "the published pipeline"
            : (chosen.compressed.format == DdsFormat::kBc4
                   ? "one (grey) channel: BC4 spends the block's 8 bytes on it"

@@ -49,6 +49,12 @@ inline constexpr double kKeptFractionLadder[] = {0.0025, 0.005, 0.01, 0.02, 0.04
 MatrixStorage store_transport(const TransportResult& transport, const IndirectLightProbe& probe,
                               const BakeSettings& settings, Progress* progress,
                               Diagnostics& diagnostics);
+// The same from the stored channels alone (n x n each, patch order): the
+// bake's compression stage, and the studio's re-compression of a bake folder's
+// exact T.npy with another codec or ordering for comparison.
+MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t n,
+                             const IndirectLightProbe& probe, const BakeSettings& settings,
+                             Progress* progress, Diagnostics& diagnostics);
 
 // The stored channels of `transport` as matrix pointers, and which of them
 // stands for R, G and B.

@@ -129,8 +129,8 @@ PatchGeometry gather(const Scene& scene, const Voxelization& vox, const SampleSe
           const glm::vec3* poly = &set.carried_vertices[piece.first_vertex];
           const std::uint32_t tri = vox.parts[piece.part].triangle;
           lumped.centroid += piece.area * polygon_centroid(poly, piece.vertex_count);
-          lumped.normal += piece.area * glm::normalize(scene.triangle_cross(tri)) *
-                           (piece.back ? -1.0f : 1.0f);
+          lumped.normal +=
+              piece.area * glm::normalize(scene.triangle_cross(tri)) * (piece.back ? -1.0f : 1.0f);
           lumped.area += piece.area;
           continue;
         }
@@ -290,7 +290,18 @@ FormFactorMatrix compute_form_factors(const Scene& scene, const RayTracer& trace
 
   // Rows are uneven (row p handles q >= p), so hand them out dynamically, and
   // report progress in pair units.
-  if (progress) progress->begin_stage("form factors", n * (n + 1) / 2);
+  const std::size_t stride = std::max<std::size_t>(1, settings.row_stride);
+  std::size_t own_pairs = 0;
+  for (std::size_t p = settings.row_offset; p < n; p += stride) own_pairs += n - p;
+  if (progress) progress->begin_stage("form factors", std::max<std::size_t>(1, own_pairs));
+  std::size_t clamped = 0;
+  // F_pq is the mean over P of F(x -> Q) <= 1 (see FormFactorMatrix).
+  auto at_most_one = [&clamped](float value) {
+    if (!(value > 1.0f)) return value;
+#pragma omp atomic
+    ++clamped;
+    return 1.0f;
+  };
 #pragma omp parallel
   {
     std::vector<PairSum> pairs;
@@ -306,6 +317,7 @@ FormFactorMatrix compute_form_factors(const Scene& scene, const RayTracer& trace
     for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(n); ++pi) {
       if (progress && progress->should_stop()) continue;
       const auto p = static_cast<std::size_t>(pi);
+      if (p < settings.row_offset || (p - settings.row_offset) % stride != 0) continue;
       pairs.clear();
       rays.clear();
       ray_weight.clear();
@@ -368,14 +380,16 @@ FormFactorMatrix compute_form_factors(const Scene& scene, const RayTracer& trace
           if (!blocked[k]) seen += ray_weight[k];
         }
         const float v = total > 0.0f ? seen / total : 0.0f;
-        f.values[p * n + ps.q] = ps.unoccluded_pq * v / area_p;
-        if (ps.q != p) f.values[ps.q * n + p] = ps.unoccluded_qp * v / patches.patches[ps.q].area;
+        f.values[p * n + ps.q] = at_most_one(ps.unoccluded_pq * v / area_p);
+        if (ps.q != p)
+          f.values[ps.q * n + p] = at_most_one(ps.unoccluded_qp * v / patches.patches[ps.q].area);
       }
       if (progress) progress->advance(n - p);
     }
   }
   if (progress) progress->check();
   if (progress) progress->end_stage();
+  f.clamped_to_one = clamped;
   return f;
 }
 
@@ -418,6 +432,7 @@ FormFactorChecks check_form_factors(const FormFactorMatrix& f, const PatchSet& p
     c.reciprocity_error_max =
         std::max(c.reciprocity_error_max, row_asym[i] / (patches.patches[i].area * row_sum[i]));
   }
+  c.clamped_to_one = f.clamped_to_one;
   c.reciprocity_error_rel = norm2 > 0.0 ? std::sqrt(asym2 / norm2) : 0.0;
   c.row_sum_mean = n ? sum_of_sums / static_cast<double>(n) : 0.0;
   return c;
@@ -429,6 +444,9 @@ FormFactorMatrix remove_patches(const FormFactorMatrix& f, const std::vector<boo
     if (keep[i]) index.push_back(i);
   FormFactorMatrix out;
   out.n = index.size();
+  // Removed patches see nothing (their rows are zero), so no clamped entry
+  // is in their rows; one in their columns would stay counted.
+  out.clamped_to_one = f.clamped_to_one;
   out.values.resize(out.n * out.n);
   for (std::size_t a = 0; a < out.n; ++a)
     for (std::size_t b = 0; b < out.n; ++b) out.values[a * out.n + b] = f(index[a], index[b]);

@@ -33,12 +33,26 @@ struct FormFactorSettings {
   int visibility_rays = 8;
   int far_representatives = 8;
   float near_cells = 2.5f;
+  // Rows of the upper triangle this process computes: p = row_offset,
+  // row_offset + row_stride, ... (core/distributed deals them out to MPI
+  // ranks; row p pairs with every q >= p, so dealing rows cyclically evens out
+  // the work). Every entry depends on its pair only, so the rows computed
+  // anywhere are bit-identical to the same rows of the full computation; rows
+  // not computed stay 0 (both F_pq and F_qp for q >= p).
+  std::size_t row_offset = 0;
+  std::size_t row_stride = 1;
 };
 
 // Dense row-major N x N, float32: F[p * n + q] = F_pq.
 struct FormFactorMatrix {
   std::size_t n = 0;
   std::vector<float> values;
+  // Entries whose estimate came out above 1 and were set to 1. F_pq is the
+  // mean over P of the form factor from a point to Q, which is at most 1 at
+  // every point, so an estimate above 1 is quadrature error (near surfaces,
+  // where each receiver piece refines the source its own way) and 1 is closer
+  // to the exact value. Reported in the manifest (checks.form_factors).
+  std::size_t clamped_to_one = 0;
   float operator()(std::size_t p, std::size_t q) const { return values[p * n + q]; }
 };
 
@@ -55,6 +69,7 @@ struct FormFactorChecks {
   double reciprocity_error_max = 0.0;  // max |A_i F_ij - A_j F_ji| / (A_i * max_j F_ij)
   double reciprocity_error_rel = 0.0;  // ||AF - (AF)^T||_F / ||AF||_F over the whole matrix
   std::size_t non_finite = 0;          // NaN or Inf entries
+  std::size_t clamped_to_one = 0;      // FormFactorMatrix::clamped_to_one
   std::size_t patches_seeing_nothing = 0;
   double value_max = 0.0;
 };

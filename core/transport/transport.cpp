@@ -41,16 +41,15 @@ std::string channel_label(const std::vector<int>& rgb) {
 
 void validate_settings(const TransportSettings& s) {
   if (s.bounces < TransportSettings::kInfiniteBounces || s.bounces > TransportSettings::kMaxBounces)
-    throw Error("transport.bounces",
-                text_format("must be auto (0), infinity (-1) or 1..%d, got %d",
-                            TransportSettings::kMaxBounces, s.bounces));
+    throw Error("transport.bounces", text_format("must be auto (0), infinity (-1) or 1..%d, got %d",
+                                                 TransportSettings::kMaxBounces, s.bounces));
   if (!(s.auto_tolerance > 0.0 && s.auto_tolerance < 1.0))
     throw Error("transport.auto_tolerance",
                 text_format("must be in (0, 1), got %g", s.auto_tolerance));
   if (s.max_auto_bounces < 1 || s.max_auto_bounces > TransportSettings::kMaxBounces)
-    throw Error("transport.max_auto_bounces", text_format("must be in 1..%d, got %d",
-                                                          TransportSettings::kMaxBounces,
-                                                          s.max_auto_bounces));
+    throw Error("transport.max_auto_bounces",
+                text_format("must be in 1..%d, got %d", TransportSettings::kMaxBounces,
+                            s.max_auto_bounces));
   if (!(s.auto_probe_min_seconds >= 0.0))
     throw Error("transport.auto_probe_min_seconds",
                 text_format("must be >= 0, got %g", s.auto_probe_min_seconds));
@@ -135,8 +134,8 @@ struct ChannelPlan {
   std::string label;
   SpectralRadius radius;
   bool infinite = false;
-  SeriesPlan series;          // finite K
-  int auto_bounces = 0;       // auto: where the series converged (0: not auto / not converged)
+  SeriesPlan series;     // finite K
+  int auto_bounces = 0;  // auto: where the series converged (0: not auto / not converged)
   double auto_next_fraction = 0.0;
   TransportPrecision lu_precision = TransportPrecision::Float32;  // predicted, for costs
 };
@@ -181,8 +180,8 @@ ChannelPlan plan_channel(const FormFactorMatrix& f, const std::vector<glm::vec3>
       throw Error("transport.bounces",
                   who + ": auto bounces cannot converge: " + divergence +
                       "; fix the form factors or ask for an explicit bounce count");
-    const AutoBounces a = choose_auto_bounces(m.data(), f.n, settings.auto_tolerance,
-                                              settings.max_auto_bounces);
+    const AutoBounces a =
+        choose_auto_bounces(m.data(), f.n, settings.auto_tolerance, settings.max_auto_bounces);
     if (a.converged) {
       plan.auto_bounces = a.bounces;
       plan.auto_next_fraction = a.next_fraction;
@@ -239,10 +238,10 @@ void resolve_auto(ChannelPlan& plan, double gemm_cost, const std::string& gemm_n
                    plan.series.gemms, gemm_name.c_str(), series_cost,
                    precision_name(plan.lu_precision), lu_cost)});
   diagnostics.left_out(
-      "transport", who + text_format(": bounces after %d (the next adds %.2e of the light so "
-                                     "far, below the auto tolerance %.0e)",
-                                     plan.auto_bounces, plan.auto_next_fraction,
-                                     settings.auto_tolerance));
+      "transport",
+      who + text_format(": bounces after %d (the next adds %.2e of the light so "
+                        "far, below the auto tolerance %.0e)",
+                        plan.auto_bounces, plan.auto_next_fraction, settings.auto_tolerance));
 }
 
 // The decisions every finite K gets: what the omitted bounces could add, and
@@ -293,7 +292,7 @@ const ChannelTransport& TransportResult::channel(int rgb) const {
 TransportResult compute_transport(const FormFactorMatrix& form_factors,
                                   const std::vector<glm::vec3>& albedo,
                                   const TransportSettings& settings, Progress* progress,
-                                  Diagnostics& diagnostics) {
+                                  Diagnostics& diagnostics, TransportExecutor* executor) {
   const auto start = Clock::now();
   validate_settings(settings);
   const double max_row_sum = validate_inputs(form_factors, albedo);
@@ -310,15 +309,15 @@ TransportResult compute_transport(const FormFactorMatrix& form_factors,
   if (result.grey) {
     result.decisions.push_back({"grey scene: one channel stands for R, G and B",
                                 "every patch's albedo has r = g = b (within 1e-6)"});
-    diagnostics.left_out("transport", "G and B transport matrices: the scene is grey (every "
-                                      "albedo has r = g = b), the R matrix stands for all three");
+    diagnostics.left_out("transport",
+                         "G and B transport matrices: the scene is grey (every "
+                         "albedo has r = g = b), the R matrix stands for all three");
   } else {
     for (const std::vector<int>& g : groups)
       if (g.size() > 1) {
         const std::string label = channel_label(g);
-        result.decisions.push_back(
-            {"channels " + label + " share one matrix",
-             "their albedos agree on every patch (within 1e-6)"});
+        result.decisions.push_back({"channels " + label + " share one matrix",
+                                    "their albedos agree on every patch (within 1e-6)"});
         diagnostics.left_out("transport", text_format("a separate %c transport matrix: it equals "
                                                       "%c's (same albedo on every patch)",
                                                       label[1], label[0]));
@@ -334,11 +333,25 @@ TransportResult compute_transport(const FormFactorMatrix& form_factors,
     if (!plans.back().infinite) gemms += static_cast<std::size_t>(plans.back().series.gemms);
   }
 
-  std::unique_ptr<GemmBackend> gemm;
-  if (gemms > 0) {
+  std::unique_ptr<GemmBackend> own_gemm;
+  GemmBackend* gemm = nullptr;
+  if (executor)
+    result.decisions.push_back({"dense algebra: " + executor->description(), "distributed bake"});
+  if (executor && gemms > 0) {
+    // The executor's products stand in for OpenBLAS: a product costs one.
+    gemm = &executor->gemm();
+    gemms = 0;
+    for (ChannelPlan& plan : plans) {
+      resolve_auto(plan, 1.0, gemm->name(), settings, diagnostics, result.decisions);
+      if (plan.infinite) continue;
+      record_series(plan, result.decisions);
+      gemms += static_cast<std::size_t>(plan.series.gemms);
+    }
+  } else if (gemms > 0) {
     GemmSelection selection =
         select_gemm_backend(settings, n, gemms, diagnostics, result.decisions);
-    gemm = std::move(selection.backend);
+    own_gemm = std::move(selection.backend);
+    gemm = own_gemm.get();
     result.probe_n = selection.probe_n;
     result.probe_openblas_seconds = selection.openblas_seconds;
     result.probe_clblast_seconds = selection.clblast_seconds;
@@ -360,7 +373,7 @@ TransportResult compute_transport(const FormFactorMatrix& form_factors,
       if (!plan.infinite) record_series(plan, result.decisions);  // K = 1
   }
   if (gemms == 0) {
-    gemm.reset();
+    gemm = nullptr;
     result.backend = "none (no matrix product needed)";
   }
   std::size_t units = 0;
@@ -385,17 +398,19 @@ TransportResult compute_transport(const FormFactorMatrix& form_factors,
         progress->advance(factorised ? 1 : kFactorUnits);
         factorised = true;
       };
-      InverseTransport inv = solve_infinite_bounces(std::move(m), n, plan.radius.estimate, options);
+      InverseTransport inv =
+          executor ? executor->solve_infinite(std::move(m), n, plan.radius.estimate, options)
+                   : solve_infinite_bounces(std::move(m), n, plan.radius.estimate, options);
       ct.t = std::move(inv.t);
       ct.bounces = TransportSettings::kInfiniteBounces;
       ct.auto_bounces = plan.auto_bounces;
       ct.precision = inv.precision;
       ct.condition_number = inv.condition;
       ct.method = std::string("LU ") + precision_name(inv.precision);
-      result.decisions.push_back(
-          {"channel " + plan.label + text_format(": K = infinity by LU in %s, condition %.3g",
-                                                 precision_name(inv.precision), inv.condition),
-           inv.why});
+      result.decisions.push_back({"channel " + plan.label +
+                                      text_format(": K = infinity by LU in %s, condition %.3g",
+                                                  precision_name(inv.precision), inv.condition),
+                                  inv.why});
     } else {
       ct.bounces = plan.series.bounces;
       ct.gemms = plan.series.gemms;

@@ -31,6 +31,7 @@
 #include "formfactor/form_factors.h"
 #include "transport/inverse_transport.h"
 #include "transport/transport_decision.h"
+#include "transport/transport_executor.h"
 #include "transport/transport_settings.h"
 
 namespace bounce {
@@ -42,8 +43,8 @@ struct ChannelTransport {
   // Auto: the K at which the series converged (also when the exact K =
   // infinity was computed because it was cheaper); 0 otherwise.
   int auto_bounces = 0;
-  std::string method;    // "Horner", "doubling", "LU float32", "LU float64"
-  int gemms = 0;         // matrix products used
+  std::string method;  // "Horner", "doubling", "LU float32", "LU float64"
+  int gemms = 0;       // matrix products used
   // Spectral radius of M = diag(rho_c) F by power iteration, with its
   // Collatz-Wielandt bounds.
   double spectral_radius = 0.0;
@@ -77,9 +78,11 @@ struct TransportResult {
   const ChannelTransport& channel(int rgb) const;
 };
 
+// `executor` (optional): runs the products and the solve elsewhere
+// (transport_executor.h); settings.backend is then not used.
 TransportResult compute_transport(const FormFactorMatrix& form_factors,
                                   const std::vector<glm::vec3>& albedo,
                                   const TransportSettings& settings, Progress* progress,
-                                  Diagnostics& diagnostics);
+                                  Diagnostics& diagnostics, TransportExecutor* executor = nullptr);
 
 }  // namespace bounce

@@ -1,0 +1,42 @@
+#pragma once
+// Which bake stages a change of settings makes stale. The pipeline is a
+// chain (geometry -> form factors -> transport -> compression), so a change
+// re-runs the earliest stage it affects and everything after it; the stages
+// before are taken from the previous bake (Baker::run with a previous
+// result). The studio re-bakes this way when a setting changes; see
+// docs/studio.md.
+#include <string>
+#include <vector>
+
+#include "bake/bake_settings.h"
+#include "scene/scene.h"
+
+namespace bounce {
+
+// In pipeline order. Geometry: voxel grid, ray tracer, samples, patches.
+// FormFactors: form factors, their checks (pruning) and the evaluation
+// lights' first-hit light (it needs the patches only). Transport: the
+// multi-bounce matrices. Compress: how they are stored. None: nothing to run.
+// A plan never starts at FormFactors: the checks prune patches that see
+// nothing, so new form factors need the unpruned patches, i.e. geometry.
+enum class BakeStage { Geometry = 0, FormFactors = 1, Transport = 2, Compress = 3, None = 4 };
+
+const char* to_string(BakeStage stage);
+
+struct RebakePlan {
+  BakeStage first = BakeStage::Geometry;  // this stage and every later one run
+  // One line per changed setting that matters, e.g. "bounces: auto -> 4".
+  std::vector<std::string> reasons;
+
+  bool runs(BakeStage stage) const {
+    return static_cast<int>(stage) >= static_cast<int>(first) && stage != BakeStage::None;
+  }
+};
+
+// `previous`: the settings of an earlier bake of the same scene as it resolved
+// them (BakeResult::settings); `next`: the settings asked for now, as a user
+// gives them (scene defaults not yet applied). Settings that only change what
+// the writer writes (dump_matrices, pictures) re-run nothing.
+RebakePlan plan_rebake(const Scene& scene, const BakeSettings& previous, const BakeSettings& next);
+
+}  // namespace bounce

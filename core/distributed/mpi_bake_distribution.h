@@ -1,0 +1,35 @@
+#pragma once
+// The distributed bake (issue 9, part 1): Baker's stages shared over the
+// ranks of an MPI job. Every rank loads the scene, builds its own Embree BVH
+// and computes the voxels, samples and patches itself (deterministic, checked
+// by a fingerprint); form-factor rows are dealt out cyclically (row p to rank
+// p mod R) and summed onto the root, which gives the single-process matrix bit
+// for bit (every entry is computed by exactly one rank, the others add +0);
+// the transport stage's algebra runs on all ranks with ScaLAPACK
+// (scalapack_transport.h); compression and writing stay on the root.
+#include "bake/bake_distribution.h"
+#include "distributed/mpi_session.h"
+
+namespace bounce {
+
+class MpiBakeDistribution : public BakeDistribution {
+ public:
+  explicit MpiBakeDistribution(const MpiSession& session) : session_(session) {}
+
+  bool is_root() const override { return session_.is_root(); }
+  std::size_t row_offset() const override { return static_cast<std::size_t>(session_.rank()); }
+  std::size_t row_stride() const override { return static_cast<std::size_t>(session_.size()); }
+  void check_same_patches(const PatchSet& patches) override;
+  void merge_form_factors(FormFactorMatrix& f) override;
+  std::unique_ptr<TransportExecutor> transport_executor() override;
+  void serve_transport() override;
+
+ private:
+  const MpiSession& session_;
+};
+
+// A 64-bit FNV-1a hash of everything about the patches the form factors read
+// (positions, normals, areas, albedos, members).
+std::uint64_t patch_fingerprint(const PatchSet& patches);
+
+}  // namespace bounce

@@ -1,0 +1,211 @@
+// `mpirun -np R bounce bake` against the single-process bake of the same
+// scene and settings (issue 9): form factors bit for bit, the transport
+// matrix within a tolerance derived from the floating-point error of the two
+// summation orders, the manifest's checks equal; and errors reported once by
+// rank 0 with nothing written.
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+
+#include "cli_harness.h"
+
+namespace bounce::itest {
+namespace {
+
+const std::string kBounce = BOUNCE_BIN;
+const std::string kMpiexec = BOUNCE_MPIEXEC;
+
+// A small Cornell box: about 200 patches, a few seconds per bake.
+const std::vector<std::string> kSettings = {"--voxel", "4",     "--dump-matrices",
+                                            "--codec", "dense", "--quiet"};
+
+std::vector<std::string> single(std::vector<std::string> args) {
+  args.insert(args.begin(), kBounce);
+  return args;
+}
+
+std::vector<std::string> distributed(int ranks, std::vector<std::string> args) {
+  std::vector<std::string> all = {kMpiexec, "--allow-run-as-root", "--oversubscribe",
+                                  "-np",    std::to_string(ranks), kBounce};
+  all.insert(all.end(), args.begin(), args.end());
+  return all;
+}
+
+std::vector<std::string> bake(const fs::path& out, const std::string& bounces) {
+  std::vector<std::string> args = {"bake",       scene("cornell-box"), "--out",
+                                   out.string(), "--bounces",          bounces};
+  args.insert(args.end(), kSettings.begin(), kSettings.end());
+  return args;
+}
+
+RunResult run_in(const TempDir& dir, const std::vector<std::string>& args) {
+  RunOptions o;
+  o.cwd = dir.path();
+  o.timeout = std::chrono::seconds(120);
+  // One OpenMP/OpenBLAS thread per rank: R ranks share this machine's cores.
+  o.env["OMP_NUM_THREADS"] = "1";
+  o.env["OPENBLAS_NUM_THREADS"] = "1";
+  return run(args, o);
+}
+
+// The single-process bakes the tests compare with, made once per process
+// and only those a test asks for (ctest runs each test in its own process).
+class DistributedBake : public ::testing::Test {
+ protected:
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+  static fs::path reference(const std::string& bounces) {
+    if (!dir_) dir_ = new TempDir();
+    const fs::path out = dir_->path() / ("single-" + bounces);
+    if (!fs::exists(out)) {
+      const RunResult r = run_in(*dir_, single(bake(out, bounces)));
+      EXPECT_EQ(r.exit_code, 0) << r;
+    }
+    return out;
+  }
+  static TempDir* dir_;
+};
+TempDir* DistributedBake::dir_ = nullptr;
+
+void expect_same_bytes(const fs::path& a, const fs::path& b) {
+  const std::string x = read_text(a), y = read_text(b);
+  ASSERT_FALSE(x.empty()) << a;
+  EXPECT_TRUE(x == y) << a.filename() << " differs between " << a.parent_path() << " and "
+                      << b.parent_path();
+}
+
+// What a distributed bake must share with the single-process one exactly:
+// geometry, form factors (each entry computed by one rank, identically) and
+// everything derived from them alone.
+void expect_same_up_to_transport(const fs::path& one, const fs::path& many, int ranks) {
+  for (const char* file : {"patches.npy", "samples.npy", "voxels.npy", "F.npy"})
+    expect_same_bytes(one / file, many / file);
+  const json a = read_manifest(one), b = read_manifest(many);
+  EXPECT_EQ(a["checks"], b["checks"]);
+  EXPECT_EQ(a["counts"], b["counts"]);
+  ASSERT_EQ(a["transport"]["channels"].size(), b["transport"]["channels"].size());
+  for (std::size_t c = 0; c < a["transport"]["channels"].size(); ++c) {
+    const json& x = a["transport"]["channels"][c];
+    const json& y = b["transport"]["channels"][c];
+    EXPECT_EQ(x["rgb"], y["rgb"]);
+    EXPECT_EQ(x["bounces"], y["bounces"]);
+    EXPECT_EQ(x["method"], y["method"]);
+    EXPECT_EQ(x["precision"], y["precision"]);
+    EXPECT_EQ(x["spectral_radius"], y["spectral_radius"]);  // computed from F alone
+  }
+  const std::string decisions = b["transport"]["decisions"].dump();
+  EXPECT_TRUE(contains(decisions, "ScaLAPACK")) << decisions;
+  EXPECT_TRUE(contains(decisions, "on " + std::to_string(ranks) + " MPI ranks")) << decisions;
+}
+
+struct Difference {
+  double max_relative = 0.0;  // max |a - b| / max(|a|, |b|) over the entries
+  double frobenius = 0.0;     // ||a - b||_F / ||a||_F
+};
+
+Difference difference(const fs::path& a_path, const fs::path& b_path) {
+  const auto a = read_npy_f32(a_path), b = read_npy_f32(b_path);
+  EXPECT_EQ(a.shape, b.shape);
+  Difference d;
+  double diff2 = 0.0, norm2 = 0.0;
+  for (std::size_t i = 0; i < std::min(a.data.size(), b.data.size()); ++i) {
+    const double x = a.data[i], y = b.data[i];
+    EXPECT_TRUE(std::isfinite(y));
+    const double scale = std::max(std::abs(x), std::abs(y));
+    if (scale > 0.0) d.max_relative = std::max(d.max_relative, std::abs(x - y) / scale);
+    diff2 += (x - y) * (x - y);
+    norm2 += x * x;
+  }
+  d.frobenius = norm2 > 0.0 ? std::sqrt(diff2 / norm2) : 0.0;
+  return d;
+}
+
+constexpr double kUnitRoundoff = FLT_EPSILON / 2.0;
+
+TEST_F(DistributedBake, TwoRanksEqualOneProcessWithFourBounces) {
+  TempDir work;
+  const fs::path out = work / "two";
+  const RunResult r = run_in(work, distributed(2, bake(out, "4")));
+  ASSERT_EQ(r.exit_code, 0) << r;
+  expect_same_up_to_transport(reference("4"), out, 2);
+  // T = M + M^2 + M^3 + M^4 by three float32 products of non-negative
+  // matrices. Each computed product entry is within gamma_n = n u / (1 - n u)
+  // of exact, relative, in any summation order, and each sum of non-negative
+  // terms within u; through K - 1 = 3 nested products and sums each bake is
+  // within (K - 1)(gamma_n + u) of the exact T entry by entry, so the two
+  // differ by at most twice that.
+  const json m = read_manifest(out);
+  const double n = m["transport"]["patches"].get<double>();
+  const double gamma = n * kUnitRoundoff / (1.0 - n * kUnitRoundoff);
+  const double tolerance = 2.0 * 3.0 * (gamma + kUnitRoundoff);
+  const Difference d = difference(reference("4") / "T.npy", out / "T.npy");
+  EXPECT_LE(d.max_relative, tolerance) << "n = " << n;
+  std::printf("4 bounces, 2 ranks: max relative difference %.3g (bound %.3g), Frobenius %.3g\n",
+              d.max_relative, tolerance, d.frobenius);
+}
+
+TEST_F(DistributedBake, FourRanksEqualOneProcessWithInfiniteBounces) {
+  TempDir work;
+  const fs::path out = work / "four";
+  const RunResult r = run_in(work, distributed(4, bake(out, "inf")));
+  ASSERT_EQ(r.exit_code, 0) << r;
+  expect_same_up_to_transport(reference("inf"), out, 4);
+  // T solves (I - M) T = M by LU with partial pivoting. I - M^T is column
+  // diagonally dominant (row sums of M = albedo x form-factor row sums < 1),
+  // so partial pivoting does not pivot and the growth factor is at most 2;
+  // the backward error is then within 2 gamma_3n |I - M| and the forward
+  // error within kappa times that (Higham, ch. 9). Each bake is within
+  // kappa 2 gamma_3n of the exact T in norm; the two differ by twice that.
+  const json m = read_manifest(out);
+  const double n = m["transport"]["patches"].get<double>();
+  const double gamma3n = 3.0 * n * kUnitRoundoff / (1.0 - 3.0 * n * kUnitRoundoff);
+  for (const json& channel : m["transport"]["channels"])
+    ASSERT_EQ(channel["precision"], "float32") << "the bound below is for float32";
+  // kappa: the larger estimate of the two bakes (LAPACK's and ScaLAPACK's
+  // estimators are both lower bounds of the true condition number).
+  double kappa = 0.0;
+  const json single_manifest = read_manifest(reference("inf"));
+  for (const json* manifest : {&single_manifest, &m})
+    for (const json& channel : (*manifest)["transport"]["channels"])
+      kappa = std::max(kappa, channel["condition_number"].get<double>());
+  ASSERT_GT(kappa, 0.0);
+  // The distributed bake computes kappa exactly ((I - M)^-1 = I + T), the
+  // single process estimates it with LAPACK's ?gecon, a lower bound.
+  const json& many = m["transport"]["channels"];
+  const json& one = single_manifest["transport"]["channels"];
+  ASSERT_EQ(many.size(), one.size());
+  for (std::size_t c = 0; c < many.size(); ++c)
+    EXPECT_GE(many[c]["condition_number"].get<double>(),
+              (1.0 - 1e-3) * one[c]["condition_number"].get<double>());
+  const double tolerance = 2.0 * kappa * 2.0 * gamma3n;
+  const Difference d = difference(reference("inf") / "T.npy", out / "T.npy");
+  EXPECT_LE(d.frobenius, tolerance) << "n = " << n << ", kappa = " << kappa;
+  std::printf("K = inf, 4 ranks: relative Frobenius difference %.3g (bound %.3g), max entry %.3g\n",
+              d.frobenius, tolerance, d.max_relative);
+}
+
+TEST(DistributedBakeErrors, BadSceneIsOneErrorOnRankZeroAndNothingWritten) {
+  TempDir work;
+  const fs::path out = work / "bad";
+  const RunResult r = run_in(
+      work, distributed(2, {"bake", (work / "missing.obj").string(), "--out", out.string()}));
+  EXPECT_EQ(r.exit_code, 1) << r;
+  EXPECT_EQ(lines_starting_with(r.err, "bounce: error:").size(), 1u) << r;
+  EXPECT_TRUE(contains(r.err, "missing.obj")) << r;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(DistributedBakeErrors, BatchIsRefusedWithNothingWritten) {
+  TempDir work;
+  const fs::path out = work / "batch";
+  const RunResult r = run_in(work, distributed(2, {"bake", scene("cornell-box"), scene("furnace"),
+                                                   "--out", out.string()}));
+  EXPECT_EQ(r.exit_code, 1) << r;
+  EXPECT_TRUE(contains(r.err, "takes one scene")) << r;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace bounce::itest

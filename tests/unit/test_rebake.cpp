@@ -1,0 +1,215 @@
+// Re-baking only what a settings change affects (core/bake/rebake_plan.h):
+// the plan for each setting against the pipeline's dependencies, and a
+// partial re-bake equal to a full bake with the same settings while the
+// stages before the change do not run again (counted from the progress
+// stages the core reports).
+#include <gtest/gtest.h>
+
+#include <set>
+#include <string>
+
+#include "bake/bake.h"
+#include "bake/rebake_plan.h"
+#include "scene/scene_loader.h"
+
+namespace bounce {
+namespace {
+
+const Scene& cornell_box() {
+  static const Scene scene = [] {
+    Diagnostics d;
+    return SceneLoader(d).load(std::string(BOUNCE_RESOURCE_DIR) + "/scenes/cornell-box");
+  }();
+  return scene;
+}
+
+BakeSettings small_settings() {
+  BakeSettings s;
+  s.voxel_resolution = 3;
+  s.codec = CodecChoice::Ours;
+  s.kept_fraction = 0.04;
+  s.transport.bounces = 3;
+  s.transport.backend = TransportSettings::Backend::OpenBLAS;
+  s.pictures = false;
+  return s;
+}
+
+// The previous bake's settings as the Baker resolves them.
+BakeSettings resolved(BakeSettings s) {
+  s.apply_scene_defaults(cornell_box().defaults);
+  return s;
+}
+
+BakeStage first_stage(const BakeSettings& next) {
+  return plan_rebake(cornell_box(), resolved(small_settings()), next).first;
+}
+
+TEST(RebakePlan, EachSettingReRunsFromTheStageItFeeds) {
+  const BakeSettings base = small_settings();
+  EXPECT_EQ(first_stage(base), BakeStage::None);
+
+  // Writer-only settings run nothing.
+  BakeSettings s = base;
+  s.dump_matrices = true;
+  s.pictures = true;
+  EXPECT_EQ(first_stage(s), BakeStage::None);
+
+  // Storage: compression only.
+  s = base;
+  s.codec = CodecChoice::Paper;
+  EXPECT_EQ(first_stage(s), BakeStage::Compress);
+  s = base;
+  s.kept_fraction = 0.08;
+  EXPECT_EQ(first_stage(s), BakeStage::Compress);
+  s = base;
+  s.kept_fraction.reset();
+  s.error_budget = 0.1;
+  EXPECT_EQ(first_stage(s), BakeStage::Compress);
+  s = base;
+  s.ordering = OrderingMethod::Paper1;
+  EXPECT_EQ(first_stage(s), BakeStage::Compress);
+
+  // Bounces and the GEMM backend: transport and compression.
+  s = base;
+  s.transport.bounces = TransportSettings::kInfiniteBounces;
+  EXPECT_EQ(first_stage(s), BakeStage::Transport);
+  s = base;
+  s.transport.backend = TransportSettings::Backend::Auto;
+  EXPECT_EQ(first_stage(s), BakeStage::Transport);
+  // Two changes: the earlier stage wins, and both are named.
+  s = base;
+  s.transport.bounces = 5;
+  s.codec = CodecChoice::Dense;
+  const RebakePlan both = plan_rebake(cornell_box(), resolved(base), s);
+  EXPECT_EQ(both.first, BakeStage::Transport);
+  EXPECT_EQ(both.reasons.size(), 2u);
+  EXPECT_TRUE(both.runs(BakeStage::Compress));
+  EXPECT_FALSE(both.runs(BakeStage::Geometry));
+
+  // Everything that changes the patches: the whole bake.
+  s = base;
+  s.voxel_resolution = 4;
+  EXPECT_EQ(first_stage(s), BakeStage::Geometry);
+  s = base;
+  s.patches_per_voxel = 2;
+  EXPECT_EQ(first_stage(s), BakeStage::Geometry);
+  s = base;
+  s.patch_mode = PatchMode::Voxel;
+  EXPECT_EQ(first_stage(s), BakeStage::Geometry);
+  s = base;
+  s.samples_per_face = 3;
+  EXPECT_EQ(first_stage(s), BakeStage::Geometry);
+  s = base;
+  s.seed = 7;
+  EXPECT_EQ(first_stage(s), BakeStage::Geometry);
+  // New visibility changes which patches the checks prune.
+  s = base;
+  s.visibility_rays = 4;
+  EXPECT_EQ(first_stage(s), BakeStage::Geometry);
+}
+
+TEST(RebakePlan, APatchTargetThatResolvesToTheSameGridReRunsNothing) {
+  const Scene& scene = cornell_box();
+  BakeSettings by_target = small_settings();
+  by_target.voxel_resolution.reset();
+  by_target.patches_total = 150;
+  BakeSettings previous = resolved(by_target);
+  const int r = Baker::resolution_for_patch_count(scene, 150, *previous.patches_per_voxel,
+                                                  previous.patch_mode);
+  previous.voxel_resolution = r;  // as the Baker fills it in
+  EXPECT_EQ(plan_rebake(scene, previous, by_target).first, BakeStage::None);
+  BakeSettings same_grid = small_settings();
+  same_grid.voxel_resolution = r;
+  EXPECT_EQ(plan_rebake(scene, previous, same_grid).first, BakeStage::None);
+  same_grid.voxel_resolution = r + 1;
+  EXPECT_EQ(plan_rebake(scene, previous, same_grid).first, BakeStage::Geometry);
+}
+
+struct CountedBake {
+  BakeResult result;
+  std::multiset<std::string> stages;  // every progress stage the core began
+};
+
+CountedBake run_bake(const BakeSettings& settings, const BakeResult* previous = nullptr) {
+  CountedBake b;
+  std::string last;
+  Progress progress([&](const std::string& stage, double) {
+    if (stage != last) b.stages.insert(stage);
+    last = stage;
+    return true;
+  });
+  Diagnostics d;
+  b.result = Baker(cornell_box(), settings, d).run(progress, previous);
+  return b;
+}
+
+void expect_same_storage(const MatrixStorage& a, const MatrixStorage& b) {
+  ASSERT_EQ(a.codec, b.codec);
+  ASSERT_TRUE(a.compressed && b.compressed);
+  const CompressedMatrix &x = *a.compressed, &y = *b.compressed;
+  EXPECT_EQ(x.ordering, y.ordering);
+  EXPECT_EQ(x.encoder, y.encoder);
+  EXPECT_EQ(x.permutation, y.permutation);
+  EXPECT_EQ(x.blocks, y.blocks);  // bit-exact
+  ASSERT_EQ(x.kept.size(), y.kept.size());
+  for (std::size_t c = 0; c < x.kept.size(); ++c) {
+    EXPECT_EQ(x.kept[c].value, y.kept[c].value);
+    EXPECT_EQ(x.kept[c].col, y.kept[c].col);
+  }
+  EXPECT_EQ(a.errors.matrix.rel_frobenius, b.errors.matrix.rel_frobenius);
+  EXPECT_EQ(a.errors.matrix.max_abs, b.errors.matrix.max_abs);
+  EXPECT_EQ(a.abs_error_sum, b.abs_error_sum);
+}
+
+bool ran(const CountedBake& b, const std::string& prefix) {
+  for (const std::string& s : b.stages)
+    if (s.rfind(prefix, 0) == 0) return true;
+  return false;
+}
+
+TEST(Rebake, CodecOnlyReBakeEqualsAFullBakeWithoutNewFormFactors) {
+  const CountedBake first = run_bake(small_settings());
+  ASSERT_TRUE(ran(first, "form factors"));  // the counting sees the stages
+  ASSERT_TRUE(ran(first, "transport"));
+
+  BakeSettings paper = small_settings();
+  paper.codec = CodecChoice::Paper;
+  paper.ordering = OrderingMethod::Paper1;
+  const CountedBake partial = run_bake(paper, &first.result);
+  const CountedBake full = run_bake(paper);
+
+  EXPECT_EQ(partial.result.plan.first, BakeStage::Compress);
+  EXPECT_FALSE(ran(partial, "voxelize"));
+  EXPECT_FALSE(ran(partial, "form factors"));
+  EXPECT_FALSE(ran(partial, "transport"));
+  EXPECT_TRUE(ran(partial, "compress"));
+  EXPECT_EQ(partial.result.storage.compressed->ordering, "paper-1-pass");
+  expect_same_storage(partial.result.storage, full.result.storage);
+  EXPECT_EQ(partial.result.settings.voxel_resolution, full.result.settings.voxel_resolution);
+  // Reused stages are listed as such; the first bake's storage differs.
+  bool reused_form_factors = false;
+  for (const StageStats& s : partial.result.stages)
+    reused_form_factors |= s.name == "form factors (reused)";
+  EXPECT_TRUE(reused_form_factors);
+  EXPECT_NE(first.result.storage.compressed->codec, partial.result.storage.compressed->codec);
+}
+
+TEST(Rebake, BouncesReBakeReRunsTransportOnly) {
+  const CountedBake first = run_bake(small_settings());
+  BakeSettings more = small_settings();
+  more.transport.bounces = TransportSettings::kInfiniteBounces;
+  const CountedBake partial = run_bake(more, &first.result);
+  const CountedBake full = run_bake(more);
+  EXPECT_EQ(partial.result.plan.first, BakeStage::Transport);
+  EXPECT_FALSE(ran(partial, "form factors"));
+  EXPECT_TRUE(ran(partial, "transport"));
+  ASSERT_EQ(partial.result.transport.channels.size(), full.result.transport.channels.size());
+  for (std::size_t c = 0; c < full.result.transport.channels.size(); ++c)
+    EXPECT_EQ(partial.result.transport.channels[c].t, full.result.transport.channels[c].t);
+  EXPECT_NE(first.result.transport.channels[0].t, partial.result.transport.channels[0].t);
+  expect_same_storage(partial.result.storage, full.result.storage);
+  EXPECT_EQ(partial.result.probe.channel_of_rgb, full.result.probe.channel_of_rgb);
+}
+
+}  // namespace
+}  // namespace bounce
