@@ -4,6 +4,7 @@
 # a Release build once, and builds incrementally.
 #
 #   ./dev.sh bake [SCENE] [bake options]  bake a scene (default: the Cornell box), print the report
+#                                         and its error against the path-traced reference
 #   ./dev.sh test [ctest options]         run the whole test suite with ctest
 #   ./dev.sh build                        set up and build only
 #   ./dev.sh sanitize [ctest options]     unit tests under ASan + UBSan (preset asan, build/asan)
@@ -112,7 +113,10 @@ case "$cmd" in
       shift
     fi
     name=$(basename "${scene%/scene.json}")
-    exec "$build_dir/app/bounce" bake "$scene" --out "bakes/${name%.*}" "$@"
+    # --reference: the bake's own error against the path-traced reference and
+    # its run time, one line at the end (the reference is cached under
+    # ~/.cache/bounce/reference, so only the first bake of a scene renders it).
+    exec "$build_dir/app/bounce" bake "$scene" --out "bakes/${name%.*}" --reference "$@"
     ;;
   test)
     build
@@ -127,7 +131,7 @@ case "$cmd" in
     fuzz "${1:-60}"
     ;;
   *)
-    sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
     [[ "$cmd" == help || "$cmd" == -h || "$cmd" == --help ]] || exit 2
     ;;
 esac

@@ -1,11 +1,14 @@
 #include "error_view.h"
 
+#include <QComboBox>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QLabel>
 #include <QTableWidget>
+#include <QThread>
 #include <QVBoxLayout>
 
+#include "base/diagnostics.h"
 #include "compress/matrix_picture.h"
 #include "error_histogram.h"
 
@@ -13,21 +16,54 @@ namespace bounce::views {
 
 namespace {
 constexpr int kMaxPictureSize = 4096;
-}
+constexpr int kUnset = -1;  // combo data: the bake's codec / the codec's own ordering
+}  // namespace
 
 ErrorView::ErrorView(QWidget* parent)
     : QWidget(parent),
+      codec_box_(new QComboBox(this)),
+      ordering_box_(new QComboBox(this)),
       figures_(new QLabel(this)),
       element_(new MatrixPanel(this)),
       block_(new MatrixPanel(this)),
       histogram_(new ErrorHistogram(this)),
       table_(new QTableWidget(4, 4, this)),
       table_caption_(new QLabel(tr("Click a block of the right heatmap"), this)) {
+  codec_box_->addItem(tr("as baked"), kUnset);
+  codec_box_->addItem(tr("paper (published BC1)"), static_cast<int>(CodecChoice::Paper));
+  codec_box_->addItem(tr("ours"), static_cast<int>(CodecChoice::Ours));
+  codec_box_->setToolTip(
+      tr("Compare codecs on this bake: re-compresses its "
+         "exact matrix (T.npy) with the bake's "
+         "compression stage at the bake's kept fraction, on "
+         "a worker thread. 'as baked' shows "
+         "the stored T.dds"));
+  ordering_box_->addItem(tr("codec's own"), kUnset);
+  for (OrderingMethod m :
+       {OrderingMethod::None, OrderingMethod::Paper1, OrderingMethod::Paper2, OrderingMethod::Ours})
+    ordering_box_->addItem(QString::fromUtf8(ordering_name(m)), static_cast<int>(m));
+  ordering_box_->setToolTip(
+      tr("Row/column ordering of the comparison: which "
+         "rows share a 4x4 block. The paper's "
+         "tour is slow on large matrices"));
+  // Narrow windows (small screenshots) must not be widened by the menus.
+  for (QComboBox* box : {codec_box_, ordering_box_}) {
+    box->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+    box->setMinimumContentsLength(8);
+  }
   figures_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   figures_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
-  table_->setToolTip(tr("The block's 16 entries: exact -> decoded (mean of the stored channels)"));
+  table_->setToolTip(
+      tr("The block's 16 entries: exact -> decoded (mean of the "
+         "stored channels)"));
+  auto* switches = new QHBoxLayout;
+  switches->addWidget(new QLabel(tr("Codec"), this));
+  switches->addWidget(codec_box_);
+  switches->addWidget(new QLabel(tr("Ordering"), this));
+  switches->addWidget(ordering_box_);
+  switches->addStretch(1);
   auto* heatmaps = new QHBoxLayout;
   heatmaps->addWidget(element_);
   heatmaps->addWidget(block_);
@@ -39,6 +75,7 @@ ErrorView::ErrorView(QWidget* parent)
   bottom->addLayout(block_box, 1);
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
+  layout->addLayout(switches);
   layout->addWidget(figures_);
   layout->addLayout(heatmaps, 3);
   layout->addLayout(bottom, 2);
@@ -49,16 +86,40 @@ ErrorView::ErrorView(QWidget* parent)
           });
   connect(block_, &MatrixPanel::clicked, this,
           [this](std::size_t r, std::size_t c) { select_block(r, c); });
+  for (QComboBox* box : {codec_box_, ordering_box_})
+    connect(box, qOverload<int>(&QComboBox::currentIndexChanged), this,
+            [this](int) { compare_from_boxes(); });
+}
+
+ErrorView::~ErrorView() { stop_worker(); }
+
+void ErrorView::stop_worker() {
+  if (!worker_) return;
+  cancel_.store(true);
+  worker_->disconnect(this);
+  worker_->wait();
+  delete worker_;
+  worker_ = nullptr;
 }
 
 void ErrorView::set_data(std::shared_ptr<const BakeViewData> bake) {
+  stop_worker();
   data_ = std::move(bake);
-  abs_error_.clear();
+  shown_ = nullptr;
+  comparisons_.clear();
+  own_abs_error_.clear();
   exact_mean_.clear();
   decoded_mean_.clear();
   table_->clearContents();
+  for (QComboBox* box : {codec_box_, ordering_box_}) {
+    const QSignalBlocker quiet(box);
+    box->setCurrentIndex(0);
+  }
   const LoadedBake* b = data_ ? &data_->bake : nullptr;
-  if (!b || !b->compressed || b->dense.empty()) {
+  const bool usable = b && b->compressed && !b->dense.empty();
+  codec_box_->setEnabled(usable);
+  ordering_box_->setEnabled(usable);
+  if (!usable) {
     const QString why = !b               ? tr("No bake loaded")
                         : !b->compressed ? tr("The matrix is stored dense: no compression error")
                                          : tr("No exact T.npy in this bake (bake with "
@@ -69,17 +130,112 @@ void ErrorView::set_data(std::shared_ptr<const BakeViewData> bake) {
     histogram_->set_values({});
     return;
   }
-  const CompressedMatrix& c = *b->compressed;
-  const std::size_t n = b->size();
   std::vector<const float*> exact;
   for (const auto& m : b->dense) exact.push_back(m.data());
   // The core's own measurement, the one the bake put in its manifest.
-  errors_ = measure_compression(exact, c, b->probe, &abs_error_);
+  own_errors_ = measure_compression(exact, *b->compressed, b->probe, &own_abs_error_);
+  show_matrix(*b->compressed, own_errors_, own_abs_error_, tr("as baked"));
+}
+
+void ErrorView::compare_from_boxes() {
+  const int codec = codec_box_->currentData().toInt();
+  const int ordering = ordering_box_->currentData().toInt();
+  compare(codec == kUnset ? std::nullopt : std::optional(static_cast<CodecChoice>(codec)),
+          ordering == kUnset ? std::nullopt : std::optional(static_cast<OrderingMethod>(ordering)));
+}
+
+void ErrorView::compare(std::optional<CodecChoice> codec, std::optional<OrderingMethod> ordering) {
+  if (!data_ || !data_->bake.compressed || data_->bake.dense.empty()) {
+    emit comparison_failed(tr("nothing to compare: the bake has no compressed matrix and T.npy"));
+    return;
+  }
+  // The menus show the choice also when it comes from code (headless, tests).
+  for (auto [box, value] :
+       {std::pair{codec_box_, codec ? static_cast<int>(*codec) : kUnset},
+        std::pair{ordering_box_, ordering ? static_cast<int>(*ordering) : kUnset}}) {
+    const QSignalBlocker quiet(box);
+    box->setCurrentIndex(box->findData(value));
+  }
+  const CompressedMatrix& own = *data_->bake.compressed;
+  if (!codec && !ordering) {
+    stop_worker();
+    show_matrix(own, own_errors_, own_abs_error_, tr("as baked"));
+    emit comparison_ready();
+    return;
+  }
+  BakeSettings s;
+  s.codec = codec.value_or(own.codec == "paper" ? CodecChoice::Paper : CodecChoice::Ours);
+  s.kept_fraction = own.kept_fraction;  // compare at the bake's share of exact entries
+  s.ordering = ordering;
+  s.pictures = false;
+  const Key key{static_cast<int>(s.codec), ordering ? static_cast<int>(*ordering) : kUnset};
+  const QString source = tr("re-compressed from T.npy");
+  if (const auto it = comparisons_.find(key); it != comparisons_.end()) {
+    stop_worker();
+    show_matrix(*it->second->compressed, it->second->errors, it->second->abs_error_sum, source);
+    emit comparison_ready();
+    return;
+  }
+  stop_worker();  // a newer choice replaces a running one
+  cancel_.store(false);
+  figures_->setText(
+      tr("Re-compressing with %1 (ordering %2)...")
+          .arg(QString::fromUtf8(to_string(s.codec)),
+               ordering ? QString::fromUtf8(ordering_name(*ordering)) : tr("the codec's own")));
+  auto bake = data_;
+  auto result = std::make_shared<std::shared_ptr<const MatrixStorage>>();
+  auto error = std::make_shared<QString>();
+  QThread* thread = QThread::create([this, bake, s, result, error] {
+    Progress progress([this](const std::string&, double) { return !cancel_.load(); });
+    Diagnostics diagnostics;
+    std::vector<const float*> exact;
+    for (const auto& m : bake->bake.dense) exact.push_back(m.data());
+    try {
+      *result = std::make_shared<const MatrixStorage>(
+          store_matrices(exact, bake->bake.size(), bake->bake.probe, s, &progress, diagnostics));
+    } catch (const Cancelled&) {
+    } catch (const std::exception& e) {
+      *error = QString::fromStdString(e.what());
+    }
+  });
+  worker_ = thread;
+  connect(thread, &QThread::finished, this, [this, thread, key, source, result, error] {
+    // A finish queued before stop_worker() replaced or deleted this
+    // thread.
+    if (thread != worker_) return;
+    thread->deleteLater();
+    worker_ = nullptr;
+    if (!error->isEmpty()) {
+      figures_->setText(tr("Re-compression failed: %1").arg(*error));
+      emit comparison_failed(*error);
+      return;
+    }
+    if (!*result || !(*result)->compressed) {
+      emit comparison_failed(tr("the re-compression was cancelled"));
+      return;
+    }
+    comparisons_[key] = *result;
+    show_matrix(*(*result)->compressed, (*result)->errors, (*result)->abs_error_sum, source);
+    emit comparison_ready();
+  });
+  worker_->start();
+}
+
+QString ErrorView::figures_text() const { return figures_->text(); }
+
+void ErrorView::show_matrix(const CompressedMatrix& c, const CompressionErrors& errors,
+                            const std::vector<float>& abs_error, const QString& source) {
+  const LoadedBake& b = data_->bake;
+  const std::size_t n = b.size();
+  shown_ = &c;
+  errors_ = errors;
+  table_->clearContents();
+  table_caption_->setText(tr("Click a block of the right heatmap"));
   const MatrixError& e = errors_.matrix;
-  figures_->setText(tr("%1 (%2, %3, kept %4): mean |error| %5, max %6, sum %7, relative "
-                       "Frobenius %8, indirect light rel. RMS mean %9")
-                        .arg(QString::fromStdString(c.codec), QString::fromStdString(c.encoder),
-                             QString::fromStdString(c.ordering))
+  figures_->setText(tr("%1, %2 (%3, %4, kept %5): mean |error| %6, max %7, sum %8, relative "
+                       "Frobenius %9, indirect light rel. RMS mean %10")
+                        .arg(source, QString::fromStdString(c.codec),
+                             QString::fromStdString(c.encoder), QString::fromStdString(c.ordering))
                         .arg(c.kept_fraction)
                         .arg(e.mean_abs, 0, 'g', 4)
                         .arg(e.max_abs, 0, 'g', 4)
@@ -93,7 +249,7 @@ void ErrorView::set_data(std::shared_ptr<const BakeViewData> bake) {
   const float scale = 1.0f / static_cast<float>(c.channels);
   for (int ch = 0; ch < c.channels; ++ch) {
     decompress_channel(c, ch, decoded.data());
-    const std::vector<float>& t = b->dense[static_cast<std::size_t>(ch)];
+    const std::vector<float>& t = b.dense[static_cast<std::size_t>(ch)];
     for (std::size_t k = 0; k < n * n; ++k) {
       exact_mean_[k] += t[k] * scale;
       decoded_mean_[k] += decoded[k] * scale;
@@ -102,26 +258,26 @@ void ErrorView::set_data(std::shared_ptr<const BakeViewData> bake) {
   MatrixPictureSettings s;
   s.max_size = kMaxPictureSize;
   s.title = "|T~ - T| per entry, reordered (" + c.ordering + ")";
-  element_->set_picture(matrix_picture(abs_error_.data(), n, s, &c.permutation),
+  element_->set_picture(matrix_picture(abs_error.data(), n, s, &c.permutation),
                         MatrixPictureLayout::of(n, s.max_size, s.title));
   // Blocks live in the stored (reordered) matrix.
   std::vector<float> stored(n * n);
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j = 0; j < n; ++j)
-      stored[i * n + j] = abs_error_[c.permutation[i] * n + c.permutation[j]];
+      stored[i * n + j] = abs_error[c.permutation[i] * n + c.permutation[j]];
   std::size_t blocks = 0;
   const std::vector<float> sums = block_error_sums(stored.data(), n, blocks);
-  s.title = "|T~ - T| per 4x4 block of T.dds";
+  s.title = "|T~ - T| per 4x4 block of T.dds (" + c.codec + ")";
   block_->set_picture(matrix_picture(sums.data(), blocks, s),
                       MatrixPictureLayout::of(blocks, s.max_size, s.title));
-  histogram_->set_values(abs_error_);
+  histogram_->set_values(abs_error);
   element_->fit();
   block_->fit();
 }
 
 void ErrorView::select_block(std::size_t block_row, std::size_t block_col) {
   if (!has_errors()) return;
-  const CompressedMatrix& c = *data_->bake.compressed;
+  const CompressedMatrix& c = *shown_;
   const std::size_t n = data_->patch_count();
   table_caption_->setText(tr("Block %1, %2 (stored rows %3..%4, columns %5..%6): exact -> decoded")
                               .arg(block_row)

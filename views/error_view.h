@@ -4,16 +4,25 @@
 // histogram of the per-entry error, the matrix error figures of paper 000
 // (measured by the core's measure_compression against T.npy), and the 16
 // values of a clicked block before (exact) and after (decoded) compression.
+// A codec and ordering switch re-compresses the bake's exact T.npy with the
+// core's compression stage (store_matrices, at the bake's kept fraction) on a
+// worker thread, so codecs can be compared on the same matrix.
+#include <atomic>
+#include <map>
 #include <memory>
+#include <optional>
 
 #include <QWidget>
 
+#include "bake/matrix_storage.h"
 #include "bake_view_data.h"
 #include "compress/compression_error.h"
 #include "matrix_panel.h"
 
+class QComboBox;
 class QLabel;
 class QTableWidget;
+class QThread;
 
 namespace bounce::views {
 
@@ -23,24 +32,53 @@ class ErrorView : public QWidget {
   Q_OBJECT
  public:
   explicit ErrorView(QWidget* parent = nullptr);
+  ~ErrorView() override;
 
   void set_data(std::shared_ptr<const BakeViewData> bake);
   // The figures shown (valid when has_errors()).
   const CompressionErrors& errors() const { return errors_; }
-  bool has_errors() const { return !abs_error_.empty(); }
+  bool has_errors() const { return shown_ != nullptr; }
+  // The compressed matrix shown: the bake's own, or a comparison's.
+  const CompressedMatrix* shown_matrix() const { return shown_; }
+  // Shows the matrix re-compressed with `codec` (Paper or Ours; unset: the
+  // bake's own stored matrix) and `ordering` (unset: the codec's own), at the
+  // bake's kept fraction. Runs on a worker thread the first time; emits
+  // comparison_ready once shown (at once when cached or the bake's own).
+  void compare(std::optional<CodecChoice> codec, std::optional<OrderingMethod> ordering);
+  bool comparing() const { return worker_ != nullptr; }
   // Shows block (block_row, block_col) of the stored matrix in the table.
   void select_block(std::size_t block_row, std::size_t block_col);
   // Cell text of the table: row r (0..3) and column c (0..3) of the block,
   // "exact -> decoded" of the mean over stored channels.
   QString block_cell(int r, int c) const;
+  QString figures_text() const;
   MatrixPanel* element_panel() const { return element_; }
   MatrixPanel* block_panel() const { return block_; }
+  QComboBox* codec_box() const { return codec_box_; }
+  QComboBox* ordering_box() const { return ordering_box_; }
+
+ signals:
+  void comparison_ready();
+  void comparison_failed(const QString& message);
 
  private:
+  using Key = std::pair<int, int>;  // codec, ordering (-1: unset)
+  void show_matrix(const CompressedMatrix& c, const CompressionErrors& errors,
+                   const std::vector<float>& abs_error, const QString& source);
+  void compare_from_boxes();
+  void stop_worker();
+
   std::shared_ptr<const BakeViewData> data_;
   CompressionErrors errors_;
-  std::vector<float> abs_error_;  // patch order
+  const CompressedMatrix* shown_ = nullptr;
+  std::vector<float> own_abs_error_;  // the bake's own matrix, patch order
+  CompressionErrors own_errors_;
+  std::map<Key, std::shared_ptr<const MatrixStorage>> comparisons_;
   std::vector<float> exact_mean_, decoded_mean_;
+  QThread* worker_ = nullptr;
+  std::atomic<bool> cancel_{false};
+  QComboBox* codec_box_;
+  QComboBox* ordering_box_;
   QLabel* figures_;
   MatrixPanel* element_;
   MatrixPanel* block_;

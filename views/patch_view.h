@@ -39,10 +39,11 @@ class PatchView : public QWidget {
   // Picks patch `p` (-1: none).
   void select_patch(int p);
   int selected_patch() const { return selected_; }
-  // The patch whose disc is under the widget pixel (x, y) (Qt coordinates,
-  // top-left origin), or -1.
+  // The patch whose disc is under pixel (x, y) of the 3-D view, i.e. the VTK
+  // widget below the control bar (Qt coordinates, top-left origin), or -1.
   int patch_at(int x, int y);
-  // Where patch p's centroid lands in widget pixels (Qt coordinates).
+  // Where patch p's centroid lands in the 3-D view's pixels (the VTK widget's
+  // Qt coordinates, as patch_at takes them).
   QPoint project_patch(int p);
   // RGB of each patch disc as last coloured (for tests).
   const std::vector<std::array<unsigned char, 3>>& patch_colours() const { return colours_; }

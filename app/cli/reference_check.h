@@ -9,16 +9,11 @@
 
 #include "bake/bake.h"
 #include "base/progress.h"
+#include "report/baked_multiply.h"
 #include "runtime/patch_lighting.h"
 #include "scene/scene.h"
 
 namespace bounce::cli {
-
-// T b through the bake's stored matrix, the way `bounce solve` multiplies it
-// on a CPU: dense sgemv, or the compressed C++ product. `keep_alive` holds
-// what the returned function uses.
-IndirectMultiply baked_multiply(const TransportResult& transport, const MatrixStorage& storage,
-                                std::shared_ptr<void>& keep_alive);
 
 // The bake's indirect picture (96 x 72) against a 256-path reference (cached
 // in ReferenceCache::default_dir()), noise-corrected relative RMSE, with the

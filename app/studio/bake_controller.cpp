@@ -16,11 +16,11 @@ BakeController::~BakeController() {
 }
 
 void BakeController::start(const QString& scene_path, const BakeSettings& settings,
-                           const QString& folder) {
+                           const QString& folder, std::shared_ptr<const BakeJobResult> previous) {
   if (thread_) return;
   cancel_.store(false);
   const std::string scene = scene_path.toStdString(), out = folder.toStdString();
-  thread_ = QThread::create([this, scene, settings, out] {
+  thread_ = QThread::create([this, scene, settings, out, previous] {
     std::string stage;
     auto stage_start = std::chrono::steady_clock::now();
     Progress progress([&](const std::string& name, double fraction) {
@@ -36,8 +36,8 @@ void BakeController::start(const QString& scene_path, const BakeSettings& settin
       return !cancel_.load();
     });
     try {
-      auto job =
-          std::make_shared<const BakeJobResult>(run_bake_job(scene, settings, out, progress));
+      auto job = std::make_shared<const BakeJobResult>(
+          run_bake_job(scene, settings, out, progress, previous));
       emit finished(job);
     } catch (const Cancelled&) {
       emit cancelled();

@@ -23,8 +23,11 @@ class BakeController : public QObject {
   ~BakeController() override;
 
   bool busy() const { return thread_ != nullptr; }
-  // Starts a bake into `folder` (replaced when the bake succeeds).
-  void start(const QString& scene_path, const BakeSettings& settings, const QString& folder);
+  // Starts a bake into `folder` (replaced when the bake succeeds). With
+  // `previous` (an earlier job of the same scene), only the stages the
+  // settings change affects run (run_bake_job).
+  void start(const QString& scene_path, const BakeSettings& settings, const QString& folder,
+             std::shared_ptr<const BakeJobResult> previous = {});
   void cancel() { cancel_.store(true); }
 
  signals:

@@ -8,13 +8,31 @@ namespace bounce::studio {
 namespace fs = std::filesystem;
 
 BakeJobResult run_bake_job(const fs::path& scene_path, const BakeSettings& settings,
-                           const fs::path& folder, Progress& progress) {
+                           const fs::path& folder, Progress& progress,
+                           std::shared_ptr<const BakeJobResult> previous) {
   settings.validate();
   BakeJobResult job;
+  job.scene_path = scene_path;
   job.diagnostics = std::make_shared<Diagnostics>();
-  job.scene = std::make_shared<const Scene>(SceneLoader(*job.diagnostics).load(scene_path));
+  const bool rebake =
+      previous && previous->result && previous->scene && previous->scene_path == scene_path;
+  if (rebake) {
+    // The scene's own warnings, which a fresh load would have raised again.
+    job.load_diagnostics = previous->load_diagnostics;
+    for (const Diagnostic& d : job.load_diagnostics) {
+      if (d.kind == Diagnostic::Kind::Warning)
+        job.diagnostics->warn(d.where, d.message);
+      else
+        job.diagnostics->left_out(d.where, d.message);
+    }
+    job.scene = previous->scene;
+  } else {
+    job.scene = std::make_shared<const Scene>(SceneLoader(*job.diagnostics).load(scene_path));
+    job.load_diagnostics = job.diagnostics->all();
+  }
   job.result = std::make_shared<const BakeResult>(
-      Baker(*job.scene, settings, *job.diagnostics).run(progress));
+      Baker(*job.scene, settings, *job.diagnostics)
+          .run(progress, rebake ? previous->result.get() : nullptr));
   progress.check();
   write_bake(folder, *job.scene, *job.result, *job.diagnostics);
   job.folder = folder;

@@ -5,6 +5,7 @@
 // worker thread (bake_controller.h), headless screenshots run it directly.
 #include <filesystem>
 #include <memory>
+#include <vector>
 
 #include "bake/bake.h"
 #include "bake_view_data.h"
@@ -14,16 +15,22 @@
 namespace bounce::studio {
 
 struct BakeJobResult {
+  std::filesystem::path scene_path;  // as given to run_bake_job
   std::shared_ptr<const Scene> scene;
   std::shared_ptr<const BakeResult> result;
   std::shared_ptr<Diagnostics> diagnostics;
+  std::vector<Diagnostic> load_diagnostics;  // what loading the scene said
   std::filesystem::path folder;
   std::shared_ptr<const views::BakeViewData> data;
 };
 
-// Throws bounce::Error (Cancelled when progress asks to stop).
+// Throws bounce::Error (Cancelled when progress asks to stop). With
+// `previous`, an earlier job of the same scene path, its loaded scene is
+// reused and only the stages the settings change affects run (the core's
+// plan_rebake, Baker::run with a previous result); the rest is taken from it.
 BakeJobResult run_bake_job(const std::filesystem::path& scene_path, const BakeSettings& settings,
-                           const std::filesystem::path& folder, Progress& progress);
+                           const std::filesystem::path& folder, Progress& progress,
+                           std::shared_ptr<const BakeJobResult> previous = {});
 
 // Exports a finished bake: the same folder format as `bounce bake --out`.
 void export_bake(const BakeJobResult& job, const std::filesystem::path& folder);

@@ -10,6 +10,8 @@
 #include "error_view.h"
 #include "matrix_view.h"
 #include "patch_view.h"
+#include "preview_widget.h"
+#include "report_screenshot.h"
 #include "settings_panel.h"
 #include "voxel_view.h"
 #include "vtk_error_capture.h"
@@ -23,14 +25,47 @@ void settle() {
   for (int k = 0; k < 5; ++k) QApplication::processEvents();
 }
 
+// "direct,indirect,ao" (any subset; empty: all of them).
+views::PreviewWidget::Passes preview_passes(const QString& list) {
+  views::PreviewWidget::Passes p;
+  if (list.isEmpty()) return p;
+  p.direct = p.indirect = p.ao = false;
+  for (const QString& name : list.split(',')) {
+    if (name == "direct")
+      p.direct = true;
+    else if (name == "indirect")
+      p.indirect = true;
+    else if (name == "ao")
+      p.ao = true;
+    else
+      throw Error("--passes", "names direct, indirect or ao, separated by commas; got '" +
+                                  name.toStdString() + "'");
+  }
+  return p;
+}
+
 }  // namespace
 
 void take_screenshot(const ScreenshotRequest& r) {
-  if (r.view != "voxels" && r.view != "patches" && r.view != "matrix" && r.view != "error")
-    throw Error("--view",
-                "must be voxels, patches, matrix or error, got '" + r.view.toStdString() + "'");
+  if (r.view != "voxels" && r.view != "patches" && r.view != "matrix" && r.view != "error" &&
+      r.view != "preview" && r.view != "report")
+    throw Error("--view", "must be voxels, patches, matrix, error, preview or report, got '" +
+                              r.view.toStdString() + "'");
+  if (!r.report.isEmpty() && r.view != "report")
+    throw Error("--report", "is the report view's data: use it with --view report");
+  if (!r.compare_codec.isEmpty() && r.view != "error")
+    throw Error("--compare-codec", "switches the error view's codec: use it with --view error");
+  if (r.has_light && r.view != "preview")
+    throw Error("--light", "moves the preview's light: use it with --view preview");
+  if (!r.passes.isEmpty() && r.view != "preview")
+    throw Error("--passes", "switches the preview's passes: use it with --view preview");
+  preview_passes(r.passes);  // bad names fail before any bake
   if (r.width < 64 || r.height < 64 || r.width > 8192 || r.height > 8192)
     throw Error("--size", "must be WxH with each side between 64 and 8192");
+  if (r.view == "report") {
+    take_report_screenshot(r);
+    return;
+  }
 
   std::shared_ptr<const views::BakeViewData> data;
   QTemporaryDir temp;
@@ -77,10 +112,33 @@ void take_screenshot(const ScreenshotRequest& r) {
       v->select_patch(r.pick_patch);
     }
     view = v;
+  } else if (r.view == "preview") {
+    auto* v = new views::PreviewWidget;
+    owner.reset(v);
+    v->set_data(data);
+    v->set_passes(preview_passes(r.passes));
+    if (r.has_light) v->set_light_position({r.light_x, r.light_y, r.light_z}, true);
+    view = v;
   } else if (r.view == "error") {
     auto* v = new views::ErrorView;
     owner.reset(v);
     v->set_data(data);
+    if (!r.compare_codec.isEmpty()) {
+      if (r.compare_codec != "paper" && r.compare_codec != "ours")
+        throw Error("--compare-codec",
+                    "must be paper or ours, got '" + r.compare_codec.toStdString() + "'");
+      // The comparison runs on the view's worker thread: wait for it.
+      bool done = false;
+      QString failure;
+      QObject::connect(v, &views::ErrorView::comparison_ready, [&] { done = true; });
+      QObject::connect(v, &views::ErrorView::comparison_failed, [&](const QString& why) {
+        failure = why;
+        done = true;
+      });
+      v->compare(r.compare_codec == "paper" ? CodecChoice::Paper : CodecChoice::Ours, std::nullopt);
+      while (!done) QApplication::processEvents(QEventLoop::WaitForMoreEvents);
+      if (!failure.isEmpty()) throw Error("--compare-codec", failure.toStdString());
+    }
     view = v;
   } else {
     auto* v = new views::MatrixView;
@@ -97,7 +155,14 @@ void take_screenshot(const ScreenshotRequest& r) {
     e->block_panel()->fit();
   }
   settle();
-  const QImage image = view->grab().toImage();
+  QImage image;
+  if (auto* p = dynamic_cast<views::PreviewWidget*>(view)) {
+    p->measure_frame_ms(10);    // so the overlay's frame rate is a measured one
+    image = p->render_image();  // grabFramebuffer: the GL picture with its overlay
+    if (!p->gl_error().isEmpty()) throw Error("preview", p->gl_error().toStdString());
+  } else {
+    image = view->grab().toImage();
+  }
   const std::vector<std::string> vtk = views::VtkErrorCapture::messages();
   if (!vtk.empty()) throw Error("render", "VTK reported: " + vtk.front());
   QSaveFile file(r.screenshot);

@@ -10,13 +10,18 @@ namespace bounce::studio {
 struct ScreenshotRequest {
   QString input;       // scene or bake folder
   QString screenshot;  // PNG to write
-  QString view;        // voxels, patches, matrix, error
+  QString view;        // voxels, patches, matrix, error, preview
   int width = 1024, height = 768;
-  int voxel = 0;          // > 0: --voxel
-  int patches_total = 0;  // > 0: --patches-total
-  QString codec;          // empty: the panel's default
-  QString bake_out;       // keep the bake folder here (default: a temporary one)
-  int pick_patch = -1;    // patches view: pick this patch, as a click would
+  int voxel = 0;           // > 0: --voxel
+  int patches_total = 0;   // > 0: --patches-total
+  QString codec;           // empty: the panel's default
+  QString bake_out;        // keep the bake folder here (default: a temporary one)
+  int pick_patch = -1;     // patches view: pick this patch, as a click would
+  QString compare_codec;   // error view: re-compress with paper or ours (empty: as baked)
+  QString report;          // report view: show this report.json (default: run the quick sweep)
+  QString passes;          // preview view: comma-separated direct, indirect, ao (empty: all)
+  bool has_light = false;  // preview view: move the light to (light_x, light_y, light_z)
+  float light_x = 0.0f, light_y = 0.0f, light_z = 0.0f;
 };
 
 // Throws bounce::Error for bad requests and failed bakes or renders.

@@ -1,5 +1,6 @@
 // bounce-studio: the desktop editor, or (with --screenshot) one view rendered
 // to a PNG without user interaction.
+#include <cmath>
 #include <cstdio>
 
 #include <QVTKOpenGLNativeWidget.h>
@@ -12,15 +13,30 @@
 #include "main_window.h"
 #include "vtk_error_capture.h"
 
-int main(int argc, char** argv) {
-  // VTK needs its OpenGL context format before any widget exists.
-  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
-  QApplication app(argc, argv);
-  QApplication::setOrganizationName("Bounce");
-  QApplication::setApplicationName("Bounce Studio");
-  QApplication::setApplicationVersion(BOUNCE_VERSION);
-  bounce::views::VtkErrorCapture::install();
+namespace {
 
+void name_application() {
+  QCoreApplication::setOrganizationName("Bounce");
+  QCoreApplication::setApplicationName("Bounce Studio");
+  QCoreApplication::setApplicationVersion(BOUNCE_VERSION);
+}
+
+// QApplication aborts without a display, before the options are parsed; help
+// and version need none, so they are answered by a QCoreApplication first.
+bool asks_for_help_or_version(int argc, char** argv) {
+  for (int k = 1; k < argc; ++k) {
+    const QString a = QString::fromLocal8Bit(argv[k]);
+    if (a == "--") break;
+    if (a == "-h" || a == "--help" || a == "-?" || a == "--help-all" || a == "-v" ||
+        a == "--version")
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
   QCommandLineParser parser;
   parser.setApplicationDescription(
       "Bounce Studio: bake a scene and look at its voxels, patches and transport matrix.");
@@ -29,8 +45,9 @@ int main(int argc, char** argv) {
   parser.addPositionalArgument("input", "Scene (folder, scene.json or mesh) or bake folder");
   const QCommandLineOption screenshot("screenshot", "Render one view to this PNG and exit.",
                                       "out.png");
-  const QCommandLineOption view("view", "View for --screenshot: voxels, patches, matrix or error.",
-                                "view", "voxels");
+  const QCommandLineOption view(
+      "view", "View for --screenshot: voxels, patches, matrix, error, preview or report.", "view",
+      "voxels");
   const QCommandLineOption size("size", "Picture size for --screenshot, WxH.", "WxH", "1024x768");
   const QCommandLineOption voxel("voxel", "Bake with this many voxels along the longest side.",
                                  "N");
@@ -40,7 +57,30 @@ int main(int argc, char** argv) {
                                     "dir");
   const QCommandLineOption pick("pick-patch", "Patches view: pick this patch, as a click would.",
                                 "index");
-  parser.addOptions({screenshot, view, size, voxel, patches_total, codec, bake_out, pick});
+  const QCommandLineOption light("light", "Preview view: move the scene's light to x,y,z first.",
+                                 "x,y,z");
+  const QCommandLineOption report(
+      "report", "Report view: show this report.json (default: run the quick sweep on the scene).",
+      "report.json");
+  const QCommandLineOption passes(
+      "passes", "Preview view: the passes to show, any of direct,indirect,ao (default: all).",
+      "list");
+  const QCommandLineOption compare_codec(
+      "compare-codec", "Error view: re-compress the bake with paper or ours and show that.",
+      "codec");
+  parser.addOptions({screenshot, view, size, voxel, patches_total, codec, bake_out, pick, light,
+                     report, passes, compare_codec});
+  if (asks_for_help_or_version(argc, argv)) {
+    QCoreApplication core(argc, argv);
+    name_application();
+    parser.process(core);  // prints the help or version and exits 0
+    return 0;
+  }
+  // VTK needs its OpenGL context format before any widget exists.
+  QSurfaceFormat::setDefaultFormat(QVTKOpenGLNativeWidget::defaultFormat());
+  QApplication app(argc, argv);
+  name_application();
+  bounce::views::VtkErrorCapture::install();
   parser.process(app);
   const QStringList inputs = parser.positionalArguments();
 
@@ -79,6 +119,22 @@ int main(int argc, char** argv) {
       r.codec = parser.value(codec);
       r.bake_out = parser.value(bake_out);
       r.pick_patch = integer(pick, -1);
+      r.compare_codec = parser.value(compare_codec);
+      r.report = parser.value(report);
+      r.passes = parser.value(passes);
+      if (parser.isSet(light)) {
+        const QStringList xyz = parser.value(light).split(',');
+        bool ok = xyz.size() == 3;
+        float* coordinate[3] = {&r.light_x, &r.light_y, &r.light_z};
+        for (int k = 0; ok && k < 3; ++k) {
+          *coordinate[k] = xyz[k].toFloat(&ok);
+          ok = ok && std::isfinite(*coordinate[k]);
+        }
+        if (!ok)
+          throw bounce::Error("--light", "must be x,y,z (three numbers), got '" +
+                                             parser.value(light).toStdString() + "'");
+        r.has_light = true;
+      }
       bounce::studio::take_screenshot(r);
       return 0;
     }

@@ -25,6 +25,9 @@
 #include "error_view.h"
 #include "matrix_view.h"
 #include "patch_view.h"
+#include "preview_view.h"
+#include "report_controller.h"
+#include "report_view.h"
 #include "settings_panel.h"
 #include "voxel_view.h"
 
@@ -51,6 +54,7 @@ MainWindow::MainWindow(QWidget* parent)
       patch_view_(new views::PatchView(this)),
       matrix_view_(new views::MatrixView(this)),
       error_view_(new views::ErrorView(this)),
+      preview_view_(new views::PreviewView(this)),
       bake_button_(new QPushButton(tr("Bake"), this)),
       cancel_button_(new QPushButton(tr("Cancel"), this)),
       stage_bars_(new QVBoxLayout),
@@ -61,6 +65,7 @@ MainWindow::MainWindow(QWidget* parent)
   tabs_->addTab(patch_view_, tr("Patches"));
   tabs_->addTab(matrix_view_, tr("Matrix"));
   tabs_->addTab(error_view_, tr("Compression error"));
+  tabs_->addTab(preview_view_, tr("Preview"));
   setCentralWidget(tabs_);
 
   auto* panel = new QWidget(this);
@@ -88,6 +93,7 @@ MainWindow::MainWindow(QWidget* parent)
   bake_button_->setEnabled(false);
 
   build_menus();
+  build_report_tab();
   connect(bake_button_, &QPushButton::clicked, this, &MainWindow::start_bake);
   connect(cancel_button_, &QPushButton::clicked, this, [this] {
     controller_->cancel();
@@ -99,9 +105,17 @@ MainWindow::MainWindow(QWidget* parent)
             set_busy(false);
             last_job_ = job;
             export_action_->setEnabled(true);
-            statusBar()->showMessage(tr("Baked %1 patches in %2 s")
+            const RebakePlan& plan = job->result->plan;
+            const QString rerun = plan.first == BakeStage::Geometry ? QString()
+                                  : plan.first == BakeStage::None
+                                      ? tr(" (no stage affected: bake reused)")
+                                      : tr(" (re-ran from %1: %2)")
+                                            .arg(QString::fromUtf8(to_string(plan.first)),
+                                                 QString::fromStdString(plan.reasons.front()));
+            statusBar()->showMessage(tr("Baked %1 patches in %2 s%3")
                                          .arg(job->data->patch_count())
-                                         .arg(job->result->total_seconds, 0, 'f', 2));
+                                         .arg(job->result->total_seconds, 0, 'f', 2)
+                                         .arg(rerun));
             show_data(job->data);
           });
   connect(controller_, &BakeController::failed, this, [this](const QString& message) {
@@ -144,6 +158,51 @@ void MainWindow::build_menus() {
   file->addAction(tr("&Quit"), this, &QWidget::close, QKeySequence::Quit);
 }
 
+void MainWindow::build_report_tab() {
+  report_view_ = new views::ReportView(this);
+  report_controller_ = new ReportController(this);
+  tabs_->addTab(report_view_, tr("Report"));
+  connect(report_view_, &views::ReportView::run_requested, this, [this] {
+    if (scene_path_.isEmpty()) {
+      show_error(tr("No scene"), tr("Open a scene first: the sweep bakes it."));
+      return;
+    }
+    report_view_->set_busy(true);
+    report_view_->set_status(tr("Running the quick sweep of %1...").arg(scene_path_));
+    report_controller_->start(scene_path_);
+  });
+  connect(report_view_, &views::ReportView::open_requested, this, [this] {
+    const QString file = QFileDialog::getOpenFileName(this, tr("Open report"), QString(),
+                                                      tr("Reports (report.json *.json)"));
+    if (file.isEmpty()) return;
+    try {
+      report_view_->set_report(std::make_shared<const ReportData>(read_report(file.toStdString())));
+    } catch (const std::exception& e) {
+      show_error(tr("Cannot read report"), QString::fromStdString(e.what()));
+    }
+  });
+  connect(report_controller_, &ReportController::progress, this,
+          [this](const QString& stage, double fraction) {
+            report_view_->set_status(
+                tr("Report: %1 %2%").arg(stage).arg(static_cast<int>(100.0 * fraction)));
+          });
+  connect(report_controller_, &ReportController::finished, this,
+          [this](std::shared_ptr<const ReportData> report) {
+            report_view_->set_busy(false);
+            report_view_->set_report(std::move(report));
+          });
+  connect(report_controller_, &ReportController::failed, this, [this](const QString& message) {
+    report_view_->set_busy(false);
+    report_view_->set_status(message);
+  });
+  connect(report_view_, &views::ReportView::row_clicked, this, [this](int row) {
+    const auto& report = report_view_->report();
+    if (!report || row < 0 || static_cast<std::size_t>(row) >= report->rows.size()) return;
+    settings_->apply(report_row_settings(report->rows[static_cast<std::size_t>(row)]));
+    statusBar()->showMessage(tr("Settings of the clicked point loaded: press Bake to bake them"));
+  });
+}
+
 void MainWindow::rebuild_recent_menu() {
   recent_menu_->clear();
   const QStringList recent = QSettings().value("recent").toStringList();
@@ -180,6 +239,8 @@ void MainWindow::open(const QString& path) {
   scene_path_ = info.absoluteFilePath();
   scene_label_->setText(tr("Scene %1").arg(scene_path_));
   bake_button_->setEnabled(!controller_->busy());
+  // Opening reads the scene afresh (it may have changed on disk): a full bake.
+  if (!controller_->busy()) last_job_.reset();
   start_bake();
 }
 
@@ -188,6 +249,7 @@ void MainWindow::show_data(std::shared_ptr<const views::BakeViewData> bake) {
   patch_view_->set_data(bake);
   matrix_view_->set_data(bake);
   error_view_->set_data(bake);
+  preview_view_->set_data(bake);
 }
 
 void MainWindow::show_tab(Tab tab) { tabs_->setCurrentIndex(static_cast<int>(tab)); }
@@ -224,7 +286,12 @@ void MainWindow::start_bake() {
   current_bar_ = nullptr;
   set_busy(true);
   statusBar()->showMessage(tr("Baking %1...").arg(scene_path_));
-  controller_->start(scene_path_, settings, session_folder());
+  // A re-bake of the same scene runs only the stages the changed settings
+  // affect (core plan_rebake); the rest comes from the last bake.
+  std::shared_ptr<const BakeJobResult> previous;
+  if (last_job_ && last_job_->result && last_job_->scene_path == scene_path_.toStdString())
+    previous = last_job_;
+  controller_->start(scene_path_, settings, session_folder(), previous);
 }
 
 void MainWindow::on_stage_progress(const QString& stage, double fraction, double eta) {

@@ -20,6 +20,8 @@ namespace bounce::views {
 class ErrorView;
 class MatrixView;
 class PatchView;
+class ReportView;
+class PreviewView;
 class VoxelView;
 }  // namespace bounce::views
 
@@ -30,7 +32,7 @@ class SettingsPanel;
 class MainWindow : public QMainWindow {
   Q_OBJECT
  public:
-  enum class Tab { Voxels = 0, Patches = 1, Matrix = 2, Error = 3 };
+  enum class Tab { Voxels = 0, Patches = 1, Matrix = 2, Error = 3, Preview = 4 };
 
   explicit MainWindow(QWidget* parent = nullptr);
   ~MainWindow() override;
@@ -43,6 +45,7 @@ class MainWindow : public QMainWindow {
   views::VoxelView* voxel_view() const { return voxel_view_; }
   views::PatchView* patch_view() const { return patch_view_; }
   views::MatrixView* matrix_view() const { return matrix_view_; }
+  views::ReportView* report_view() const { return report_view_; }
 
  protected:
   void dragEnterEvent(QDragEnterEvent* event) override;
@@ -51,6 +54,9 @@ class MainWindow : public QMainWindow {
 
  private:
   void build_menus();
+  // The report tab: the error-against-run-time chart, its quick sweep on a
+  // worker thread, report.json files, clicked points into the settings panel.
+  void build_report_tab();
   void rebuild_recent_menu();
   void start_bake();
   void export_bake_folder();
@@ -66,6 +72,7 @@ class MainWindow : public QMainWindow {
   views::PatchView* patch_view_;
   views::MatrixView* matrix_view_;
   views::ErrorView* error_view_;
+  views::PreviewView* preview_view_;
   QPushButton* bake_button_;
   QPushButton* cancel_button_;
   QVBoxLayout* stage_bars_;
@@ -77,6 +84,8 @@ class MainWindow : public QMainWindow {
   QProgressBar* current_bar_ = nullptr;
   QLabel* current_eta_ = nullptr;
   std::shared_ptr<const BakeJobResult> last_job_;
+  views::ReportView* report_view_ = nullptr;
+  class ReportController* report_controller_ = nullptr;
 };
 
 }  // namespace bounce::studio

@@ -14,6 +14,8 @@ namespace {
 
 // Bounces menu: auto, infinite, then fixed counts.
 constexpr int kFixedBouncesShown = 16;
+// Ordering menu: the codec's own ordering (BakeSettings::ordering unset).
+constexpr int kAutoOrdering = -1;
 
 }  // namespace
 
@@ -23,8 +25,10 @@ SettingsPanel::SettingsPanel(QWidget* parent)
       voxel_box_(new QSpinBox(this)),
       patches_total_box_(new QSpinBox(this)),
       per_voxel_box_(new QSpinBox(this)),
+      patch_mode_box_(new QComboBox(this)),
       bounces_box_(new QComboBox(this)),
       codec_box_(new QComboBox(this)),
+      ordering_box_(new QComboBox(this)),
       kept_mode_box_(new QComboBox(this)),
       kept_box_(new QDoubleSpinBox(this)),
       budget_box_(new QDoubleSpinBox(this)) {
@@ -47,6 +51,11 @@ SettingsPanel::SettingsPanel(QWidget* parent)
   per_voxel_box_->setToolTip(
       tr("Patches kept in each voxel after clustering its samples. 3 keeps the three walls of "
          "a room corner apart; more subdivides flat surfaces"));
+  patch_mode_box_->addItem(tr("virtual patches"), static_cast<int>(PatchMode::Virtual));
+  patch_mode_box_->addItem(tr("voxel baseline"), static_cast<int>(PatchMode::Voxel));
+  patch_mode_box_->setToolTip(
+      tr("virtual: the samples in each voxel clustered into patches (the method); voxel "
+         "baseline: one patch per voxel, for comparison"));
   bounces_box_->addItem(tr("auto"), TransportSettings::kAutoBounces);
   bounces_box_->addItem(tr("infinite (exact)"), TransportSettings::kInfiniteBounces);
   for (int k = 1; k <= kFixedBouncesShown; ++k) bounces_box_->addItem(QString::number(k), k);
@@ -61,6 +70,17 @@ SettingsPanel::SettingsPanel(QWidget* parent)
       tr("How the light-transport matrix is stored. dense: exact and large; paper: the "
          "published DXT1 pipeline; ours: smaller for the same error; auto: ours, or dense "
          "when the matrix is too small for compression to pay"));
+  ordering_box_->addItem(tr("codec's own"), kAutoOrdering);
+  ordering_box_->addItem(tr("none (patch order)"), static_cast<int>(OrderingMethod::None));
+  ordering_box_->addItem(tr("paper, 1 pass"), static_cast<int>(OrderingMethod::Paper1));
+  ordering_box_->addItem(tr("paper, 2 passes"), static_cast<int>(OrderingMethod::Paper2));
+  ordering_box_->addItem(tr("ours"), static_cast<int>(OrderingMethod::Ours));
+  ordering_box_->setToolTip(
+      tr("The order of the matrix rows and columns before they are cut into 4x4 blocks: "
+         "similar rows side by side make smoother blocks and less compression error (see the "
+         "Matrix view's right half). codec's own: paper's 2-pass tour for paper, ours for ours; "
+         "paper: the published greedy tour (slow on large matrices); none: patch order. "
+         "Changing it re-runs only the compression"));
   kept_mode_box_->addItems({tr("from error budget"), tr("fixed share")});
   kept_mode_box_->setToolTip(
       tr("Which of the matrix's largest values are kept exactly: as few as meet the error "
@@ -85,13 +105,16 @@ SettingsPanel::SettingsPanel(QWidget* parent)
   form->addRow(tr("Voxel size"), voxel_box_);
   form->addRow(tr("Total patches"), patches_total_box_);
   form->addRow(tr("Patches per voxel"), per_voxel_box_);
+  form->addRow(tr("Patches"), patch_mode_box_);
   form->addRow(tr("Bounces"), bounces_box_);
   form->addRow(tr("Codec"), codec_box_);
+  form->addRow(tr("Ordering"), ordering_box_);
   form->addRow(tr("Kept values"), kept_mode_box_);
   form->addRow(tr("Kept fraction"), kept_box_);
   form->addRow(tr("Error budget"), budget_box_);
 
-  for (QComboBox* box : {grid_box_, bounces_box_, codec_box_, kept_mode_box_})
+  for (QComboBox* box :
+       {grid_box_, patch_mode_box_, bounces_box_, codec_box_, ordering_box_, kept_mode_box_})
     connect(box, qOverload<int>(&QComboBox::currentIndexChanged), this, [this](int) {
       update_enabled();
       emit changed();
@@ -111,6 +134,7 @@ void SettingsPanel::update_enabled() {
   const bool compressed = codec != CodecChoice::Dense;
   // The paper's codec has no error budget: it keeps a fixed share.
   kept_mode_box_->setEnabled(compressed && codec != CodecChoice::Paper);
+  ordering_box_->setEnabled(compressed);
   const bool fixed = codec == CodecChoice::Paper || kept_mode_box_->currentIndex() == 1;
   kept_box_->setEnabled(compressed && fixed);
   budget_box_->setEnabled(compressed && !fixed);
@@ -129,8 +153,11 @@ BakeSettings SettingsPanel::settings() const {
       break;
   }
   s.patches_per_voxel = per_voxel_box_->value();
+  s.patch_mode = static_cast<PatchMode>(patch_mode_box_->currentData().toInt());
   s.transport.bounces = bounces_box_->currentData().toInt();
   s.codec = static_cast<CodecChoice>(codec_box_->currentData().toInt());
+  if (const int o = ordering_box_->currentData().toInt(); o != kAutoOrdering)
+    s.ordering = static_cast<OrderingMethod>(o);
   if (kept_box_->isEnabled()) s.kept_fraction = kept_box_->value();
   if (budget_box_->isEnabled()) s.error_budget = budget_box_->value();
   s.dump_matrices = true;
@@ -148,14 +175,40 @@ void SettingsPanel::set_codec(CodecChoice codec) {
   codec_box_->setCurrentIndex(codec_box_->findData(static_cast<int>(codec)));
 }
 
+void SettingsPanel::set_ordering(std::optional<OrderingMethod> ordering) {
+  ordering_box_->setCurrentIndex(
+      ordering_box_->findData(ordering ? static_cast<int>(*ordering) : kAutoOrdering));
+}
+
+void SettingsPanel::apply(const BakeSettings& s) {
+  if (s.patches_total)
+    set_grid(GridChoice::PatchesTotal, *s.patches_total);
+  else if (s.voxel_resolution)
+    set_grid(GridChoice::VoxelSize, *s.voxel_resolution);
+  if (s.patches_per_voxel) per_voxel_box_->setValue(*s.patches_per_voxel);
+  patch_mode_box_->setCurrentIndex(patch_mode_box_->findData(static_cast<int>(s.patch_mode)));
+  if (const int k = bounces_box_->findData(s.transport.bounces); k >= 0)
+    bounces_box_->setCurrentIndex(k);
+  set_codec(s.codec);
+  if (s.kept_fraction) {
+    kept_mode_box_->setCurrentIndex(1);
+    kept_box_->setValue(*s.kept_fraction);
+  } else if (s.codec == CodecChoice::Ours) {
+    kept_mode_box_->setCurrentIndex(0);
+  }
+  update_enabled();
+}
+
 void SettingsPanel::save(QSettings& store) const {
   store.beginGroup("bake");
   store.setValue("grid", grid_box_->currentIndex());
   store.setValue("voxel", voxel_box_->value());
   store.setValue("patches_total", patches_total_box_->value());
   store.setValue("patches_per_voxel", per_voxel_box_->value());
+  store.setValue("patch_mode", patch_mode_box_->currentData());
   store.setValue("bounces", bounces_box_->currentData());
   store.setValue("codec", codec_box_->currentData());
+  store.setValue("ordering", ordering_box_->currentData());
   store.setValue("kept_mode", kept_mode_box_->currentIndex());
   store.setValue("kept_fraction", kept_box_->value());
   store.setValue("error_budget", budget_box_->value());
@@ -169,11 +222,17 @@ void SettingsPanel::load(QSettings& store) {
   voxel_box_->setValue(store.value("voxel", voxel_box_->value()).toInt());
   patches_total_box_->setValue(store.value("patches_total", patches_total_box_->value()).toInt());
   per_voxel_box_->setValue(store.value("patches_per_voxel", per_voxel_box_->value()).toInt());
+  if (const int k =
+          patch_mode_box_->findData(store.value("patch_mode", patch_mode_box_->currentData()));
+      k >= 0)
+    patch_mode_box_->setCurrentIndex(k);
   if (const int k = bounces_box_->findData(store.value("bounces", bounces_box_->currentData()));
       k >= 0)
     bounces_box_->setCurrentIndex(k);
   if (const int k = codec_box_->findData(store.value("codec", codec_box_->currentData())); k >= 0)
     codec_box_->setCurrentIndex(k);
+  if (const int k = ordering_box_->findData(store.value("ordering", kAutoOrdering)); k >= 0)
+    ordering_box_->setCurrentIndex(k);
   kept_mode_box_->setCurrentIndex(std::clamp(store.value("kept_mode", 0).toInt(), 0, 1));
   kept_box_->setValue(store.value("kept_fraction", kept_box_->value()).toDouble());
   budget_box_->setValue(store.value("error_budget", budget_box_->value()).toDouble());

@@ -26,6 +26,11 @@ class SettingsPanel : public QWidget {
 
   void set_grid(GridChoice choice, int value);
   void set_codec(CodecChoice codec);
+  // Shows `settings` in the panel (the report view's clicked point): grid,
+  // patch mode, bounces, codec and kept share; unset values keep the panel's.
+  void apply(const BakeSettings& settings);
+  // Unset: the codec's own ordering.
+  void set_ordering(std::optional<OrderingMethod> ordering);
 
   void save(QSettings& store) const;
   void load(QSettings& store);
@@ -40,8 +45,10 @@ class SettingsPanel : public QWidget {
   QSpinBox* voxel_box_;
   QSpinBox* patches_total_box_;
   QSpinBox* per_voxel_box_;
+  QComboBox* patch_mode_box_;
   QComboBox* bounces_box_;
   QComboBox* codec_box_;
+  QComboBox* ordering_box_;
   QComboBox* kept_mode_box_;
   QDoubleSpinBox* kept_box_;
   QDoubleSpinBox* budget_box_;

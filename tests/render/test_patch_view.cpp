@@ -71,7 +71,9 @@ TEST_F(PatchView, ClickPicksThePatchUnderTheMouse) {
   const int p = facing[facing.size() / 2];
   const QPoint in_view = view_.project_patch(p);
   const int expected = view_.patch_at(in_view.x(), in_view.y());
-  const QPoint local = gl->mapFrom(&view_, in_view);
+  // project_patch gives the VTK widget's own coordinates (below the control
+  // bar), which is where the mouse event goes.
+  const QPoint local = in_view;
   QMouseEvent press(QEvent::MouseButtonPress, local, Qt::LeftButton, Qt::LeftButton,
                     Qt::NoModifier);
   QMouseEvent release(QEvent::MouseButtonRelease, local, Qt::LeftButton, Qt::NoButton,

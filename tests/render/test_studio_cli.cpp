@@ -17,8 +17,9 @@ struct StudioRun {
   std::string output;  // stdout and stderr
 };
 
-StudioRun run_studio(const std::string& args) {
-  const std::string command = std::string(BOUNCE_STUDIO) + " " + args + " 2>&1";
+// Runs a shell command line, stdout and stderr together.
+StudioRun run_studio_command(const std::string& command_line) {
+  const std::string command = command_line + " 2>&1";
   StudioRun r;
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) return r;
@@ -27,6 +28,10 @@ StudioRun run_studio(const std::string& args) {
   const int status = ::pclose(pipe);
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+StudioRun run_studio(const std::string& args) {
+  return run_studio_command(std::string(BOUNCE_STUDIO) + " " + args);
 }
 
 fs::path work_dir(const std::string& name) {
@@ -52,6 +57,22 @@ TEST_F(StudioCli, ScreenshotsOfEveryViewFromABakeFolder) {
     EXPECT_EQ(image.size(), QSize(400, 300)) << view;
     EXPECT_GT(non_uniform_share(image), 0.2) << view << " looks blank";
   }
+}
+
+TEST_F(StudioCli, HelpAndVersionNeedNoDisplay) {
+  const std::string no_display = "env -u DISPLAY -u WAYLAND_DISPLAY -u QT_QPA_PLATFORM ";
+  const std::string studio = std::string(BOUNCE_STUDIO);
+  // Without a display the window cannot start: the environment really has none.
+  const StudioRun window = run_studio_command(no_display + studio + " --no-such-input-yet");
+  EXPECT_NE(window.code, 0) << window.output;
+  const StudioRun help = run_studio_command(no_display + studio + " --help");
+  EXPECT_EQ(help.code, 0) << help.output;
+  EXPECT_NE(help.output.find("--screenshot"), std::string::npos) << help.output;
+  EXPECT_NE(help.output.find("--view"), std::string::npos) << help.output;
+  const StudioRun version = run_studio_command(no_display + studio + " --version");
+  EXPECT_EQ(version.code, 0) << version.output;
+  EXPECT_NE(version.output.find("Bounce Studio " BOUNCE_VERSION_TEXT), std::string::npos)
+      << version.output;
 }
 
 TEST_F(StudioCli, SettingsChangeThePatchCount) {

@@ -1,0 +1,55 @@
+#include "report_controller.h"
+
+#include <QThread>
+
+#include "reference/reference_cache.h"
+#include "report/report_sweep.h"
+#include "scene/scene_loader.h"
+
+namespace bounce::studio {
+
+ReportData run_quick_report(const std::string& scene_path, Progress& progress) {
+  Diagnostics diag;
+  const Scene scene = SceneLoader(diag).load(scene_path);
+  ReportSweepSettings sweep;
+  sweep.fill_defaults(/*quick=*/true);
+  const ReferenceCache cache(ReferenceCache::default_dir());
+  return run_report_sweep(scene, sweep, &cache, progress, diag);
+}
+
+ReportController::ReportController(QObject* parent) : QObject(parent) {
+  qRegisterMetaType<std::shared_ptr<const ReportData>>("std::shared_ptr<const ReportData>");
+}
+
+ReportController::~ReportController() {
+  if (thread_) {
+    cancel();
+    thread_->wait();
+  }
+}
+
+void ReportController::start(const QString& scene_path) {
+  if (thread_) return;
+  cancel_.store(false);
+  const std::string scene = scene_path.toStdString();
+  thread_ = QThread::create([this, scene] {
+    Progress progress([this](const std::string& stage, double fraction) {
+      emit this->progress(QString::fromStdString(stage), fraction);
+      return !cancel_.load();
+    });
+    try {
+      emit finished(std::make_shared<const ReportData>(run_quick_report(scene, progress)));
+    } catch (const Cancelled&) {
+      emit failed(tr("Report cancelled"));
+    } catch (const std::exception& e) {
+      emit failed(QString::fromStdString(e.what()));
+    }
+  });
+  connect(thread_, &QThread::finished, this, [this] {
+    thread_->deleteLater();
+    thread_ = nullptr;
+  });
+  thread_->start();
+}
+
+}  // namespace bounce::studio

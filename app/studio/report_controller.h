@@ -1,0 +1,43 @@
+#pragma once
+// Runs the report sweep (core run_report_sweep at `bounce report --quick`
+// settings) on a worker thread for the report tab, with the reference cached
+// where `bounce report` caches it, so the window never freezes. Shared with
+// headless screenshots (run_quick_report) so both produce the same rows.
+#include <atomic>
+#include <memory>
+
+#include <QObject>
+#include <QString>
+
+#include "base/progress.h"
+#include "report/report_data.h"
+
+class QThread;
+
+namespace bounce::studio {
+
+// The quick sweep of `bounce report --quick` on a scene, reference cached in
+// ReferenceCache::default_dir(). Throws bounce::Error, Cancelled.
+ReportData run_quick_report(const std::string& scene_path, Progress& progress);
+
+class ReportController : public QObject {
+  Q_OBJECT
+ public:
+  explicit ReportController(QObject* parent = nullptr);
+  ~ReportController() override;
+
+  bool busy() const { return thread_ != nullptr; }
+  void start(const QString& scene_path);
+  void cancel() { cancel_.store(true); }
+
+ signals:
+  void progress(const QString& stage, double fraction);
+  void finished(std::shared_ptr<const ReportData> report);
+  void failed(const QString& message);
+
+ private:
+  QThread* thread_ = nullptr;
+  std::atomic<bool> cancel_{false};
+};
+
+}  // namespace bounce::studio

@@ -1,0 +1,86 @@
+#pragma once
+// What `bounce report` measures, as data: one row per setting (patch mode,
+// patch count, bounces, codec) with its bake time, update time, matrix size
+// and errors against the path-traced reference. Written to and read from
+// report.json here, so the CLI's table, the plots (views/report_charts.h)
+// and the studio's report view all work from the same rows.
+#include <cstddef>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "bake/bake_settings.h"
+#include "metrics/image_metrics.h"
+#include "metrics/vertex_metrics.h"
+
+namespace bounce {
+
+struct ReportRow {
+  std::string mode;                     // virtual, voxel
+  int patches_target = 0;               // --patches-total of the row
+  std::size_t patches = 0;              // patches the bake made
+  std::string bounces;                  // 1, 2, 3, auto, inf
+  std::string codec_name;               // dense, paper, ours
+  std::optional<double> kept_fraction;  // set when the sweep fixed it
+  std::string codec;                    // label: "dense", "ours (budget)", "ours 2%"
+  double bake_seconds = 0.0;
+  double direct_ms = 0.0, multiply_ms = 0.0;
+  std::size_t matrix_bytes = 0;
+  double indirect_power = 0.0;  // area-weighted, R+G+B, of T b
+  ImageErrors full, indirect;
+  VertexErrors vertex;
+  // Relative RMSE with the reference's own noise taken out (metrics): what
+  // the table shows, the plots draw and the Pareto front uses.
+  double indirect_error = 0.0, vertex_error = 0.0;
+  bool pareto = false;
+  double update_ms() const { return direct_ms + multiply_ms; }
+};
+
+// The reference a report measured against (docs/reference.md).
+struct ReportReference {
+  int samples_per_pixel = 0, samples_per_vertex = 0;
+  int width = 0, height = 0;
+  std::size_t vertices = 0;
+  bool images_from_cache = false, vertices_from_cache = false;
+  std::string cache;
+  double seconds = 0.0;
+  double noise_floor_full = 0.0, noise_floor_indirect = 0.0;
+};
+
+struct ReportData {
+  std::string scene_name, scene_path;
+  std::size_t triangles = 0;
+  ReportReference reference;
+  std::vector<ReportRow> rows;
+  double seconds = 0.0;  // the whole sweep
+};
+
+// Marks the rows no other row beats on both indirect error and update time.
+void mark_pareto(std::vector<ReportRow>& rows);
+
+// The settings a standalone `bounce bake` of the row uses (what the studio
+// loads into its panel when a point of the chart is clicked).
+BakeSettings report_row_settings(const ReportRow& row);
+
+// Virtual patches against the voxel baseline at the same patch count (the
+// paper's Table 3): for every virtual row at dense storage and `bounces`
+// (auto by default), the voxel row of the same target count and bounces.
+struct PatchModeComparison {
+  int patches_target = 0;
+  std::size_t virtual_patches = 0, voxel_patches = 0;
+  double virtual_error = 0.0, voxel_error = 0.0;  // noise-corrected indirect rel. RMSE
+  double ratio() const { return voxel_error > 0.0 ? virtual_error / voxel_error : 0.0; }
+};
+std::vector<PatchModeComparison> compare_patch_modes(const ReportData& report,
+                                                     const std::string& bounces = "auto");
+
+nlohmann::ordered_json report_to_json(const ReportData& report);
+// Throws bounce::Error naming `where` and the missing or mistyped field.
+ReportData report_from_json(const nlohmann::json& json, const std::string& where);
+// Reads report.json; throws bounce::Error naming the file.
+ReportData read_report(const std::filesystem::path& file);
+
+}  // namespace bounce

@@ -1,0 +1,278 @@
+#include "report/report_sweep.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+
+#include "bake/bake.h"
+#include "bake/matrix_storage.h"
+#include "base/error.h"
+#include "metrics/image_metrics.h"
+#include "metrics/vertex_metrics.h"
+#include "raytrace/ray_tracer.h"
+#include "reference/reference_cache.h"
+#include "report/baked_multiply.h"
+#include "runtime/camera_image.h"
+#include "runtime/mesh_transfer.h"
+#include "runtime/patch_lighting.h"
+
+namespace bounce {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+int parse_bounces(const std::string& b) {
+  if (b == "auto") return TransportSettings::kAutoBounces;
+  if (b == "inf") return TransportSettings::kInfiniteBounces;
+  std::size_t used = 0;
+  int k = 0;
+  try {
+    k = std::stoi(b, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != b.size() || k < 1 || k > TransportSettings::kMaxBounces)
+    throw Error("--bounces", "each value must be auto, inf or 1.." +
+                                 std::to_string(TransportSettings::kMaxBounces) + ", got '" + b +
+                                 "'");
+  return k;
+}
+
+// The reference's own noise, as a relative RMSE: sqrt(sum var / sum y^2) on
+// the masked pixels. A method's measured error cannot go much below it.
+double noise_floor(const RgbFloatImage& mean, const RgbFloatImage& variance,
+                   const std::vector<std::uint8_t>& mask) {
+  double var = 0.0, sq = 0.0;
+  for (std::size_t i = 0; i < mean.pixels.size(); ++i) {
+    if (!mask[i]) continue;
+    for (int c = 0; c < 3; ++c) {
+      var += variance.pixels[i][c];
+      sq += static_cast<double>(mean.pixels[i][c]) * mean.pixels[i][c];
+    }
+  }
+  return sq > 0.0 ? std::sqrt(var / sq) : 0.0;
+}
+
+}  // namespace
+
+std::string ReportCodec::label() const {
+  if (!kept_fraction) return name == "ours" ? "ours (budget)" : name;
+  char s[64];
+  std::snprintf(s, sizeof s, "%s %.3g%%", name.c_str(), 100.0 * *kept_fraction);
+  return s;
+}
+
+ReportCodec ReportCodec::parse(const std::string& spec) {
+  ReportCodec c;
+  const auto colon = spec.find(':');
+  c.name = spec.substr(0, colon);
+  if (c.name != "dense" && c.name != "paper" && c.name != "ours")
+    throw Error(
+        "--codecs",
+        "each codec must be dense, paper or ours (optionally NAME:FRACTION), got '" + spec + "'");
+  if (colon != std::string::npos) {
+    char* end = nullptr;
+    const std::string f = spec.substr(colon + 1);
+    const double v = std::strtod(f.c_str(), &end);
+    if (f.empty() || *end != '\0' || !(v > 0.0 && v <= 1.0) || c.name == "dense")
+      throw Error("--codecs", "'" + spec +
+                                  "': the kept fraction must be in (0, 1] and only "
+                                  "paper or ours take one");
+    c.kept_fraction = v;
+  }
+  return c;
+}
+
+void ReportSweepSettings::fill_defaults(bool quick) {
+  if (modes.empty()) modes = {"virtual", "voxel"};
+  if (patches.empty())
+    patches = quick ? std::vector<int>{60, 150} : std::vector<int>{150, 300, 600, 1000};
+  if (bounces.empty()) bounces = {"1", "2", "3", "auto", "inf"};
+  if (codecs.empty())
+    codecs = quick ? std::vector<std::string>{"dense", "paper", "ours"}
+                   : std::vector<std::string>{"dense", "paper", "ours", "ours:0.02", "ours:0.08"};
+  if (reference_samples == 0) reference_samples = quick ? 128 : 512;
+  if (width == 0) width = quick ? 64 : 160;
+  if (height == 0) height = quick ? 48 : 120;
+  if (eval_grid == 0) eval_grid = quick ? 8 : 16;
+}
+
+void ReportSweepSettings::validate() const {
+  for (const std::string& m : modes)
+    if (m != "virtual" && m != "voxel")
+      throw Error("--modes", "each mode must be virtual or voxel, got '" + m + "'");
+  for (int p : patches)
+    if (p < 8 || p > 100000) throw Error("--patches", "each count must be in 8..100000");
+  if (width < 16 || height < 16 || width > 4096 || height > 4096)
+    throw Error("--width/--height", "must be between 16 and 4096 (SSIM needs 11 x 11 windows)");
+  if (reference_samples < 1) throw Error("--reference-samples", "must be at least 1");
+  if (eval_grid < 1 || eval_grid > 1024) throw Error("evaluation grid", "must be in 1..1024");
+  for (const std::string& b : bounces) parse_bounces(b);
+  for (const std::string& c : codecs) ReportCodec::parse(c);
+}
+
+ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
+                            const ReferenceCache* cache, Progress& progress, Diagnostics& diag,
+                            const std::function<void(const std::string&)>& log) {
+  const auto start = Clock::now();
+  opt.validate();
+  std::vector<int> bounces;
+  for (const std::string& b : opt.bounces) bounces.push_back(parse_bounces(b));
+  std::vector<ReportCodec> codecs;
+  for (const std::string& c : opt.codecs) codecs.push_back(ReportCodec::parse(c));
+
+  const RayTracer tracer(scene);
+  const std::vector<AreaLight> area = area_lights(scene);
+
+  // The reference: camera pictures and vertices of a fixed evaluation mesh
+  // (the scene refined on a grid), so every row is measured at the same points.
+  ReferenceSettings rs;
+  rs.samples = opt.reference_samples;
+  const ReferencePathTracer pt(tracer, rs);
+  auto t = Clock::now();
+  bool images_cached = false, points_cached = false;
+  const ReferenceImages ref =
+      cached_reference_images(pt, opt.width, opt.height, cache, &progress, &images_cached);
+  const std::vector<std::uint8_t> mask = mask_from_coverage(ref.coverage);
+  LitMesh eval_mesh =
+      build_transfer_mesh(scene, TransferGrid::from(VoxelGrid(scene.bounds(), opt.eval_grid)),
+                          TransferSettings{}, &progress);
+  std::vector<ReferencePoint> points;
+  for (std::size_t v = 0; v < eval_mesh.positions.size(); ++v)
+    points.push_back(
+        {eval_mesh.positions[v], eval_mesh.normals[v], glm::vec3(0.0f), glm::vec3(0.0f)});
+  // Albedo per vertex from a face that uses it.
+  for (std::size_t f = 0; f < eval_mesh.triangles.size(); ++f)
+    for (int c = 0; c < 3; ++c)
+      points[eval_mesh.triangles[f][c]].albedo =
+          scene.material_of(eval_mesh.source_triangle[f]).albedo;
+  const PointReference ref_points =
+      cached_reference_points(pt, points, cache, &progress, &points_cached);
+  std::vector<glm::vec3> ref_vertex_indirect(points.size()), ref_vertex_variance(points.size());
+  for (std::size_t v = 0; v < points.size(); ++v) {
+    ref_vertex_indirect[v] = points[v].albedo * ref_points.indirect_irradiance[v];
+    ref_vertex_variance[v] = points[v].albedo * points[v].albedo * ref_points.indirect_variance[v];
+  }
+
+  ReportData report;
+  report.scene_name = scene.name;
+  report.scene_path = scene.path;
+  report.triangles = scene.triangle_count();
+  ReportReference& rr = report.reference;
+  rr.samples_per_pixel = ref.samples;
+  rr.samples_per_vertex = ref_points.samples;
+  rr.width = opt.width;
+  rr.height = opt.height;
+  rr.vertices = points.size();
+  rr.images_from_cache = images_cached;
+  rr.vertices_from_cache = points_cached;
+  rr.cache = cache ? cache->dir().string() : std::string();
+  rr.seconds = since(t);
+  rr.noise_floor_full = noise_floor(ref.full, ref.full_variance, mask);
+  rr.noise_floor_indirect = noise_floor(ref.indirect, ref.indirect_variance, mask);
+
+  for (const std::string& mode : opt.modes)
+    for (int target : opt.patches) {
+      BakeSettings bs;
+      bs.patches_total = target;
+      bs.patch_mode = mode == "virtual" ? PatchMode::Virtual : PatchMode::Voxel;
+      bs.codec = CodecChoice::Dense;
+      bs.pictures = false;
+      // OpenBLAS: no OpenCL kernel compile inside a timing sweep.
+      bs.transport.backend = TransportSettings::Backend::OpenBLAS;
+      bs.transport.bounces = bounces.front();
+      if (log) log(mode + " patches, target " + std::to_string(target));
+      const BakeResult bake = Baker(scene, bs, diag).run(progress);
+      double shared = 0.0, transport_first = 0.0, probe_seconds = 0.0;
+      for (const StageStats& s : bake.stages) {
+        if (s.name == "transport")
+          transport_first = s.seconds;
+        else if (s.name == "evaluation lights")
+          probe_seconds = s.seconds;
+        else if (s.name != "compress")
+          shared += s.seconds;
+      }
+      const TransferGrid grid = TransferGrid::from(bake.voxels.grid);
+      std::vector<glm::vec3> albedo;
+      for (const Patch& p : bake.patches.patches) albedo.push_back(p.albedo);
+      for (std::size_t bi = 0; bi < bounces.size(); ++bi) {
+        TransportResult other;
+        double transport_seconds = transport_first;
+        if (bi > 0) {
+          TransportSettings ts = bake.settings.transport;
+          ts.bounces = bounces[bi];
+          t = Clock::now();
+          other = compute_transport(bake.form_factors, albedo, ts, &progress, diag);
+          transport_seconds = since(t);
+        }
+        const TransportResult& transport = bi == 0 ? bake.transport : other;
+        // Codecs on every bounce setting would multiply the table; the codec
+        // sweep runs at auto bounces (the default bake), dense elsewhere.
+        const bool codec_sweep = opt.bounces[bi] == "auto" || bounces.size() == 1;
+        for (const ReportCodec& codec : codecs) {
+          if (!codec_sweep && codec.name != "dense") continue;
+          BakeSettings cs = bake.settings;
+          cs.codec = codec.name == "dense"   ? CodecChoice::Dense
+                     : codec.name == "paper" ? CodecChoice::Paper
+                                             : CodecChoice::Ours;
+          cs.kept_fraction = codec.kept_fraction;
+          t = Clock::now();
+          const MatrixStorage storage = store_transport(transport, bake.probe, cs, &progress, diag);
+          const double store_seconds = since(t);
+          ReportRow row;
+          row.mode = mode;
+          row.patches_target = target;
+          row.patches = bake.patches.size();
+          row.bounces = opt.bounces[bi];
+          row.codec_name = codec.name;
+          row.kept_fraction = codec.kept_fraction;
+          row.codec = codec.label();
+          row.matrix_bytes = storage.stored_bytes;
+          row.bake_seconds = shared + transport_seconds + store_seconds +
+                             (codec.name == "dense" ? 0.0 : probe_seconds);
+          std::shared_ptr<void> keep;
+          const IndirectMultiply multiply = baked_multiply(transport, storage, keep);
+          // Best of five updates: the run time without first-touch costs.
+          PatchLighting light;
+          row.direct_ms = row.multiply_ms = std::numeric_limits<double>::infinity();
+          for (int rep = 0; rep < 5; ++rep) {
+            light = light_patches(tracer, bake.samples, bake.patches, scene.lights, area, multiply);
+            row.direct_ms = std::min(row.direct_ms, 1e3 * light.seconds_direct);
+            row.multiply_ms = std::min(row.multiply_ms, 1e3 * light.seconds_indirect);
+          }
+          for (std::size_t p = 0; p < light.indirect.size(); ++p)
+            row.indirect_power += bake.patches.patches[p].area *
+                                  (light.indirect[p].r + light.indirect[p].g + light.indirect[p].b);
+          const PatchGather gather(bake.patches.patches, light.indirect, grid, &tracer,
+                                   GatherSettings{});
+          CameraImageSettings camera;
+          camera.width = opt.width;
+          camera.height = opt.height;
+          camera.samples_per_side = 2;  // the reference jitters over the pixel too
+          const CameraImages images = render_camera(tracer, gather, camera, &progress);
+          row.full = image_errors(images.full, ref.full, mask);
+          row.indirect = image_errors(images.indirect, ref.indirect, mask);
+          LitMesh lit = eval_mesh;
+          relight(lit, gather, &progress);
+          row.vertex = vertex_errors(lit.radiosity, ref_vertex_indirect);
+          row.indirect_error = noise_corrected_relative_rmse(images.indirect, ref.indirect,
+                                                             ref.indirect_variance, mask);
+          row.vertex_error = noise_corrected_relative_rmse(lit.radiosity, ref_vertex_indirect,
+                                                           ref_vertex_variance);
+          report.rows.push_back(row);
+        }
+      }
+    }
+  mark_pareto(report.rows);
+  report.seconds = since(start);
+  return report;
+}
+
+}  // namespace bounce

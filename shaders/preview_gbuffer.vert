@@ -1,0 +1,30 @@
+#version 330 core
+// G-buffer pass (paper 002, section 1): view-space position and normal
+// (V_vcs = M_mv V, N_vcs = (M_mv^-1)^T N; the view matrix is rigid, so its
+// rotation part is its own inverse transpose), plus what the lighting pass
+// needs per pixel: albedo, emission and the indirect light the runtime
+// solve left on this vertex.
+layout(location = 0) in vec3 position;  // world space
+layout(location = 1) in vec3 normal;    // world space, unit
+layout(location = 2) in vec3 albedo;
+layout(location = 3) in vec3 emission;
+layout(location = 4) in vec3 indirect;  // T b gathered at the vertex
+
+uniform mat4 view;
+uniform mat4 projection;
+
+out vec3 view_position;
+out vec3 view_normal;
+out vec3 frag_albedo;
+out vec3 frag_emission;
+out vec3 frag_indirect;
+
+void main() {
+  vec4 p = view * vec4(position, 1.0);
+  view_position = p.xyz;
+  view_normal = mat3(view) * normal;
+  frag_albedo = albedo;
+  frag_emission = emission;
+  frag_indirect = indirect;
+  gl_Position = projection * p;
+}

@@ -1,0 +1,196 @@
+// The live preview (view 5) on the fixture bake of the Cornell box (x from
+// -1 to 1 with the red wall at -x and the green wall at +x, floor y = 0,
+// ceiling y = 2, back wall z = -1; the scene camera looks down -z from
+// z = 3.4, so -x is the picture's left).
+#include <iostream>
+
+#include <QElapsedTimer>
+
+#include "preview_widget.h"
+#include "render_support.h"
+
+namespace bounce::render_test {
+
+namespace {
+
+struct Rgb {
+  double r = 0, g = 0, b = 0;
+  double luminance() const { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
+};
+
+// Mean 8-bit colour of the (2h+1)^2 pixels around `at`.
+Rgb mean_around(const QImage& image, QPointF at, int h = 3) {
+  Rgb sum;
+  int n = 0;
+  const QImage im = image.convertToFormat(QImage::Format_RGB32);
+  for (int y = static_cast<int>(at.y()) - h; y <= static_cast<int>(at.y()) + h; ++y)
+    for (int x = static_cast<int>(at.x()) - h; x <= static_cast<int>(at.x()) + h; ++x) {
+      if (x < 0 || y < 0 || x >= im.width() || y >= im.height()) continue;
+      const QRgb c = im.pixel(x, y);
+      sum.r += qRed(c);
+      sum.g += qGreen(c);
+      sum.b += qBlue(c);
+      ++n;
+    }
+  if (n > 0) sum = {sum.r / n, sum.g / n, sum.b / n};
+  return sum;
+}
+
+// Mean luminance of the columns [x0, x1) of the picture.
+double mean_luminance(const QImage& image, int x0, int x1) {
+  const QImage im = image.convertToFormat(QImage::Format_RGB32);
+  double sum = 0;
+  for (int y = 0; y < im.height(); ++y)
+    for (int x = x0; x < x1; ++x) {
+      const QRgb c = im.pixel(x, y);
+      sum += 0.2126 * qRed(c) + 0.7152 * qGreen(c) + 0.0722 * qBlue(c);
+    }
+  return sum / (static_cast<double>(x1 - x0) * im.height());
+}
+
+}  // namespace
+
+class Preview : public RenderTest {
+ protected:
+  void SetUp() override {
+    RenderTest::SetUp();
+    data_ = load_fixture();
+    ASSERT_TRUE(data_->scene) << "the fixture's scene is not on disk";
+    view_.resize(400, 300);
+    view_.set_overlay(false);  // text would land on the pixels compared
+    view_.show();
+    settle();
+    view_.set_data(data_);
+    settle();
+  }
+  QImage shot(views::PreviewWidget::Passes passes) {
+    view_.set_passes(passes);
+    const QImage image = view_.render_image();
+    EXPECT_TRUE(view_.gl_error().isEmpty()) << view_.gl_error().toStdString();
+    return image;
+  }
+  std::shared_ptr<const views::BakeViewData> data_;
+  views::PreviewWidget view_;
+};
+
+TEST_F(Preview, RendersTheLitBox) {
+  const QImage image = shot({});
+  ASSERT_EQ(image.size(), QSize(400, 300));
+  EXPECT_GT(non_uniform_share(image), 0.5) << "the preview looks blank";
+  EXPECT_GT(view_.vertex_count(), data_->patch_count()) << "the refined mesh is too coarse";
+  // The light is where the scene puts it and the indirect light on screen
+  // belongs to it.
+  EXPECT_EQ(view_.solved_light_position(), data_->scene->lights.front().position);
+
+  const double ms = view_.measure_frame_ms(20);
+  EXPECT_GT(ms, 0.0);
+  std::cout << "[ measured ] preview 400x300, " << data_->patch_count() << " patches, "
+            << view_.vertex_count() << " vertices: " << ms << " ms per frame (shadow map "
+            << "included), solve " << view_.last_solve_ms() << " ms (frame graph "
+            << view_.last_frame_graph_ms() << ", to vertices " << view_.last_transfer_ms()
+            << ") on the " << (view_.solve_on_worker() ? "worker" : "UI thread") << "\n";
+}
+
+TEST_F(Preview, MovingTheLightBrightensTheNearSide) {
+  const glm::vec3 left(-0.6f, 1.0f, 0.0f), right(0.6f, 1.0f, 0.0f);
+  view_.set_light_position(left, true);
+  const QImage lit_left = shot({});
+  view_.set_light_position(right, true);
+  const QImage lit_right = shot({});
+  EXPECT_EQ(view_.solved_light_position(), right);
+
+  // Beyond a threshold: the mean change per pixel is several 8-bit levels
+  // (the light crosses the box: every wall sees it from another side).
+  double change = 0;
+  const QImage a = lit_left.convertToFormat(QImage::Format_RGB32);
+  const QImage b = lit_right.convertToFormat(QImage::Format_RGB32);
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x) {
+      const QRgb p = a.pixel(x, y), q = b.pixel(x, y);
+      change += std::abs(qRed(p) - qRed(q)) + std::abs(qGreen(p) - qGreen(q)) +
+                std::abs(qBlue(p) - qBlue(q));
+    }
+  change /= 3.0 * a.width() * a.height();
+  EXPECT_GT(change, 5.0);
+
+  // In the expected direction: each half is brighter with the light on its side.
+  const int w = a.width();
+  EXPECT_GT(mean_luminance(lit_left, 0, w / 2), mean_luminance(lit_right, 0, w / 2) + 5.0);
+  EXPECT_GT(mean_luminance(lit_right, w / 2, w), mean_luminance(lit_left, w / 2, w) + 5.0);
+}
+
+TEST_F(Preview, TheLatestLightPositionWins) {
+  // As a drag does: several moves without waiting. Whichever thread the
+  // policy picked for this bake, the indirect light on screen ends up being
+  // the last position's, and the frame equals a solve made there directly.
+  const glm::vec3 last(0.3f, 0.8f, 0.2f);
+  for (const float x : {-0.4f, -0.2f, 0.0f, 0.1f}) view_.set_light_position({x, 1.2f, 0.1f});
+  view_.set_light_position(last);
+  QElapsedTimer waited;
+  waited.start();
+  while (view_.solved_light_position() != last && waited.elapsed() < 60'000)
+    QApplication::processEvents(QEventLoop::AllEvents, 50);
+  ASSERT_EQ(view_.solved_light_position(), last) << "the last light position was never solved";
+  const QImage dragged = shot({});
+  view_.set_light_position(last, true);
+  const QImage direct = shot({});
+  EXPECT_EQ(dragged, direct);
+}
+
+TEST_F(Preview, IndirectLightBleedsTheWallColours) {
+  // Light in the middle, indirect light only: the white back wall and
+  // ceiling next to the red wall are redder than next to the green wall.
+  view_.set_light_position({0.0f, 1.2f, 0.0f}, true);
+  views::PreviewWidget::Passes indirect_only;
+  indirect_only.direct = false;
+  indirect_only.ao = false;
+  const QImage image = shot(indirect_only);
+  for (const float y : {1.6f, 1.95f}) {  // back wall above the tall box; under the ceiling
+    const Rgb near_red = mean_around(image, view_.project({-0.85f, y, -1.0f}));
+    const Rgb near_green = mean_around(image, view_.project({0.85f, y, -1.0f}));
+    ASSERT_GT(near_red.luminance(), 10.0) << "too dark to judge colour at y = " << y;
+    ASSERT_GT(near_green.luminance(), 10.0) << "too dark to judge colour at y = " << y;
+    // The light is orange, so every white surface has r > g; the red wall
+    // raises r / g near it, the green wall lowers it near itself.
+    const double red_ratio = near_red.r / std::max(1.0, near_red.g);
+    const double green_ratio = near_green.r / std::max(1.0, near_green.g);
+    EXPECT_GT(red_ratio, 1.15 * green_ratio) << "at y = " << y;
+  }
+  // The floor too, in front of the boxes.
+  const Rgb floor_red = mean_around(image, view_.project({-0.85f, 0.0f, 0.7f}));
+  const Rgb floor_green = mean_around(image, view_.project({0.85f, 0.0f, 0.7f}));
+  EXPECT_GT(floor_red.r / std::max(1.0, floor_red.g),
+            1.15 * floor_green.r / std::max(1.0, floor_green.g));
+}
+
+TEST_F(Preview, AmbientOcclusionDarkensCorners) {
+  views::PreviewWidget::Passes with_ao, without_ao;
+  with_ao.direct = without_ao.direct = false;
+  without_ao.ao = false;
+  const QImage on = shot(with_ao);
+  const QImage off = shot(without_ao);
+  // The middle of the back wall: a flat stretch with no other surface within
+  // the kernel radius (5% of the diagonal), where only the kernel's own
+  // sampling noise can darken.
+  const QPointF middle = view_.project({0.3f, 1.4f, -1.0f});
+  const double flat = mean_around(on, middle).luminance() / mean_around(off, middle).luminance();
+  EXPECT_GT(flat, 0.95) << "the occlusion darkens a flat wall";
+  // The back wall where it meets the ceiling and the side walls, a few
+  // hundredths in from the edge: part of each sample hemisphere lies inside
+  // the other wall, so these darken clearly more than the flat wall.
+  const glm::vec3 corners[] = {
+      {-0.5f, 1.95f, -1.0f}, {0.5f, 1.95f, -1.0f}, {-0.97f, 1.7f, -1.0f}, {0.96f, 1.7f, -1.0f}};
+  for (const glm::vec3& c : corners) {
+    const QPointF at = view_.project(c);
+    const double lit = mean_around(off, at, 1).luminance();
+    ASSERT_GT(lit, 10.0) << "corner at " << c.x << ", " << c.y << " too dark to judge";
+    const double ratio = mean_around(on, at, 1).luminance() / lit;
+    std::cout << "[ measured ] AO on / off at (" << c.x << ", " << c.y << "): " << ratio
+              << " (flat wall " << flat << ")\n";
+    EXPECT_LT(ratio, 0.95) << "no occlusion in the corner at " << c.x << ", " << c.y;
+    EXPECT_LT(ratio, flat - 0.03) << "the corner at " << c.x << ", " << c.y
+                                  << " is not darker than the flat wall";
+  }
+}
+
+}  // namespace bounce::render_test

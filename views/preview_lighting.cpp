@@ -1,0 +1,91 @@
+#include "preview_lighting.h"
+
+#include <chrono>
+
+#include "base/error.h"
+#include "runtime/compressed_transport.h"
+#include "runtime/dense_transport.h"
+#include "runtime/patch_gather.h"
+
+namespace bounce::views {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+}  // namespace
+
+PreviewLighting::PreviewLighting(std::shared_ptr<const BakeViewData> data)
+    : data_(std::move(data)) {
+  if (!data_) throw Error("preview", "no bake loaded");
+  const std::string where = data_->bake.dir.string();
+  if (!data_->scene)
+    throw Error(where, "the scene it was baked from is not on disk any more: the preview needs it");
+  const Scene& scene = *data_->scene;
+  bool found = false;
+  for (const Light& l : scene.lights)
+    if (l.type != Light::Type::Directional) {
+      light_ = l;
+      found = true;
+      break;
+    }
+  if (!found) throw Error(scene.path, "has no point or spot light for the preview to move");
+  lights_ = {light_};
+
+  tracer_ = std::make_unique<RayTracer>(scene);
+  // The product `bounce solve --multiply auto` picks on a machine without a
+  // GPU: the compressed matrix in C++, or the dense one for a dense bake.
+  const LoadedBake& bake = data_->bake;
+  if (bake.compressed) {
+    auto cpp = std::make_shared<CompressedTransport>(*bake.compressed, bake.channel_of_rgb);
+    multiply_name_ = std::string("compressed, C++ (") + cpp->block_loop() + ")";
+    multiply_ = [cpp](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
+      cpp->multiply(in, out);
+    };
+    multiplier_ = cpp;
+  } else if (!bake.dense.empty()) {
+    std::vector<const float*> dense;
+    for (const auto& t : bake.dense) dense.push_back(t.data());
+    const std::size_t n = bake.size();
+    const auto map = bake.channel_of_rgb;
+    multiply_ = [dense, n, map](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
+      dense_indirect(dense, n, map, in, out);
+    };
+    multiply_name_ = "dense float32 (OpenBLAS sgemv)";
+  } else {
+    throw Error(where, "holds neither a compressed nor a dense transport matrix");
+  }
+  RuntimeFrameSettings frame_settings;
+  frame_settings.record = false;
+  frame_ = std::make_unique<RuntimeFrame>(*tracer_, bake.samples, bake.patches, multiply_,
+                                          frame_settings);
+
+  grid_ = TransferGrid::from_manifest(bake.manifest);
+  geometry_ = build_transfer_mesh(scene, grid_, TransferSettings{});
+  work_ = geometry_;
+}
+
+PreviewLighting::~PreviewLighting() = default;
+
+PreviewLighting::Solve PreviewLighting::solve(const glm::vec3& light_position) {
+  Solve s;
+  s.light_position = light_position;
+  lights_.front().position = light_position;
+  auto t = Clock::now();
+  frame_->solve(lights_);
+  s.frame_seconds = since(t);
+  t = Clock::now();
+  // The camera of `bounce solve` gathers T b the same way (it adds the
+  // direct light itself, as the preview's shaders do).
+  const PatchGather gather(data_->bake.patches.patches, frame_->indirect(), grid_, tracer_.get(),
+                           GatherSettings{});
+  relight(work_, gather);
+  s.vertex_indirect = work_.radiosity;
+  s.transfer_seconds = since(t);
+  return s;
+}
+
+}  // namespace bounce::views

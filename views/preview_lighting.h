@@ -1,0 +1,72 @@
+#pragma once
+// The light transport behind the live preview (view 5), all of it core
+// functions, the ones `bounce solve` runs: the runtime frame graph
+// (runtime/runtime_frame.h: direct light on the patches, b = albedo * E,
+// the bake's T b through the compressed C++ product or the dense one) and
+// the transfer of the patches' indirect light to the vertices of the
+// refined scene mesh (runtime/mesh_transfer.h, runtime/patch_gather.h).
+// The preview draws the direct light itself per pixel (shadow map), so
+// what it takes from here per frame is T b on the vertices.
+//
+// The preview lights the scene with one movable light: the scene's first
+// point or spot light. Other lights and emissive triangles (area lights) are
+// left out of both the direct and the indirect light, so the two always
+// belong to the same light; emissive surfaces still show their emission.
+//
+// Not thread-safe: one solve() at a time (the preview's worker, or the UI
+// thread, never both).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "bake_view_data.h"
+#include "raytrace/ray_tracer.h"
+#include "runtime/mesh_transfer.h"
+#include "runtime/patch_lighting.h"
+#include "runtime/runtime_frame.h"
+
+namespace bounce::views {
+
+class PreviewLighting {
+ public:
+  struct Solve {
+    glm::vec3 light_position{0.0f};
+    std::vector<glm::vec3> vertex_indirect;  // T b at each mesh vertex
+    double frame_seconds = 0.0;              // the frame graph: direct light, first hit, T b
+    double transfer_seconds = 0.0;           // patches -> vertices (gather with occlusion rays)
+  };
+
+  // Throws bounce::Error when the bake's scene is not loaded, the scene has
+  // no point or spot light, or the bake holds no matrix to multiply by.
+  explicit PreviewLighting(std::shared_ptr<const BakeViewData> data);
+  ~PreviewLighting();
+  PreviewLighting(const PreviewLighting&) = delete;
+  PreviewLighting& operator=(const PreviewLighting&) = delete;
+
+  Solve solve(const glm::vec3& light_position);
+
+  // The refined mesh (positions, normals, triangles, source triangle); its
+  // radiosity is not kept up to date (solve() returns the light).
+  const LitMesh& mesh() const { return geometry_; }
+  const Scene& scene() const { return *data_->scene; }
+  const Light& light() const { return light_; }  // at its scene position
+  const std::string& multiply_name() const { return multiply_name_; }
+  std::size_t patch_count() const { return data_->patch_count(); }
+
+ private:
+  std::shared_ptr<const BakeViewData> data_;
+  std::unique_ptr<RayTracer> tracer_;
+  std::shared_ptr<void> multiplier_;  // keeps the compressed product alive
+  IndirectMultiply multiply_;
+  std::string multiply_name_;
+  std::unique_ptr<RuntimeFrame> frame_;
+  TransferGrid grid_;
+  LitMesh geometry_;  // read by the UI thread, never written after construction
+  LitMesh work_;      // relit by solve()
+  Light light_;
+  std::vector<Light> lights_;  // the one light, moved per solve
+};
+
+}  // namespace bounce::views

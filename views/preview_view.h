@@ -1,0 +1,37 @@
+#pragma once
+// The studio's Preview tab: the live preview (PreviewWidget) under a row of
+// switches for its passes (direct, indirect, ambient occlusion) and a line
+// on how to move the light and the camera.
+#include <memory>
+
+#include <QWidget>
+
+#include "bake_view_data.h"
+
+class QCheckBox;
+class QLabel;
+
+namespace bounce::views {
+
+class PreviewWidget;
+
+class PreviewView : public QWidget {
+  Q_OBJECT
+ public:
+  explicit PreviewView(QWidget* parent = nullptr);
+  // A bake the preview cannot show (no scene on disk, no point or spot
+  // light) leaves the preview empty and says why in the tab.
+  void set_data(std::shared_ptr<const BakeViewData> data);
+  PreviewWidget* preview() const { return preview_; }
+
+ private:
+  void apply_switches();
+
+  PreviewWidget* preview_;
+  QCheckBox* direct_;
+  QCheckBox* indirect_;
+  QCheckBox* ao_;
+  QLabel* status_;
+};
+
+}  // namespace bounce::views

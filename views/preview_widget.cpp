@@ -1,0 +1,778 @@
+#include "preview_widget.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <random>
+#include <string>
+
+#include <QMetaObject>
+#include <QMouseEvent>
+#include <QOpenGLShaderProgram>
+#include <QPainter>
+#include <QSurfaceFormat>
+#include <QVector2D>
+#include <QVector3D>
+#include <QWheelEvent>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "base/error.h"
+#include "io/tone_map.h"
+#include "preview_lighting.h"
+#include "views/embedded_shaders.h"
+
+namespace bounce::views {
+
+struct PreviewWidget::SolveResult {
+  glm::vec3 light_position{0.0f};
+  std::vector<glm::vec3> vertex_indirect;
+  double frame_seconds = 0.0, transfer_seconds = 0.0;
+};
+
+namespace {
+
+const char* shader_source(const char* name) {
+  for (const EmbeddedShader& s : kEmbeddedShaders)
+    if (std::strcmp(s.name, name) == 0) return s.source;
+  throw Error(std::string("shaders/") + name, "not built into the studio (rerun CMake)");
+}
+
+// G-buffer targets, in the order of preview_gbuffer.frag's outputs. RGBA16F
+// throughout: the paper's RGB16F is not required to be colour-renderable in
+// OpenGL 3.3, RGBA16F is.
+constexpr int kGbufferTargets = 5;
+
+// The six faces of a cube map as OpenGL orders them, with the up vectors
+// its face layout implies.
+constexpr glm::vec3 kCubeForward[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                       {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+constexpr glm::vec3 kCubeUp[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1},
+                                  {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+
+}  // namespace
+
+PreviewWidget::PreviewWidget(QWidget* parent) : QOpenGLWidget(parent) {
+  QSurfaceFormat format = QSurfaceFormat::defaultFormat();
+  format.setVersion(3, 3);
+  format.setProfile(QSurfaceFormat::CoreProfile);
+  format.setDepthBufferSize(24);
+  setFormat(format);
+  setFocusPolicy(Qt::StrongFocus);
+  setMinimumSize(64, 64);
+
+  // Paper 002: S_t = (2 rnd - 1, 2 rnd - 1, rnd) in the tangent frame; the
+  // points outside the unit half ball are drawn again, so the samples fill
+  // the hemisphere of radius R around P as the paper asks. Fixed seed: the
+  // same picture every run.
+  std::mt19937 random(20021u);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  while (ao_kernel_.size() < static_cast<std::size_t>(kAoSamples)) {
+    const glm::vec3 s(2.0f * unit(random) - 1.0f, 2.0f * unit(random) - 1.0f, unit(random));
+    if (glm::dot(s, s) <= 1.0f) ao_kernel_.push_back(s);
+  }
+  clock_.start();
+}
+
+PreviewWidget::~PreviewWidget() {
+  stop_worker();
+  if (gl_ready_) {
+    makeCurrent();
+    release_gl();
+    doneCurrent();
+  }
+}
+
+std::size_t PreviewWidget::vertex_count() const {
+  return lighting_ ? lighting_->mesh().positions.size() : 0;
+}
+
+std::size_t PreviewWidget::triangle_count() const {
+  return lighting_ ? lighting_->mesh().triangles.size() : 0;
+}
+
+void PreviewWidget::clear() {
+  stop_worker();
+  lighting_.reset();
+  data_.reset();
+  vertex_indirect_.clear();
+  exposure_full_.reset();
+  exposure_indirect_.reset();
+  mesh_dirty_ = true;
+  update();
+}
+
+void PreviewWidget::set_data(std::shared_ptr<const BakeViewData> bake) {
+  clear();
+  auto lighting = std::make_unique<PreviewLighting>(bake);
+  data_ = std::move(bake);
+  lighting_ = std::move(lighting);
+  reset_camera();
+  light_position_ = lighting_->light().position;
+  // Solve twice to measure: the policy (UI thread or worker) follows from
+  // what this bake's solve costs here. The faster of the two counts: the
+  // first also pays one-time costs (OpenMP's threads, cold caches).
+  PreviewLighting::Solve s = lighting_->solve(light_position_);
+  const double first = s.frame_seconds + s.transfer_seconds;
+  s = lighting_->solve(light_position_);
+  solve_on_worker_ = std::min(first, s.frame_seconds + s.transfer_seconds) > kUiSolveBudget;
+  apply({s.light_position, s.vertex_indirect, s.frame_seconds, s.transfer_seconds});
+  mesh_dirty_ = true;
+  if (solve_on_worker_) start_worker();
+  update();
+}
+
+void PreviewWidget::set_passes(Passes passes) {
+  passes_ = passes;
+  update();
+}
+
+void PreviewWidget::set_overlay(bool on) {
+  overlay_ = on;
+  update();
+}
+
+void PreviewWidget::set_light_position(const glm::vec3& position, bool wait) {
+  if (!lighting_) return;
+  light_position_ = position;
+  shadow_dirty_ = true;  // the direct light follows at once, the indirect when solved
+  if (wait || !solve_on_worker_) {
+    std::lock_guard<std::mutex> lock(lighting_mutex_);
+    const PreviewLighting::Solve s = lighting_->solve(position);
+    apply({s.light_position, s.vertex_indirect, s.frame_seconds, s.transfer_seconds});
+  } else {
+    {
+      std::lock_guard<std::mutex> lock(request_mutex_);
+      request_ = position;
+    }
+    request_ready_.notify_one();
+  }
+  update();
+}
+
+void PreviewWidget::apply(SolveResult result) {
+  solved_light_ = result.light_position;
+  vertex_indirect_ = std::move(result.vertex_indirect);
+  frame_seconds_ = result.frame_seconds;
+  transfer_seconds_ = result.transfer_seconds;
+  indirect_dirty_ = true;
+  update();
+  emit solved();
+}
+
+void PreviewWidget::start_worker() {
+  stop_ = false;
+  worker_ = std::thread([this] {
+    for (;;) {
+      glm::vec3 position;
+      {
+        std::unique_lock<std::mutex> lock(request_mutex_);
+        request_ready_.wait(lock, [this] { return stop_ || request_.has_value(); });
+        if (stop_) return;
+        position = *request_;
+        request_.reset();  // requests made while this one solves replace each other
+      }
+      SolveResult r;
+      try {
+        std::lock_guard<std::mutex> lock(lighting_mutex_);
+        const PreviewLighting::Solve s = lighting_->solve(position);
+        r = {s.light_position, s.vertex_indirect, s.frame_seconds, s.transfer_seconds};
+      } catch (const std::exception& e) {
+        const QString message = QString::fromStdString(e.what());
+        QMetaObject::invokeMethod(
+            this,
+            [this, message] {
+              gl_error_ = tr("solve failed: ") + message;
+              update();
+            },
+            Qt::QueuedConnection);
+        continue;
+      }
+      // Queued to the UI thread; dropped if the widget is gone by then.
+      QMetaObject::invokeMethod(
+          this, [this, r = std::move(r)]() mutable { apply(std::move(r)); }, Qt::QueuedConnection);
+    }
+  });
+}
+
+void PreviewWidget::stop_worker() {
+  if (!worker_.joinable()) return;
+  {
+    std::lock_guard<std::mutex> lock(request_mutex_);
+    stop_ = true;
+    request_.reset();
+  }
+  request_ready_.notify_one();
+  worker_.join();
+}
+
+// --- camera ------------------------------------------------------------------
+
+void PreviewWidget::reset_camera() {
+  const Scene& scene = lighting_->scene();
+  const Bounds b = scene.bounds();
+  scene_diagonal_ = std::max(1e-6f, glm::length(b.extent()));
+  target_ = scene.camera.target;
+  up_ = glm::normalize(scene.camera.up);
+  const glm::vec3 to_target = scene.camera.target - scene.camera.position;
+  distance_ = std::max(1e-3f * scene_diagonal_, glm::length(to_target));
+  base_forward_ = distance_ > 0.0f ? to_target / glm::length(to_target) : glm::vec3(0, 0, -1);
+  yaw_ = pitch_ = 0.0f;
+  fov_y_deg_ = scene.camera.fov_y_deg;
+}
+
+glm::vec3 PreviewWidget::eye() const {
+  // Orbit: turn the scene camera's direction by yaw about up, then by pitch
+  // about the camera's right axis.
+  const glm::mat4 yaw = glm::rotate(glm::mat4(1.0f), yaw_, up_);
+  glm::vec3 forward = glm::vec3(yaw * glm::vec4(base_forward_, 0.0f));
+  const glm::vec3 right = glm::normalize(glm::cross(forward, up_));
+  forward = glm::vec3(glm::rotate(glm::mat4(1.0f), pitch_, right) * glm::vec4(forward, 0.0f));
+  return target_ - distance_ * forward;
+}
+
+glm::mat4 PreviewWidget::view_matrix() const { return glm::lookAt(eye(), target_, up_); }
+
+glm::mat4 PreviewWidget::projection_matrix() const {
+  const float aspect =
+      static_cast<float>(std::max(1, width())) / static_cast<float>(std::max(1, height()));
+  const float far_plane = distance_ + 2.0f * scene_diagonal_;
+  return glm::perspective(glm::radians(fov_y_deg_), aspect, 1e-3f * far_plane, far_plane);
+}
+
+QPointF PreviewWidget::project(const glm::vec3& world) const {
+  const glm::vec4 clip = projection_matrix() * view_matrix() * glm::vec4(world, 1.0f);
+  const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+  return {(0.5 * ndc.x + 0.5) * width(), (0.5 - 0.5 * ndc.y) * height()};
+}
+
+void PreviewWidget::move_light_by(const glm::vec3& delta) {
+  if (!lighting_) return;
+  const Bounds b = lighting_->scene().bounds();
+  // Stay inside the scene, a little off its outer surfaces.
+  const glm::vec3 margin = 0.01f * b.extent();
+  set_light_position(glm::clamp(light_position_ + delta, b.lo + margin, b.hi - margin));
+}
+
+void PreviewWidget::mousePressEvent(QMouseEvent* event) { last_mouse_ = event->pos(); }
+
+void PreviewWidget::mouseMoveEvent(QMouseEvent* event) {
+  const QPoint d = event->pos() - last_mouse_;
+  last_mouse_ = event->pos();
+  if (!lighting_) return;
+  if ((event->buttons() & Qt::LeftButton) && (event->modifiers() & Qt::ControlModifier)) {
+    // Move the light with the mouse: one pixel is what a pixel spans at the
+    // light's distance from the eye.
+    const glm::vec3 e = eye();
+    const glm::vec3 forward = glm::normalize(target_ - e);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, up_));
+    const glm::vec3 up = glm::cross(right, forward);
+    const float depth = std::max(1e-3f, glm::dot(light_position_ - e, forward));
+    const float per_pixel = 2.0f * depth * std::tan(0.5f * glm::radians(fov_y_deg_)) /
+                            static_cast<float>(std::max(1, height()));
+    move_light_by(per_pixel * (static_cast<float>(d.x()) * right - static_cast<float>(d.y()) * up));
+  } else if (event->buttons() & Qt::LeftButton) {
+    yaw_ -= 0.01f * static_cast<float>(d.x());
+    pitch_ = std::clamp(pitch_ - 0.01f * static_cast<float>(d.y()), -1.5f, 1.5f);
+    update();
+  } else if (event->buttons() & Qt::RightButton) {
+    distance_ = std::clamp(distance_ * std::exp(0.01f * static_cast<float>(d.y())),
+                           0.01f * scene_diagonal_, 20.0f * scene_diagonal_);
+    update();
+  }
+}
+
+void PreviewWidget::wheelEvent(QWheelEvent* event) {
+  if (!lighting_) return;
+  const float steps = static_cast<float>(event->angleDelta().y()) / 120.0f;
+  if (event->modifiers() & Qt::ControlModifier) {
+    const glm::vec3 forward = glm::normalize(target_ - eye());
+    move_light_by(0.02f * scene_diagonal_ * steps * forward);
+  } else {
+    distance_ = std::clamp(distance_ * std::pow(0.9f, steps), 0.01f * scene_diagonal_,
+                           20.0f * scene_diagonal_);
+    update();
+  }
+}
+
+// --- OpenGL ------------------------------------------------------------------
+
+void PreviewWidget::initializeGL() {
+  if (!initializeOpenGLFunctions()) {
+    gl_error_ = tr("OpenGL 3.3 core profile is not available");
+    return;
+  }
+  try {
+    build_programs();
+  } catch (const std::exception& e) {
+    gl_error_ = QString::fromStdString(e.what());
+    return;
+  }
+  glGenVertexArrays(1, &empty_vao_);
+
+  // Shadow cube: depth only, distance / far per texel (preview_shadow.frag).
+  glGenTextures(1, &shadow_cube_);
+  glBindTexture(GL_TEXTURE_CUBE_MAP, shadow_cube_);
+  for (int f = 0; f < 6; ++f)
+    glTexImage2D(static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), 0, GL_DEPTH_COMPONENT24,
+                 kShadowSize, kShadowSize, 0, GL_DEPTH_COMPONENT, GL_FLOAT, nullptr);
+  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+  glGenFramebuffers(1, &shadow_fbo_);
+
+  // V_r per pixel (paper 002): (2 rnd - 1, 2 rnd - 1, 0), tiled 4 x 4.
+  std::mt19937 random(20022u);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<float> noise;
+  for (int k = 0; k < 16; ++k) {
+    noise.push_back(2.0f * unit(random) - 1.0f);
+    noise.push_back(2.0f * unit(random) - 1.0f);
+    noise.push_back(0.0f);
+  }
+  glGenTextures(1, &noise_texture_);
+  glBindTexture(GL_TEXTURE_2D, noise_texture_);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32F, 4, 4, 0, GL_RGB, GL_FLOAT, noise.data());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+
+  gl_ready_ = true;
+  mesh_dirty_ = true;
+  shadow_dirty_ = true;
+}
+
+void PreviewWidget::build_programs() {
+  auto make = [](const char* vert, const char* frag) {
+    auto p = std::make_unique<QOpenGLShaderProgram>();
+    if (!p->addShaderFromSourceCode(QOpenGLShader::Vertex, shader_source(vert)))
+      throw Error(std::string("shaders/") + vert, p->log().toStdString());
+    if (!p->addShaderFromSourceCode(QOpenGLShader::Fragment, shader_source(frag)))
+      throw Error(std::string("shaders/") + frag, p->log().toStdString());
+    if (!p->link())
+      throw Error(std::string("shaders/") + vert + " + " + frag, p->log().toStdString());
+    return p;
+  };
+  shadow_program_ = make("preview_shadow.vert", "preview_shadow.frag");
+  gbuffer_program_ = make("preview_gbuffer.vert", "preview_gbuffer.frag");
+  ssao_program_ = make("preview_fullscreen.vert", "preview_ssao.frag");
+  blur_program_ = make("preview_fullscreen.vert", "preview_blur.frag");
+  composite_program_ = make("preview_fullscreen.vert", "preview_composite.frag");
+}
+
+void PreviewWidget::release_gbuffer() {
+  if (gbuffer_fbo_) glDeleteFramebuffers(1, &gbuffer_fbo_);
+  if (gbuffer_depth_) glDeleteRenderbuffers(1, &gbuffer_depth_);
+  glDeleteTextures(kGbufferTargets, gbuffer_textures_);
+  if (ao_fbo_) glDeleteFramebuffers(1, &ao_fbo_);
+  if (blur_fbo_) glDeleteFramebuffers(1, &blur_fbo_);
+  if (ao_texture_) glDeleteTextures(1, &ao_texture_);
+  if (blur_texture_) glDeleteTextures(1, &blur_texture_);
+  gbuffer_fbo_ = gbuffer_depth_ = ao_fbo_ = blur_fbo_ = ao_texture_ = blur_texture_ = 0;
+  std::fill(std::begin(gbuffer_textures_), std::end(gbuffer_textures_), 0u);
+  gbuffer_width_ = gbuffer_height_ = 0;
+}
+
+void PreviewWidget::release_gl() {
+  release_gbuffer();
+  if (mesh_vao_) glDeleteVertexArrays(1, &mesh_vao_);
+  if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
+  if (static_vbo_) glDeleteBuffers(1, &static_vbo_);
+  if (indirect_vbo_) glDeleteBuffers(1, &indirect_vbo_);
+  if (shadow_fbo_) glDeleteFramebuffers(1, &shadow_fbo_);
+  if (shadow_cube_) glDeleteTextures(1, &shadow_cube_);
+  if (noise_texture_) glDeleteTextures(1, &noise_texture_);
+  mesh_vao_ = empty_vao_ = static_vbo_ = indirect_vbo_ = shadow_fbo_ = shadow_cube_ =
+      noise_texture_ = 0;
+  shadow_program_.reset();
+  gbuffer_program_.reset();
+  ssao_program_.reset();
+  blur_program_.reset();
+  composite_program_.reset();
+  gl_ready_ = false;
+}
+
+void PreviewWidget::make_gbuffer(int width, int height) {
+  release_gbuffer();
+  auto texture = [this](GLenum internal, GLenum format, int w, int h) {
+    GLuint t = 0;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal), w, h, 0, format, GL_FLOAT,
+                 nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return t;
+  };
+  auto check = [this](const char* what) {
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw Error("preview", std::string("the ") + what + " framebuffer is incomplete");
+  };
+  glGenFramebuffers(1, &gbuffer_fbo_);
+  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo_);
+  GLenum attachments[kGbufferTargets];
+  for (int k = 0; k < kGbufferTargets; ++k) {
+    gbuffer_textures_[k] = texture(GL_RGBA16F, GL_RGBA, width, height);
+    attachments[k] = static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + k);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, attachments[k], GL_TEXTURE_2D, gbuffer_textures_[k], 0);
+  }
+  glDrawBuffers(kGbufferTargets, attachments);
+  glGenRenderbuffers(1, &gbuffer_depth_);
+  glBindRenderbuffer(GL_RENDERBUFFER, gbuffer_depth_);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, gbuffer_depth_);
+  check("G-buffer");
+
+  for (auto [fbo, tex] :
+       {std::pair{&ao_fbo_, &ao_texture_}, std::pair{&blur_fbo_, &blur_texture_}}) {
+    *tex = texture(GL_R16F, GL_RED, width, height);
+    glGenFramebuffers(1, fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *tex, 0);
+    check("occlusion");
+  }
+  gbuffer_width_ = width;
+  gbuffer_height_ = height;
+}
+
+void PreviewWidget::resizeGL(int, int) {}
+
+void PreviewWidget::upload_mesh() {
+  mesh_dirty_ = false;
+  if (mesh_vao_) glDeleteVertexArrays(1, &mesh_vao_);
+  if (static_vbo_) glDeleteBuffers(1, &static_vbo_);
+  if (indirect_vbo_) glDeleteBuffers(1, &indirect_vbo_);
+  mesh_vao_ = static_vbo_ = indirect_vbo_ = 0;
+  corner_count_ = 0;
+  corner_vertex_.clear();
+  if (!lighting_) return;
+  // One vertex per triangle corner: albedo and emission belong to the
+  // scene triangle, and neighbours of another material share mesh vertices.
+  const LitMesh& mesh = lighting_->mesh();
+  const Scene& scene = lighting_->scene();
+  std::vector<float> corners;
+  corners.reserve(mesh.triangles.size() * 3 * 12);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Material& m = scene.material_of(mesh.source_triangle[f]);
+    for (int c = 0; c < 3; ++c) {
+      const std::uint32_t v = mesh.triangles[f][c];
+      corner_vertex_.push_back(v);
+      for (const glm::vec3& a : {mesh.positions[v], mesh.normals[v], m.albedo, m.emission})
+        corners.insert(corners.end(), {a.x, a.y, a.z});
+    }
+  }
+  corner_count_ = static_cast<GLsizei>(corner_vertex_.size());
+  glGenVertexArrays(1, &mesh_vao_);
+  glBindVertexArray(mesh_vao_);
+  glGenBuffers(1, &static_vbo_);
+  glBindBuffer(GL_ARRAY_BUFFER, static_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(corners.size() * sizeof(float)),
+               corners.data(), GL_STATIC_DRAW);
+  const GLsizei stride = 12 * sizeof(float);
+  for (GLuint k = 0; k < 4; ++k) {
+    glEnableVertexAttribArray(k);
+    glVertexAttribPointer(
+        k, 3, GL_FLOAT, GL_FALSE, stride,
+        reinterpret_cast<const void*>(static_cast<std::uintptr_t>(k * 3 * sizeof(float))));
+  }
+  glGenBuffers(1, &indirect_vbo_);
+  glBindBuffer(GL_ARRAY_BUFFER, indirect_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(corner_vertex_.size() * sizeof(glm::vec3)),
+               nullptr, GL_DYNAMIC_DRAW);
+  glEnableVertexAttribArray(4);
+  glVertexAttribPointer(4, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindVertexArray(0);
+  indirect_dirty_ = true;
+}
+
+void PreviewWidget::upload_indirect() {
+  indirect_dirty_ = false;
+  if (!indirect_vbo_ || vertex_indirect_.empty()) return;
+  std::vector<glm::vec3> corners(corner_vertex_.size());
+  for (std::size_t k = 0; k < corners.size(); ++k) corners[k] = vertex_indirect_[corner_vertex_[k]];
+  glBindBuffer(GL_ARRAY_BUFFER, indirect_vbo_);
+  glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(corners.size() * sizeof(glm::vec3)),
+                  corners.data());
+}
+
+void PreviewWidget::render_shadow_map() {
+  shadow_dirty_ = false;
+  const float far_plane = 2.0f * scene_diagonal_;
+  const glm::mat4 projection =
+      glm::perspective(glm::radians(90.0f), 1.0f, 1e-3f * far_plane, far_plane);
+  glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
+  glDrawBuffer(GL_NONE);
+  glReadBuffer(GL_NONE);
+  glViewport(0, 0, kShadowSize, kShadowSize);
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);  // single-sided walls shadow from both sides
+  shadow_program_->bind();
+  shadow_program_->setUniformValue("far_plane", far_plane);
+  glUniform3fv(shadow_program_->uniformLocation("light_position"), 1,
+               glm::value_ptr(light_position_));
+  glBindVertexArray(mesh_vao_);
+  for (int f = 0; f < 6; ++f) {
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
+                           static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), shadow_cube_,
+                           0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    const glm::mat4 view =
+        glm::lookAt(light_position_, light_position_ + kCubeForward[f], kCubeUp[f]);
+    const glm::mat4 vp = projection * view;
+    glUniformMatrix4fv(shadow_program_->uniformLocation("light_view_projection"), 1, GL_FALSE,
+                       glm::value_ptr(vp));
+    glDrawArrays(GL_TRIANGLES, 0, corner_count_);
+  }
+  glBindVertexArray(0);
+}
+
+void PreviewWidget::render(GLuint target) {
+  const qreal ratio = devicePixelRatioF();
+  const int w = std::max(1, static_cast<int>(width() * ratio));
+  const int h = std::max(1, static_cast<int>(height() * ratio));
+  if (!gl_ready_ || !lighting_) {
+    glBindFramebuffer(GL_FRAMEBUFFER, target);
+    glViewport(0, 0, w, h);
+    glClearColor(0.12f, 0.12f, 0.13f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    return;
+  }
+  if (mesh_dirty_) upload_mesh();
+  if (indirect_dirty_) upload_indirect();
+  if (gbuffer_width_ != w || gbuffer_height_ != h) make_gbuffer(w, h);
+  if (shadow_dirty_) render_shadow_map();
+
+  const glm::mat4 view = view_matrix();
+  const glm::mat4 projection = projection_matrix();
+
+  // 1. G-buffer.
+  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo_);
+  glViewport(0, 0, w, h);
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_CULL_FACE);  // from outside, the walls' backs open the box up
+  glCullFace(GL_BACK);
+  const float far_position[4] = {0.0f, 0.0f, -1e4f, 0.0f};
+  const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  glClearBufferfv(GL_COLOR, 0, far_position);
+  for (int k = 1; k < kGbufferTargets; ++k) glClearBufferfv(GL_COLOR, k, zero);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  gbuffer_program_->bind();
+  glUniformMatrix4fv(gbuffer_program_->uniformLocation("view"), 1, GL_FALSE, glm::value_ptr(view));
+  glUniformMatrix4fv(gbuffer_program_->uniformLocation("projection"), 1, GL_FALSE,
+                     glm::value_ptr(projection));
+  glBindVertexArray(mesh_vao_);
+  glDrawArrays(GL_TRIANGLES, 0, corner_count_);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_DEPTH_TEST);
+
+  auto bind = [this](int unit, GLenum kind, GLuint texture) {
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+    glBindTexture(kind, texture);
+  };
+  glBindVertexArray(empty_vao_);
+
+  // 2-3. Occlusion and its blur (only when they are shown).
+  const bool ao = passes_.ao && passes_.indirect;
+  if (ao) {
+    glBindFramebuffer(GL_FRAMEBUFFER, ao_fbo_);
+    ssao_program_->bind();
+    bind(0, GL_TEXTURE_2D, gbuffer_textures_[0]);
+    bind(1, GL_TEXTURE_2D, gbuffer_textures_[1]);
+    bind(2, GL_TEXTURE_2D, gbuffer_textures_[2]);
+    bind(3, GL_TEXTURE_2D, noise_texture_);
+    ssao_program_->setUniformValue("g_position", 0);
+    ssao_program_->setUniformValue("g_normal", 1);
+    ssao_program_->setUniformValue("g_albedo", 2);
+    ssao_program_->setUniformValue("noise", 3);
+    glUniform3fv(ssao_program_->uniformLocation("kernel"), kAoSamples,
+                 glm::value_ptr(ao_kernel_.front()));
+    ssao_program_->setUniformValue("kernel_size", kAoSamples);
+    // R and delta belong to the scene (the paper picks them per scene): a
+    // twentieth of its diagonal reaches into corners without darkening whole
+    // walls; delta is above the RGBA16F position's step at this depth.
+    ssao_program_->setUniformValue("radius", 0.05f * scene_diagonal_);
+    ssao_program_->setUniformValue("delta", 0.005f * scene_diagonal_);
+    glUniformMatrix4fv(ssao_program_->uniformLocation("projection"), 1, GL_FALSE,
+                       glm::value_ptr(projection));
+    ssao_program_->setUniformValue(
+        "noise_scale", QVector2D(static_cast<float>(w) / 4.0f, static_cast<float>(h) / 4.0f));
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, blur_fbo_);
+    blur_program_->bind();
+    bind(0, GL_TEXTURE_2D, ao_texture_);
+    blur_program_->setUniformValue("ao", 0);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+
+  // 4. Lighting and composite. The exposure is fixed once, from the first
+  // frame after set_data (the light where the scene puts it): the core's
+  // ToneMap rule (99th percentile of luminance to 0.9, as `bounce solve`'s
+  // camera pictures) on that frame's linear pixels, with and without the
+  // direct light. Fixed, so a moving light brightens and darkens the picture.
+  if (!exposure_full_) calibrate_exposure(w, h);
+  glBindFramebuffer(GL_FRAMEBUFFER, target);
+  glViewport(0, 0, w, h);
+  // Indirect alone is several times dimmer than the whole: it has its own
+  // exposure, so its colours stay readable.
+  const bool indirect_only = passes_.indirect && !passes_.direct;
+  draw_composite(passes_.direct, passes_.indirect, ao,
+                 indirect_only ? *exposure_indirect_ : *exposure_full_, false);
+  glBindVertexArray(0);
+  glActiveTexture(GL_TEXTURE0);
+}
+
+void PreviewWidget::calibrate_exposure(int width, int height) {
+  GLuint fbo = 0, texture = 0;
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, width, height, 0, GL_RGBA, GL_FLOAT, nullptr);
+  glGenFramebuffers(1, &fbo);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+  glViewport(0, 0, width, height);
+  std::vector<float> pixels(static_cast<std::size_t>(width) * height * 4);
+  auto exposure = [&](bool direct) {
+    draw_composite(direct, true, false, 1.0f, true);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_FLOAT, pixels.data());
+    std::vector<float> lum;
+    lum.reserve(pixels.size() / 4);
+    for (std::size_t k = 0; k < pixels.size(); k += 4)
+      lum.push_back(luminance({pixels[k], pixels[k + 1], pixels[k + 2]}));
+    return ToneMap::exposure_for(std::move(lum));
+  };
+  exposure_full_ = exposure(true);
+  exposure_indirect_ = exposure(false);
+  glDeleteFramebuffers(1, &fbo);
+  glDeleteTextures(1, &texture);
+}
+
+void PreviewWidget::draw_composite(bool direct, bool indirect, bool ao, float exposure,
+                                   bool linear) {
+  auto bind = [this](int unit, GLenum kind, GLuint t) {
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+    glBindTexture(kind, t);
+  };
+  const glm::mat4 view = view_matrix();
+  composite_program_->bind();
+  for (int k = 0; k < kGbufferTargets; ++k) bind(k, GL_TEXTURE_2D, gbuffer_textures_[k]);
+  bind(5, GL_TEXTURE_2D, blur_texture_);
+  bind(6, GL_TEXTURE_CUBE_MAP, shadow_cube_);
+  const char* samplers[] = {"g_position", "g_normal", "g_albedo",  "g_emission",
+                            "g_indirect", "ao",       "shadow_map"};
+  for (int k = 0; k < 7; ++k) composite_program_->setUniformValue(samplers[k], k);
+  const Light& light = lighting_->light();
+  const glm::mat3 view_rotation(view);
+  const glm::vec3 light_view = glm::vec3(view * glm::vec4(light_position_, 1.0f));
+  const glm::vec3 power = light.color * light.intensity;
+  const glm::vec3 axis = view_rotation * glm::normalize(light.direction);
+  const glm::mat3 to_world = glm::transpose(view_rotation);
+  glUniformMatrix3fv(composite_program_->uniformLocation("view_to_world"), 1, GL_FALSE,
+                     glm::value_ptr(to_world));
+  glUniform3fv(composite_program_->uniformLocation("light_view"), 1, glm::value_ptr(light_view));
+  glUniform3fv(composite_program_->uniformLocation("light_power"), 1, glm::value_ptr(power));
+  composite_program_->setUniformValue("light_is_spot", light.type == Light::Type::Spot ? 1 : 0);
+  glUniform3fv(composite_program_->uniformLocation("spot_axis_view"), 1, glm::value_ptr(axis));
+  composite_program_->setUniformValue("spot_cos",
+                                      QVector2D(std::cos(glm::radians(light.spot_inner_deg)),
+                                                std::cos(glm::radians(light.spot_outer_deg))));
+  composite_program_->setUniformValue("far_plane", 2.0f * scene_diagonal_);
+  composite_program_->setUniformValue("shadow_bias", 0.003f * scene_diagonal_);
+  composite_program_->setUniformValue("pcf_radius", 0.006f);
+  composite_program_->setUniformValue("show_direct", direct);
+  composite_program_->setUniformValue("show_indirect", indirect);
+  composite_program_->setUniformValue("use_ao", ao);
+  composite_program_->setUniformValue("exposure", exposure);
+  composite_program_->setUniformValue("linear_output", linear);
+  composite_program_->setUniformValue("background", QVector3D(0.12f, 0.12f, 0.13f));
+  glBindVertexArray(empty_vao_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
+void PreviewWidget::paintGL() {
+  const double now = static_cast<double>(clock_.nsecsElapsed()) * 1e-9;
+  if (last_paint_ >= 0.0) {
+    const double interval = now - last_paint_;
+    // Smoothed over about ten frames; a pause (nothing to redraw) is no frame time.
+    if (interval <= 1.0)
+      mean_interval_ = mean_interval_ <= 0.0 ? interval : 0.9 * mean_interval_ + 0.1 * interval;
+  }
+  last_paint_ = now;
+  try {
+    render(defaultFramebufferObject());
+  } catch (const std::exception& e) {
+    gl_error_ = QString::fromStdString(e.what());
+  }
+  if (overlay_) draw_overlay();
+}
+
+void PreviewWidget::draw_overlay() {
+  QPainter painter(this);
+  painter.setRenderHint(QPainter::TextAntialiasing);
+  QStringList lines;
+  if (!gl_error_.isEmpty()) {
+    lines << tr("OpenGL: %1").arg(gl_error_);
+  } else if (!lighting_) {
+    lines << tr("No bake loaded");
+  } else {
+    lines << (mean_interval_ > 0.0 ? tr("%1 fps (%2 ms per frame)")
+                                         .arg(1.0 / mean_interval_, 0, 'f', 1)
+                                         .arg(1e3 * mean_interval_, 0, 'f', 1)
+                                   : tr("-- fps"));
+    lines << tr("solve %1 ms (frame graph %2, to vertices %3) on the %4")
+                 .arg(last_solve_ms(), 0, 'f', 1)
+                 .arg(last_frame_graph_ms(), 0, 'f', 1)
+                 .arg(last_transfer_ms(), 0, 'f', 1)
+                 .arg(solve_on_worker_ ? tr("worker") : tr("UI thread"));
+    lines << tr("%1 patches, %2 vertices, T b: %3")
+                 .arg(lighting_->patch_count())
+                 .arg(vertex_count())
+                 .arg(QString::fromStdString(lighting_->multiply_name()));
+    lines << tr("light '%1' at (%2, %3, %4)%5")
+                 .arg(QString::fromStdString(lighting_->light().name))
+                 .arg(light_position_.x, 0, 'f', 2)
+                 .arg(light_position_.y, 0, 'f', 2)
+                 .arg(light_position_.z, 0, 'f', 2)
+                 .arg(solved_light_ == light_position_ ? QString() : tr(" (solving)"));
+    lines << tr("direct %1  indirect %2  AO %3")
+                 .arg(passes_.direct ? "on" : "off")
+                 .arg(passes_.indirect ? "on" : "off")
+                 .arg(passes_.ao ? "on" : "off");
+  }
+  const QFontMetrics metrics(painter.font());
+  const int line = metrics.height();
+  int text_width = 0;
+  for (const QString& l : lines) text_width = std::max(text_width, metrics.horizontalAdvance(l));
+  painter.fillRect(QRect(4, 4, text_width + 12, line * lines.size() + 8), QColor(0, 0, 0, 150));
+  painter.setPen(Qt::white);
+  for (int k = 0; k < lines.size(); ++k)
+    painter.drawText(10, 8 + line * k + metrics.ascent(), lines[k]);
+}
+
+QImage PreviewWidget::render_image() { return grabFramebuffer(); }
+
+double PreviewWidget::measure_frame_ms(int frames) {
+  if (frames < 1 || !isValid()) return 0.0;
+  makeCurrent();
+  QElapsedTimer timer;
+  timer.start();
+  for (int k = 0; k < frames; ++k) {
+    shadow_dirty_ = true;  // as while the light is dragged: the shadow map too
+    render(defaultFramebufferObject());
+    glFinish();
+  }
+  const double ms = static_cast<double>(timer.nsecsElapsed()) * 1e-6 / frames;
+  doneCurrent();
+  mean_interval_ = 1e-3 * ms;  // the overlay shows the measured rate
+  last_paint_ = -1.0;
+  return ms;
+}
+
+}  // namespace bounce::views

@@ -1,0 +1,178 @@
+#pragma once
+// View 5, the live preview (issue 6 section 2.5): the scene in OpenGL 3.3
+// core with
+//   1. a shadow cube map of the light (distance to the light per texel),
+//   2. a G-buffer (view-space position and normal, albedo, emission, and the
+//      runtime solve's indirect light per vertex, interpolated),
+//   3. SSAO as in paper 002 (hemisphere kernel of 32 samples rotated per
+//      pixel by a tiled 4 x 4 noise texture, depth test with bias delta),
+//   4. a 4 x 4 box blur of the occlusion map,
+//   5. the composite: direct light with percentage-closer filtering, the
+//      indirect light scaled by the blurred occlusion, emission, one fixed
+//      exposure, sRGB; each of direct / indirect / AO can be switched off,
+// and an overlay with the frame rate and the solve time.
+//
+// All light transport comes from the core through PreviewLighting (the
+// runtime frame graph and the mesh transfer of `bounce solve`); the widget
+// only draws. When the light moves the solve runs again: on the UI thread
+// when the last one fitted in kUiSolveBudget, otherwise on a worker thread
+// where only the latest light position is solved (positions the worker had
+// no time for are skipped).
+//
+// Mouse: left drag orbits the camera, right drag or the wheel moves it
+// closer, Ctrl + left drag moves the light in the plane facing the camera,
+// Ctrl + wheel moves it towards or away from the camera. The light stays
+// inside the scene's bounds.
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include <QElapsedTimer>
+#include <QOpenGLFunctions_3_3_Core>
+#include <QOpenGLWidget>
+#include <QPoint>
+#include <glm/glm.hpp>
+
+#include "bake_view_data.h"
+
+class QOpenGLShaderProgram;
+
+namespace bounce::views {
+
+class PreviewLighting;
+
+class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
+  Q_OBJECT
+ public:
+  struct Passes {
+    bool direct = true;
+    bool indirect = true;
+    bool ao = true;
+  };
+  // A solve faster than this runs on the UI thread (a 60 Hz frame is 16.7
+  // ms: half of it is left for the solve, the rest for drawing).
+  static constexpr double kUiSolveBudget = 0.008;
+  static constexpr int kAoSamples = 32;  // paper 002: m >= 32
+  static constexpr int kShadowSize = 512;
+
+  explicit PreviewWidget(QWidget* parent = nullptr);
+  ~PreviewWidget() override;
+
+  // Builds the lighting (mesh refinement, frame graph) and solves (twice,
+  // timed, for the policy) at the light's scene position. Throws bounce::Error (no scene on disk,
+  // no point or spot light, no matrix); the widget then shows nothing.
+  void set_data(std::shared_ptr<const BakeViewData> data);
+  bool has_data() const { return lighting_ != nullptr; }
+  void clear();
+
+  void set_passes(Passes passes);
+  Passes passes() const { return passes_; }
+  void set_overlay(bool on);
+
+  // Moves the light. wait: solve on this thread now (tests, screenshots);
+  // otherwise as the solve policy says (see above).
+  void set_light_position(const glm::vec3& position, bool wait = false);
+  glm::vec3 light_position() const { return light_position_; }
+  // Position the indirect light on screen belongs to.
+  glm::vec3 solved_light_position() const { return solved_light_; }
+
+  // The picture as the screen shows it (grabFramebuffer).
+  QImage render_image();
+  // Mean milliseconds per frame of `frames` renders at the current size
+  // (glFinish after each, so it is what the GPU took, not what was queued).
+  double measure_frame_ms(int frames);
+  // Where a world point lands in the widget (pixels, y down).
+  QPointF project(const glm::vec3& world) const;
+
+  // Empty unless OpenGL set-up failed (shader compile or link, FBO).
+  const QString& gl_error() const { return gl_error_; }
+  bool solve_on_worker() const { return solve_on_worker_; }
+  double last_solve_ms() const { return 1e3 * (frame_seconds_ + transfer_seconds_); }
+  double last_frame_graph_ms() const { return 1e3 * frame_seconds_; }
+  double last_transfer_ms() const { return 1e3 * transfer_seconds_; }
+  std::size_t vertex_count() const;
+  std::size_t triangle_count() const;
+
+ signals:
+  void solved();  // a new indirect light is on screen
+
+ protected:
+  void initializeGL() override;
+  void resizeGL(int w, int h) override;
+  void paintGL() override;
+  void mousePressEvent(QMouseEvent* event) override;
+  void mouseMoveEvent(QMouseEvent* event) override;
+  void wheelEvent(QWheelEvent* event) override;
+
+ private:
+  struct SolveResult;
+  void render(GLuint target);
+  void draw_composite(bool direct, bool indirect, bool ao, float exposure, bool linear);
+  void calibrate_exposure(int width, int height);
+  void draw_overlay();
+  void build_programs();
+  void make_gbuffer(int width, int height);
+  void release_gbuffer();
+  void release_gl();
+  void upload_mesh();
+  void upload_indirect();
+  void render_shadow_map();
+  void apply(SolveResult result);
+  void start_worker();
+  void stop_worker();
+  void reset_camera();
+  glm::mat4 view_matrix() const;
+  glm::mat4 projection_matrix() const;
+  glm::vec3 eye() const;
+  void move_light_by(const glm::vec3& delta);
+
+  std::shared_ptr<const BakeViewData> data_;
+  std::unique_ptr<PreviewLighting> lighting_;
+  std::mutex lighting_mutex_;  // one solve at a time
+
+  // Worker: the latest requested light position wins.
+  std::thread worker_;
+  std::mutex request_mutex_;
+  std::condition_variable request_ready_;
+  std::optional<glm::vec3> request_;
+  bool stop_ = false;
+  bool solve_on_worker_ = false;
+
+  Passes passes_;
+  bool overlay_ = true;
+  glm::vec3 light_position_{0.0f}, solved_light_{0.0f};
+  std::vector<glm::vec3> vertex_indirect_;
+  double frame_seconds_ = 0.0, transfer_seconds_ = 0.0;
+
+  // Camera: orbit around target_.
+  glm::vec3 target_{0.0f}, up_{0.0f, 1.0f, 0.0f};
+  glm::vec3 base_forward_{0.0f, 0.0f, -1.0f};  // scene camera's direction at yaw = pitch = 0
+  float distance_ = 1.0f, yaw_ = 0.0f, pitch_ = 0.0f, fov_y_deg_ = 45.0f;
+  float scene_diagonal_ = 1.0f;
+  QPoint last_mouse_;
+
+  // Frame timing for the overlay.
+  QElapsedTimer clock_;
+  double last_paint_ = -1.0, mean_interval_ = 0.0;
+
+  // OpenGL objects (0: not made).
+  bool gl_ready_ = false, mesh_dirty_ = false, indirect_dirty_ = false, shadow_dirty_ = true;
+  QString gl_error_;
+  std::unique_ptr<QOpenGLShaderProgram> shadow_program_, gbuffer_program_, ssao_program_,
+      blur_program_, composite_program_;
+  GLuint mesh_vao_ = 0, static_vbo_ = 0, indirect_vbo_ = 0, empty_vao_ = 0;
+  GLsizei corner_count_ = 0;
+  std::vector<std::uint32_t> corner_vertex_;  // mesh vertex of each drawn corner
+  GLuint shadow_fbo_ = 0, shadow_cube_ = 0;
+  GLuint gbuffer_fbo_ = 0, gbuffer_depth_ = 0;
+  GLuint gbuffer_textures_[5] = {0, 0, 0, 0, 0};  // position, normal, albedo, emission, indirect
+  GLuint ao_fbo_ = 0, ao_texture_ = 0, blur_fbo_ = 0, blur_texture_ = 0, noise_texture_ = 0;
+  int gbuffer_width_ = 0, gbuffer_height_ = 0;
+  std::vector<glm::vec3> ao_kernel_;
+  // Set from the first frame drawn after set_data, then fixed (see render()).
+  std::optional<float> exposure_full_, exposure_indirect_;
+};
+
+}  // namespace bounce::views
