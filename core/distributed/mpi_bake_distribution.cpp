@@ -69,6 +69,14 @@ void MpiBakeDistribution::merge_form_factors(FormFactorMatrix& f) {
     if (code != MPI_SUCCESS)
       throw Error("MPI", text_format("MPI_Reduce of the form-factor rows failed (code %d)", code));
   }
+  // Each rank capped entries above 1 in its own rows only: the manifest's
+  // count is their sum.
+  unsigned long long clamped = f.clamped_to_one, total = 0;
+  const int code = MPI_Reduce(&clamped, &total, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0,
+                              MPI_COMM_WORLD);
+  if (code != MPI_SUCCESS)
+    throw Error("MPI", text_format("MPI_Reduce of the clamped-entry count failed (code %d)", code));
+  if (session_.is_root()) f.clamped_to_one = static_cast<std::size_t>(total);
 }
 
 std::unique_ptr<TransportExecutor> MpiBakeDistribution::transport_executor() {
