@@ -163,12 +163,15 @@ void take_screenshot(const ScreenshotRequest& r) {
   } else {
     image = view->grab().toImage();
   }
+  save_view_png(image, r.screenshot);
+}
+
+void save_view_png(const QImage& image, const QString& path) {
   const std::vector<std::string> vtk = views::VtkErrorCapture::messages();
   if (!vtk.empty()) throw Error("render", "VTK reported: " + vtk.front());
-  QSaveFile file(r.screenshot);
+  QSaveFile file(path);
   if (!file.open(QIODevice::WriteOnly) || !image.save(&file, "PNG") || !file.commit())
-    throw Error(r.screenshot.toStdString(),
-                "cannot write the PNG: " + file.errorString().toStdString());
+    throw Error(path.toStdString(), "cannot write the PNG: " + file.errorString().toStdString());
 }
 
 }  // namespace bounce::studio

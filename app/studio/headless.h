@@ -3,6 +3,7 @@
 // loads (baking a scene first, with the settings panel's mapping of the
 // options given), renders one view at the requested size into a PNG and
 // returns the exit code. Used by the render tests and for the README pictures.
+#include <QImage>
 #include <QString>
 
 namespace bounce::studio {
@@ -26,5 +27,9 @@ struct ScreenshotRequest {
 
 // Throws bounce::Error for bad requests and failed bakes or renders.
 void take_screenshot(const ScreenshotRequest& request);
+
+// Writes a rendered view to `path` as PNG (atomically, QSaveFile) after
+// checking that VTK reported no error while rendering it; throws bounce::Error.
+void save_view_png(const QImage& image, const QString& path);
 
 }  // namespace bounce::studio

@@ -3,13 +3,12 @@
 #include <memory>
 
 #include <QApplication>
-#include <QSaveFile>
 
 #include "bake_job.h"
 #include "base/error.h"
+#include "headless.h"
 #include "report_controller.h"
 #include "report_view.h"
-#include "vtk_error_capture.h"
 
 namespace bounce::studio {
 
@@ -31,12 +30,7 @@ void take_report_screenshot(const ScreenshotRequest& r) {
   view.set_report(report);
   for (int k = 0; k < 5; ++k) QApplication::processEvents();
   const QImage image = view.grab().toImage();
-  const std::vector<std::string> vtk = views::VtkErrorCapture::messages();
-  if (!vtk.empty()) throw Error("render", "VTK reported: " + vtk.front());
-  QSaveFile file(r.screenshot);
-  if (!file.open(QIODevice::WriteOnly) || !image.save(&file, "PNG") || !file.commit())
-    throw Error(r.screenshot.toStdString(),
-                "cannot write the PNG: " + file.errorString().toStdString());
+  save_view_png(image, r.screenshot);
 }
 
 }  // namespace bounce::studio

@@ -388,17 +388,9 @@ class ScalapackExecutor : public TransportExecutor {
     // The precision rule of inverse_transport.cpp, decided here on the root.
     r.condition_lower_bound = condition_lower_bound(m.data(), n, spectral_radius);
     const double limit = options.float32_error_limit;
-    bool use_float64 = false;
-    if (options.force) {
-      use_float64 = *options.force == TransportPrecision::Float64;
-      r.why = text_format("%s forced", precision_name(*options.force));
-    } else if (r.condition_lower_bound * FLT_EPSILON > limit) {
-      use_float64 = true;
-      r.why = text_format(
-          "float64: condition >= ||I-M|| / (1 - rho) = %.3g before factorising, so float32's "
-          "error estimate kappa * eps >= %.2g exceeds %.0e",
-          r.condition_lower_bound, r.condition_lower_bound * FLT_EPSILON, limit);
-    }
+    PrecisionChoice choice = precision_before_factorising(r.condition_lower_bound, options);
+    bool use_float64 = choice.precision == TransportPrecision::Float64;
+    r.why = std::move(choice.why);
     // Unlike the single process, which decides from an estimate before
     // solving, the float32 solution is computed first: it gives the exact
     // condition number, and M (kept) is solved again in float64 if that fails

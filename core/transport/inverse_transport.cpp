@@ -55,7 +55,8 @@ struct Lapack<double> {
 
 void check_info(lapack_int info, const char* routine) {
   if (info < 0)
-    throw Error("transport", text_format("%s rejected argument %d", routine, static_cast<int>(-info)));
+    throw Error("transport",
+                text_format("%s rejected argument %d", routine, static_cast<int>(-info)));
   if (info > 0)
     throw Error("transport",
                 text_format("%s: I - diag(albedo) F is exactly singular (zero pivot %d): light "
@@ -122,12 +123,26 @@ double condition_lower_bound(const float* m, std::size_t n, double spectral_radi
   return inf_norm_of_identity_minus(m, n) / (1.0 - spectral_radius);
 }
 
+PrecisionChoice precision_before_factorising(double condition_lower_bound,
+                                             const InverseOptions& options) {
+  PrecisionChoice c;
+  const double limit = options.float32_error_limit;
+  if (options.force) {
+    c.precision = *options.force;
+    c.why = text_format("%s forced", precision_name(*options.force));
+  } else if (condition_lower_bound * FLT_EPSILON > limit) {
+    c.precision = TransportPrecision::Float64;
+    c.why = text_format(
+        "float64: condition >= ||I-M|| / (1 - rho) = %.3g before factorising, so float32's "
+        "error estimate kappa * eps >= %.2g exceeds %.0e",
+        condition_lower_bound, condition_lower_bound * FLT_EPSILON, limit);
+  }
+  return c;
+}
+
 TransportPrecision predicted_precision(double condition_lower_bound,
                                        const InverseOptions& options) {
-  if (options.force) return *options.force;
-  return condition_lower_bound * FLT_EPSILON > options.float32_error_limit
-             ? TransportPrecision::Float64
-             : TransportPrecision::Float32;
+  return precision_before_factorising(condition_lower_bound, options).precision;
 }
 
 double lu_cost_in_gemms(TransportPrecision precision) {
@@ -138,8 +153,8 @@ const char* precision_name(TransportPrecision p) {
   return p == TransportPrecision::Float64 ? "float64" : "float32";
 }
 
-InverseTransport solve_infinite_bounces(std::vector<float> m, std::size_t n,
-                                        double spectral_radius, const InverseOptions& options) {
+InverseTransport solve_infinite_bounces(std::vector<float> m, std::size_t n, double spectral_radius,
+                                        const InverseOptions& options) {
   if (m.size() != n * n) throw Error("transport", "solve_infinite_bounces: size does not match n");
   InverseTransport r;
   if (n == 0) return r;
@@ -149,17 +164,9 @@ InverseTransport solve_infinite_bounces(std::vector<float> m, std::size_t n,
                                                   : std::numeric_limits<double>::infinity();
   const double limit = options.float32_error_limit;
 
-  bool use_float64 = false;
-  if (options.force) {
-    use_float64 = *options.force == TransportPrecision::Float64;
-    r.why = text_format("%s forced", precision_name(*options.force));
-  } else if (r.condition_lower_bound * FLT_EPSILON > limit) {
-    use_float64 = true;
-    r.why = text_format(
-        "float64: condition >= ||I-M|| / (1 - rho) = %.3g before factorising, so float32's "
-        "error estimate kappa * eps >= %.2g exceeds %.0e",
-        r.condition_lower_bound, r.condition_lower_bound * FLT_EPSILON, limit);
-  }
+  PrecisionChoice choice = precision_before_factorising(r.condition_lower_bound, options);
+  bool use_float64 = choice.precision == TransportPrecision::Float64;
+  r.why = std::move(choice.why);
 
   if (!use_float64) {
     Factorisation<float> f = factorise<float>(m.data(), n, anorm);

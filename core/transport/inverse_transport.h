@@ -58,7 +58,14 @@ struct InverseOptions {
 double condition_lower_bound(const float* m, std::size_t n, double spectral_radius);
 
 // The precision the rule picks from the lower bound alone (the factorisation
-// can still move float32 to float64).
+// can still move float32 to float64), and the rule as applied for the
+// manifest (empty when float32 passes it).
+struct PrecisionChoice {
+  TransportPrecision precision = TransportPrecision::Float32;
+  std::string why;
+};
+PrecisionChoice precision_before_factorising(double condition_lower_bound,
+                                             const InverseOptions& options = {});
 TransportPrecision predicted_precision(double condition_lower_bound,
                                        const InverseOptions& options = {});
 
@@ -71,7 +78,7 @@ double lu_cost_in_gemms(TransportPrecision precision);
 // m: row-major n x n M = diag(rho_c) F, taken by value so its memory is reused
 // (float32) or released (float64) as soon as possible. `spectral_radius` is
 // the estimate of rho(M), < 1. Throws bounce::Error when I - M is singular.
-InverseTransport solve_infinite_bounces(std::vector<float> m, std::size_t n,
-                                        double spectral_radius, const InverseOptions& options = {});
+InverseTransport solve_infinite_bounces(std::vector<float> m, std::size_t n, double spectral_radius,
+                                        const InverseOptions& options = {});
 
 }  // namespace bounce
