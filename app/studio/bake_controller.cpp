@@ -1,26 +1,17 @@
 #include "bake_controller.h"
 
-#include <QThread>
-
 namespace bounce::studio {
 
 BakeController::BakeController(QObject* parent) : QObject(parent) {
   qRegisterMetaType<std::shared_ptr<const BakeJobResult>>("std::shared_ptr<const BakeJobResult>");
 }
 
-BakeController::~BakeController() {
-  if (thread_) {
-    cancel();
-    thread_->wait();
-  }
-}
+BakeController::~BakeController() { worker_.cancel_and_wait(); }
 
 void BakeController::start(const QString& scene_path, const BakeSettings& settings,
                            const QString& folder, std::shared_ptr<const BakeJobResult> previous) {
-  if (thread_) return;
-  cancel_.store(false);
   const std::string scene = scene_path.toStdString(), out = folder.toStdString();
-  thread_ = QThread::create([this, scene, settings, out, previous] {
+  worker_.start([this, scene, settings, out, previous] {
     std::string stage;
     auto stage_start = std::chrono::steady_clock::now();
     Progress progress([&](const std::string& name, double fraction) {
@@ -33,7 +24,7 @@ void BakeController::start(const QString& scene_path, const BakeSettings& settin
       // Remaining time of the stage at its rate so far; unknown at the start.
       const double eta = fraction > 0.02 ? elapsed * (1.0 - fraction) / fraction : -1.0;
       emit stage_progress(QString::fromStdString(name), fraction, eta);
-      return !cancel_.load();
+      return worker_.keep_going();
     });
     try {
       auto job = std::make_shared<const BakeJobResult>(
@@ -45,11 +36,6 @@ void BakeController::start(const QString& scene_path, const BakeSettings& settin
       emit failed(QString::fromStdString(e.what()));
     }
   });
-  connect(thread_, &QThread::finished, this, [this] {
-    thread_->deleteLater();
-    thread_ = nullptr;
-  });
-  thread_->start();
 }
 
 }  // namespace bounce::studio

@@ -3,7 +3,6 @@
 // freezes: reports each stage's progress with an ETA, and cancels through
 // the core's progress callback (returning false stops the bake at its next
 // poll; core/base/progress.h).
-#include <atomic>
 #include <chrono>
 #include <memory>
 
@@ -11,8 +10,7 @@
 #include <QString>
 
 #include "bake_job.h"
-
-class QThread;
+#include "worker_thread.h"
 
 namespace bounce::studio {
 
@@ -22,13 +20,13 @@ class BakeController : public QObject {
   explicit BakeController(QObject* parent = nullptr);
   ~BakeController() override;
 
-  bool busy() const { return thread_ != nullptr; }
+  bool busy() const { return worker_.busy(); }
   // Starts a bake into `folder` (replaced when the bake succeeds). With
   // `previous` (an earlier job of the same scene), only the stages the
   // settings change affects run (run_bake_job).
   void start(const QString& scene_path, const BakeSettings& settings, const QString& folder,
              std::shared_ptr<const BakeJobResult> previous = {});
-  void cancel() { cancel_.store(true); }
+  void cancel() { worker_.cancel(); }
 
  signals:
   // fraction in [0,1]; eta_seconds < 0 while unknown.
@@ -38,8 +36,7 @@ class BakeController : public QObject {
   void cancelled();
 
  private:
-  QThread* thread_ = nullptr;
-  std::atomic<bool> cancel_{false};
+  WorkerThread worker_{this};
 };
 
 }  // namespace bounce::studio

@@ -1,7 +1,5 @@
 #include "report_controller.h"
 
-#include <QThread>
-
 #include "reference/reference_cache.h"
 #include "report/report_sweep.h"
 #include "scene/scene_loader.h"
@@ -21,21 +19,14 @@ ReportController::ReportController(QObject* parent) : QObject(parent) {
   qRegisterMetaType<std::shared_ptr<const ReportData>>("std::shared_ptr<const ReportData>");
 }
 
-ReportController::~ReportController() {
-  if (thread_) {
-    cancel();
-    thread_->wait();
-  }
-}
+ReportController::~ReportController() { worker_.cancel_and_wait(); }
 
 void ReportController::start(const QString& scene_path) {
-  if (thread_) return;
-  cancel_.store(false);
   const std::string scene = scene_path.toStdString();
-  thread_ = QThread::create([this, scene] {
+  worker_.start([this, scene] {
     Progress progress([this](const std::string& stage, double fraction) {
       emit this->progress(QString::fromStdString(stage), fraction);
-      return !cancel_.load();
+      return worker_.keep_going();
     });
     try {
       emit finished(std::make_shared<const ReportData>(run_quick_report(scene, progress)));
@@ -45,11 +36,6 @@ void ReportController::start(const QString& scene_path) {
       emit failed(QString::fromStdString(e.what()));
     }
   });
-  connect(thread_, &QThread::finished, this, [this] {
-    thread_->deleteLater();
-    thread_ = nullptr;
-  });
-  thread_->start();
 }
 
 }  // namespace bounce::studio

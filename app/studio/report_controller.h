@@ -3,7 +3,6 @@
 // settings) on a worker thread for the report tab, with the reference cached
 // where `bounce report` caches it, so the window never freezes. Shared with
 // headless screenshots (run_quick_report) so both produce the same rows.
-#include <atomic>
 #include <memory>
 
 #include <QObject>
@@ -11,8 +10,7 @@
 
 #include "base/progress.h"
 #include "report/report_data.h"
-
-class QThread;
+#include "worker_thread.h"
 
 namespace bounce::studio {
 
@@ -26,9 +24,9 @@ class ReportController : public QObject {
   explicit ReportController(QObject* parent = nullptr);
   ~ReportController() override;
 
-  bool busy() const { return thread_ != nullptr; }
+  bool busy() const { return worker_.busy(); }
   void start(const QString& scene_path);
-  void cancel() { cancel_.store(true); }
+  void cancel() { worker_.cancel(); }
 
  signals:
   void progress(const QString& stage, double fraction);
@@ -36,8 +34,7 @@ class ReportController : public QObject {
   void failed(const QString& message);
 
  private:
-  QThread* thread_ = nullptr;
-  std::atomic<bool> cancel_{false};
+  WorkerThread worker_{this};
 };
 
 }  // namespace bounce::studio

@@ -1,14 +1,18 @@
 #pragma once
-// Shared by the render tests: the fixture bake, picture statistics, and a
-// check that VTK said nothing while a test rendered.
+// Shared by the render tests: the fixture bake, picture statistics, running
+// the command-line programs, and a check that VTK said nothing while a test
+// rendered.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
 #include <array>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
+#include <string>
 
 #include <QApplication>
 #include <QImage>
@@ -28,6 +32,31 @@ inline std::shared_ptr<const views::BakeViewData> load_fixture() {
 inline nlohmann::json fixture_manifest() {
   std::ifstream in(fixture_bake() / "manifest.json");
   return nlohmann::json::parse(in);
+}
+
+struct CommandRun {
+  int code = -1;
+  std::string output;  // stdout and stderr
+};
+
+// Runs a shell command line, stdout and stderr together.
+inline CommandRun run_command(const std::string& command_line) {
+  CommandRun r;
+  FILE* pipe = ::popen((command_line + " 2>&1").c_str(), "r");
+  if (!pipe) return r;
+  char buffer[4096];
+  while (std::fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
+  const int status = ::pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+// A fresh, empty folder for one test's outputs.
+inline std::filesystem::path work_dir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(BOUNCE_RENDER_WORK) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 inline void settle() {

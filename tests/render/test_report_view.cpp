@@ -3,8 +3,6 @@
 // plots); the studio's report view draws each row's point where the chart's
 // axes say, a click on a point selects that row, and `bounce-studio --view
 // report --report FILE` renders it.
-#include <sys/wait.h>
-
 #include <QMouseEvent>
 #include <cmath>
 #include <cstdio>
@@ -22,29 +20,6 @@ namespace bounce::render_test {
 namespace fs = std::filesystem;
 
 namespace {
-
-struct CommandRun {
-  int code = -1;
-  std::string output;  // stdout and stderr
-};
-
-CommandRun run_command(const std::string& command_line) {
-  CommandRun r;
-  FILE* pipe = ::popen((command_line + " 2>&1").c_str(), "r");
-  if (!pipe) return r;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
-  const int status = ::pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-fs::path work_dir(const std::string& name) {
-  const fs::path dir = fs::path(BOUNCE_RENDER_WORK) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 std::string read_text(const fs::path& file) {
   std::ifstream in(file);

@@ -1,6 +1,4 @@
 // bounce-studio from the outside: headless screenshots and option errors.
-#include <sys/wait.h>
-
 #include <cstdio>
 #include <string>
 
@@ -12,33 +10,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct StudioRun {
-  int code = -1;
-  std::string output;  // stdout and stderr
-};
-
-// Runs a shell command line, stdout and stderr together.
-StudioRun run_studio_command(const std::string& command_line) {
-  const std::string command = command_line + " 2>&1";
-  StudioRun r;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return r;
-  char buffer[4096];
-  while (std::fgets(buffer, sizeof buffer, pipe)) r.output += buffer;
-  const int status = ::pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-StudioRun run_studio(const std::string& args) {
-  return run_studio_command(std::string(BOUNCE_STUDIO) + " " + args);
-}
-
-fs::path work_dir(const std::string& name) {
-  const fs::path dir = fs::path(BOUNCE_RENDER_WORK) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+CommandRun run_studio(const std::string& args) {
+  return run_command(std::string(BOUNCE_STUDIO) + " " + args);
 }
 
 }  // namespace
@@ -49,8 +22,8 @@ TEST_F(StudioCli, ScreenshotsOfEveryViewFromABakeFolder) {
   const fs::path dir = work_dir("screenshots");
   for (const char* view : {"voxels", "patches", "matrix", "error"}) {
     const fs::path png = dir / (std::string(view) + ".png");
-    const StudioRun r = run_studio(fixture_bake().string() + " --screenshot " + png.string() +
-                                   " --view " + view + " --size 400x300");
+    const CommandRun r = run_studio(fixture_bake().string() + " --screenshot " + png.string() +
+                                    " --view " + view + " --size 400x300");
     ASSERT_EQ(r.code, 0) << view << ": " << r.output;
     const QImage image(QString::fromStdString(png.string()));
     ASSERT_FALSE(image.isNull()) << view;
@@ -63,13 +36,13 @@ TEST_F(StudioCli, HelpAndVersionNeedNoDisplay) {
   const std::string no_display = "env -u DISPLAY -u WAYLAND_DISPLAY -u QT_QPA_PLATFORM ";
   const std::string studio = std::string(BOUNCE_STUDIO);
   // Without a display the window cannot start: the environment really has none.
-  const StudioRun window = run_studio_command(no_display + studio + " --no-such-input-yet");
+  const CommandRun window = run_command(no_display + studio + " --no-such-input-yet");
   EXPECT_NE(window.code, 0) << window.output;
-  const StudioRun help = run_studio_command(no_display + studio + " --help");
+  const CommandRun help = run_command(no_display + studio + " --help");
   EXPECT_EQ(help.code, 0) << help.output;
   EXPECT_NE(help.output.find("--screenshot"), std::string::npos) << help.output;
   EXPECT_NE(help.output.find("--view"), std::string::npos) << help.output;
-  const StudioRun version = run_studio_command(no_display + studio + " --version");
+  const CommandRun version = run_command(no_display + studio + " --version");
   EXPECT_EQ(version.code, 0) << version.output;
   EXPECT_NE(version.output.find("Bounce Studio " BOUNCE_VERSION_TEXT), std::string::npos)
       << version.output;
@@ -79,7 +52,7 @@ TEST_F(StudioCli, SettingsChangeThePatchCount) {
   // The fixture is --voxel 4; a coarser grid through the studio's settings
   // (headless maps --voxel onto the settings panel) must give fewer patches.
   const fs::path dir = work_dir("settings");
-  const StudioRun r =
+  const CommandRun r =
       run_studio(std::string(BOUNCE_RESOURCE_DIR) + "/scenes/cornell-box --voxel 2 " +
                  "--screenshot " + (dir / "patches.png").string() +
                  " --view patches --size 320x240 --bake-out " + (dir / "bake").string());
@@ -104,7 +77,7 @@ TEST_F(StudioCli, BadOptionsFailWithOneLine) {
       {fixture_bake().string() + shot + " --view nonsense", "--view"},
   };
   for (const auto& c : cases) {
-    const StudioRun r = run_studio(c.args);
+    const CommandRun r = run_studio(c.args);
     EXPECT_EQ(r.code, 1) << c.args << "\n" << r.output;
     EXPECT_NE(r.output.find("bounce-studio: error: "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(c.names), std::string::npos) << r.output;
