@@ -29,10 +29,30 @@ struct BlockRowInput {
   const std::uint16_t* b16 = nullptr;
   std::size_t b16_stride = 0;
   const std::uint16_t* tables16 = nullptr;
+  // The AVX-512 loops (BC1): pairs_per_row records per block row.
+  const Bc1BlockPair* pairs = nullptr;
+  std::size_t pairs_per_row = 0;
 };
 // Accumulates block row I of T~ times b into acc[row within the block
 // row][colour].
 using BlockRowFn = void (*)(const BlockRowInput&, std::size_t, float (*)[3]);
+// Accumulates block rows I0 .. I0 + rows - 1 (rows <= kBandRows) into
+// acc[4 * i + r] (block row I0 + i, row r). The product runs bands of
+// block rows on the threads (the AVX-512 loops tile b over a band, below).
+constexpr std::size_t kBandRows = 8;
+// Pairs of a tile of b: 128 (256 stored columns; 6 KB of b in bfloat16,
+// 12 KB in float32) was faster than 64 and 256 on this machine.
+constexpr std::size_t kTilePairs = 128;
+// Where the record of pair p of block row I is in the block pairs: in the
+// order the AVX-512 loops read them, band by band, tile by tile, and in a
+// tile row by row, so that the loops read one sequential stream.
+std::size_t pair_record(std::size_t nb, std::size_t pairs_per_row, std::size_t I, std::size_t p) {
+  const std::size_t I0 = I / kBandRows * kBandRows, rows = std::min(kBandRows, nb - I0);
+  const std::size_t p0 = p / kTilePairs * kTilePairs,
+                    count = std::min(kTilePairs, pairs_per_row - p0);
+  return I0 * pairs_per_row + p0 * rows + (I - I0) * count + (p - p0);
+}
+using BlockBandFn = void (*)(const BlockRowInput&, std::size_t, std::size_t, float (*)[3]);
 // Adds the kept entries' corrections of block row I (b: 4 floats per stored
 // column, R, G, B, 0) to the same accumulators.
 using CorrectionsFn = void (*)(const Tables&, const float*, std::size_t, float (*)[3]);
@@ -298,180 +318,194 @@ __attribute__((target("avx512f"))) inline void add_rows(__m512 rows, float (*acc
     acc[r][k] += (lanes[4 * r] + lanes[4 * r + 1]) + (lanes[4 * r + 2] + lanes[4 * r + 3]);
 }
 
-// The palette-table offsets (in entries of bc1_tables) of every block of a
-// block row, per colour: offsets[kSlots * J + k] for colour k (one per block
-// with one slot, which every colour uses), computed before the block loop.
-// Computing them 8 blocks at a time inside the loop, from vector stores
-// read back as scalars, stalled on store-to-load forwarding: the whole loop
-// was 1.3x slower on this machine's AMD EPYC (docs/benchmarks.md).
-template <int kSlots>
-inline void bc1_row_offsets(const Tables& t, const std::uint8_t* blocks, std::uint32_t* offsets) {
-  std::array<std::uint32_t, 3> base{}, shift{}, bits{};
-  for (std::size_t k = 0; k < 3; ++k) {
-    const auto s = static_cast<std::size_t>(kSlots == 1 ? 0 : t.slot_of_colour[k]);
-    base[k] = static_cast<std::uint32_t>(t.bc1_table_offset[s]);
-    shift[k] = t.bc1_field_shift[s];
-    bits[k] = t.bc1_field_bits[s];
-  }
-  for (std::size_t J = 0; J < t.block_rows; ++J) {
-    const std::uint32_t endpoints = load_u32(blocks + 8 * J);
-    for (std::size_t k = 0; k < static_cast<std::size_t>(kSlots); ++k)
-      offsets[kSlots * J + k] = base[k] + 4 * bc1_palette_key(endpoints, shift[k], bits[k]);
-  }
+// The AVX-512 loops read a block row as Bc1BlockPair records (header):
+// the index words of two neighbouring blocks and, per block and colour, the
+// entry of its palette in the tables, laid out once when the object is
+// built. Before, each product derived the entries from the endpoint words,
+// ~30 scalar instructions per block (3 keys of shifts, masks and a compare)
+// in a pass over the block row before its loop: 2.4 ms of the 11.5 ms
+// float32 product at one thread on this machine (docs/benchmarks.md,
+// runtime, session 6).
+//
+// The palette at `units` of 8 bytes into `tables` (Bc1BlockPair::palette):
+// one scaled-index address, no shift.
+template <typename T>
+inline const T* palette(const T* tables, std::uint16_t units) {
+  return reinterpret_cast<const T*>(reinterpret_cast<const char*>(tables) + 8 * std::size_t{units});
 }
 
-// Per-thread scratch for a block row's offsets (the product runs block rows
-// on OpenMP threads; one allocation per thread, reused by every product).
-inline std::uint32_t* row_offsets_scratch(std::size_t count) {
-  thread_local std::vector<std::uint32_t> scratch;
-  if (scratch.size() < count) scratch.resize(count);
-  return scratch.data();
+template <bool kSecondBlock>
+__attribute__((target("avx512f,avx2,fma"))) inline void bc1_block_avx512(
+    const Bc1BlockPair& pair, const float* tables, const float* b_r, const float* b_g,
+    const float* b_b, __m512i shift, __m512& ar, __m512& ag, __m512& ab) {
+  constexpr int j = kSecondBlock ? 1 : 0;
+  const __m512i control =
+      _mm512_srlv_epi32(_mm512_set1_epi32(static_cast<int>(pair.indices[j])), shift);
+  const __m512 pr = _mm512_broadcast_f32x4(_mm_loadu_ps(palette(tables, pair.palette[j][0])));
+  const __m512 pg = _mm512_broadcast_f32x4(_mm_loadu_ps(palette(tables, pair.palette[j][1])));
+  const __m512 pb = _mm512_broadcast_f32x4(_mm_loadu_ps(palette(tables, pair.palette[j][2])));
+  ar = _mm512_fmadd_ps(_mm512_permutevar_ps(pr, control),
+                       _mm512_broadcast_f32x4(_mm_loadu_ps(b_r + 4 * j)), ar);
+  ag = _mm512_fmadd_ps(_mm512_permutevar_ps(pg, control),
+                       _mm512_broadcast_f32x4(_mm_loadu_ps(b_g + 4 * j)), ag);
+  ab = _mm512_fmadd_ps(_mm512_permutevar_ps(pb, control),
+                       _mm512_broadcast_f32x4(_mm_loadu_ps(b_b + 4 * j)), ab);
 }
 
-template <int kSlots>
-__attribute__((target("avx512f,avx2,fma"))) void block_row_avx512_bc1(const BlockRowInput& in,
-                                                                      std::size_t I,
-                                                                      float (*acc)[3]) {
-  const Tables& t = in.t;
-  const std::size_t nb = t.block_rows, padded = t.padded;
-  const std::uint8_t* blocks = &t.blocks[I * nb * 8];
-  const float* tables = t.bc1_tables.data();
-  std::uint32_t* offsets = row_offsets_scratch(kSlots * nb);
-  bc1_row_offsets<kSlots>(t, blocks, offsets);
+// The AVX-512 loops run a band of kBandRows block rows a tile of b at a
+// time: pairs [p0, p1) of every row of the band, then the next tile. Every
+// block row reads all of b; row by row, that sweep (3 x 34 KB in float32,
+// 3 x 17 KB in bfloat16) does not fit the 32 KB L1 next to the palette
+// tables, so each row read b from L2 again. In tiles, the band's rows share
+// a tile of b that stays in L1. The records are stored in this order
+// (pair_record), else the loop reads 8 short streams of blocks and is slower
+// than row by row. At one thread on this machine, bfloat16 7.3 -> 5.5 ms,
+// float32 8.8 -> 8.2 ms (docs/benchmarks.md, runtime, session 6). The row
+// sums of the band wait in memory (3 registers per row) between tiles.
+// kBandRows is above, with BlockBandFn.
+
+// Pairs [p0, p1) of a block row (float32), whose records start at first,
+// into sums (R, G, B).
+__attribute__((target("avx512f,avx2,fma"))) inline void avx512_bc1_pairs(const BlockRowInput& in,
+                                                                         const Bc1BlockPair* first,
+                                                                         std::size_t p0,
+                                                                         std::size_t p1,
+                                                                         __m512* sums) {
+  const std::size_t nb = in.t.block_rows, padded = in.t.padded;
+  const float* tables = in.t.bc1_tables.data();
   const __m512i shift =
       _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
   const float *b_r = in.b, *b_g = in.b + padded, *b_b = in.b + 2 * padded;
-  // Named accumulators, two sets: GCC keeps an array of them indexed by
-  // J & 1 on the stack, and the store-to-load chain then bounds the loop.
-  __m512 r0 = _mm512_setzero_ps(), g0 = r0, b0 = r0, r1 = r0, g1 = r0, b1 = r0;
-  const auto step = [&](std::size_t J, __m512 & ar, __m512 & ag, __m512 & ab)
-      __attribute__((always_inline, target("avx512f,avx2,fma"))) {
-    const __m512i control =
-        _mm512_srlv_epi32(_mm512_set1_epi32(static_cast<int>(load_u32(blocks + 8 * J + 4))), shift);
-    const __m512 br = _mm512_broadcast_f32x4(_mm_loadu_ps(b_r + 4 * J));
-    const __m512 bg = _mm512_broadcast_f32x4(_mm_loadu_ps(b_g + 4 * J));
-    const __m512 bb = _mm512_broadcast_f32x4(_mm_loadu_ps(b_b + 4 * J));
-    const std::uint32_t* o = offsets + kSlots * J;
-    if constexpr (kSlots == 1) {
-      const __m512 v =
-          _mm512_permutevar_ps(_mm512_broadcast_f32x4(_mm_loadu_ps(tables + o[0])), control);
-      ar = _mm512_fmadd_ps(v, br, ar);
-      ag = _mm512_fmadd_ps(v, bg, ag);
-      ab = _mm512_fmadd_ps(v, bb, ab);
-    } else {
-      const __m512 pr = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + o[0]));
-      const __m512 pg = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + o[1]));
-      const __m512 pb = _mm512_broadcast_f32x4(_mm_loadu_ps(tables + o[2]));
-      ar = _mm512_fmadd_ps(_mm512_permutevar_ps(pr, control), br, ar);
-      ag = _mm512_fmadd_ps(_mm512_permutevar_ps(pg, control), bg, ag);
-      ab = _mm512_fmadd_ps(_mm512_permutevar_ps(pb, control), bb, ab);
-    }
-  };
-  std::size_t J = 0;
-  for (; J + 1 < nb; J += 2) {
-    step(J, r0, g0, b0);
-    step(J + 1, r1, g1, b1);
+  // Named accumulators, two sets (first and second block of a pair): GCC
+  // keeps an array of them indexed by J & 1 on the stack, and the
+  // store-to-load chain then bounds the loop.
+  __m512 r0 = sums[0], g0 = sums[1], b0 = sums[2];
+  __m512 r1 = _mm512_setzero_ps(), g1 = r1, b1 = r1;
+  const std::size_t full_end = std::min(p1, nb / 2);
+  for (std::size_t p = p0; p < full_end; ++p) {
+    const std::size_t c = 8 * p;  // first stored column of the pair
+    const Bc1BlockPair& pair = first[p - p0];
+    bc1_block_avx512<false>(pair, tables, b_r + c, b_g + c, b_b + c, shift, r0, g0, b0);
+    bc1_block_avx512<true>(pair, tables, b_r + c, b_g + c, b_b + c, shift, r1, g1, b1);
   }
-  if (J < nb) step(J, r0, g0, b0);
-  add_rows(_mm512_add_ps(r0, r1), acc, 0);
-  add_rows(_mm512_add_ps(g0, g1), acc, 1);
-  add_rows(_mm512_add_ps(b0, b1), acc, 2);
+  // An odd last block: its pair's second block is padding, and b has no
+  // columns there (b_b's would be past the end of b).
+  if (nb % 2 == 1 && p1 == in.pairs_per_row) {
+    const std::size_t c = 8 * (nb / 2);
+    bc1_block_avx512<false>(first[nb / 2 - p0], tables, b_r + c, b_g + c, b_b + c, shift, r0, g0,
+                            b0);
+  }
+  sums[0] = _mm512_add_ps(r0, r1);
+  sums[1] = _mm512_add_ps(g0, g1);
+  sums[2] = _mm512_add_ps(b0, b1);
 }
 
-// AVX-512 with bfloat16 products (BlockLoop::kBf16): two neighbouring blocks
-// (J, J + 1) of the block row in one 32-lane register of 16-bit values per
-// colour. vpmultishiftqb picks each texel's 2-bit index out of the two
-// blocks' 64-bit words (qwords alternate block J, block J + 1; qword 2r and
-// 2r + 1 hold row r), one vpternlogd keeps the 2 bits and adds 4 in block
-// J + 1's lanes, and vpermw reads the texel values from the two palettes
-// (bfloat16 tables, block J's in words 0-3, J + 1's in 4-7). vdpbf16ps
-// multiplies pairs of texels by b (bfloat16) and adds both products into a
-// float32 lane: one instruction per colour for 2 blocks, where the float32
-// loop needs two FMAs and two permutes. Lanes 4r..4r+3 still hold row r, so
-// add_rows() sums them as above. Rounding: palettes and b to 8-bit
-// mantissas (relative 2^-9 each), sums in float32.
-template <int kSlots>
-__attribute__((target("avx512f,avx512bw,avx512vl,avx512vbmi,avx512bf16,avx2,fma"))) void
-block_row_avx512_bf16(const BlockRowInput& in, std::size_t I, float (*acc)[3]) {
-  const Tables& t = in.t;
-  const std::size_t nb = t.block_rows;
-  const std::uint8_t* blocks = &t.blocks[I * nb * 8];
-  const std::uint16_t* tables = in.tables16;
-  // One block past the row's end: an odd last block pairs with a block of
-  // zero indices whose b is the zero padding of b16 (its offsets repeat the
-  // last block's, any valid palette: finite values times 0).
-  std::uint32_t* offsets = row_offsets_scratch(kSlots * (nb + 1));
-  bc1_row_offsets<kSlots>(t, blocks, offsets);
-  for (int k = 0; k < kSlots; ++k) offsets[kSlots * nb + k] = offsets[kSlots * (nb - 1) + k];
-  alignas(64) std::uint8_t control_bytes[64];
+// AVX-512 with bfloat16 products (BlockLoop::kBf16): the two blocks of a
+// pair (J, J + 1) in one 32-lane register of 16-bit values per colour.
+// vpmultishiftqb picks each texel's 2-bit index out of the pair's two index
+// words (broadcast as one qword: block J's in bits 0-31, J + 1's in 32-63;
+// qwords alternate block J, block J + 1, qword 2r and 2r + 1 hold row r),
+// one vpternlogd keeps the 2 bits and adds 4 in block J + 1's lanes, and
+// vpermw reads the texel values from the two palettes (bfloat16 tables,
+// block J's in words 0-3, J + 1's in 4-7). vdpbf16ps multiplies pairs of
+// texels by b (bfloat16) and adds both products into a float32 lane: one
+// instruction per colour for 2 blocks, where the float32 loop needs two FMAs
+// and two permutes. Lanes 4r..4r+3 still hold row r, so add_rows() sums
+// them as above. Rounding: palettes and b to 8-bit mantissas (relative 2^-9
+// each), sums in float32. An odd last block is paired with a padding block
+// of zero indices and the last block's palettes (finite values) whose b is
+// the zero padding of b16.
+// vpmultishiftqb's selectors: word m of qword q is texel (row q / 2,
+// column m) of block q % 2 of the pair, whose index is bit
+// 2 * (4 * row + column) of that block's word, 32 * (q % 2) into the qword.
+alignas(64) constexpr std::array<std::uint8_t, 64> kBf16Select = [] {
+  std::array<std::uint8_t, 64> bytes{};
   for (int q = 0; q < 8; ++q)
-    for (int m = 0; m < 4; ++m) {
-      // Word m of qword q: texel (row q / 2, column m) of its block, whose
-      // indices are the block word's bits 32 + 2 * (4 * row + column).
-      control_bytes[8 * q + 2 * m] = static_cast<std::uint8_t>(32 + 8 * (q / 2) + 2 * m);
-      control_bytes[8 * q + 2 * m + 1] = 0;
-    }
-  const __m512i select = _mm512_load_si512(control_bytes);
+    for (int m = 0; m < 4; ++m)
+      bytes[static_cast<std::size_t>(8 * q + 2 * m)] =
+          static_cast<std::uint8_t>(32 * (q % 2) + 8 * (q / 2) + 2 * m);
+  return bytes;
+}();
+
+__attribute__((target("avx512f,avx512bw,avx512vl,avx512vbmi,avx512bf16,avx2,fma"))) inline void
+avx512_bf16_pairs(const BlockRowInput& in, const Bc1BlockPair* first, std::size_t p0,
+                  std::size_t p1, __m512* sums) {
+  const __m512i select = _mm512_load_si512(kBf16Select.data());
   const __m512i low2 = _mm512_set1_epi16(3);
   const __m512i second_block = _mm512_set_epi64(0x0004000400040004LL, 0, 0x0004000400040004LL, 0,
                                                 0x0004000400040004LL, 0, 0x0004000400040004LL, 0);
+  const std::uint16_t* tables = in.tables16;
   const std::uint16_t *b_r = in.b16, *b_g = in.b16 + in.b16_stride,
                       *b_b = in.b16 + 2 * in.b16_stride;
-  __m512 r0 = _mm512_setzero_ps(), g0 = r0, b0 = r0, r1 = r0, g1 = r0, b1 = r0;
-  const auto palettes = [&](std::uint32_t first, std::uint32_t second)
+  __m512 r0 = sums[0], g0 = sums[1], b0 = sums[2];
+  __m512 r1 = _mm512_setzero_ps(), g1 = r1, b1 = r1;
+  const auto palettes = [&](std::uint16_t units0, std::uint16_t units1)
       __attribute__((always_inline, target("avx512f,avx512bw,avx512vl,avx2"))) {
-    return _mm512_castsi128_si512(
-        _mm_unpacklo_epi64(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(tables + first)),
-                           _mm_loadl_epi64(reinterpret_cast<const __m128i*>(tables + second))));
+    return _mm512_castsi128_si512(_mm_unpacklo_epi64(
+        _mm_loadl_epi64(reinterpret_cast<const __m128i*>(palette(tables, units0))),
+        _mm_loadl_epi64(reinterpret_cast<const __m128i*>(palette(tables, units1)))));
   };
-  const auto b_pair = [&](const std::uint16_t* b, std::size_t J)
+  const auto b_pair = [&](const std::uint16_t* b, std::size_t p)
       __attribute__((always_inline, target("avx512f,avx512bw,avx512vl,avx512bf16,avx2"))) {
     return reinterpret_cast<__m512bh>(
-        _mm512_broadcast_i32x4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(b + 4 * J))));
+        _mm512_broadcast_i32x4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(b + 8 * p))));
   };
-  const auto step = [&](const std::uint8_t* pair, std::size_t J, __m512& ar, __m512& ag, __m512& ab)
-      __attribute__((always_inline,
-                     target("avx512f,avx512bw,avx512vl,avx512vbmi,avx512bf16,avx2,fma"))) {
-    const __m512i words =
-        _mm512_broadcast_i32x4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(pair)));
+  const auto step = [&](std::size_t p, __m512 & ar, __m512 & ag, __m512 & ab) __attribute__((
+      always_inline, target("avx512f,avx512bw,avx512vl,avx512vbmi,avx512bf16,avx2,fma"))) {
+    const Bc1BlockPair& pair = first[p - p0];
+    const __m512i words = _mm512_set1_epi64(
+        static_cast<long long>(load_u64(reinterpret_cast<const std::uint8_t*>(pair.indices))));
     // (indices & 3) | 4 in the second block's lanes.
     const __m512i control = _mm512_ternarylogic_epi32(_mm512_multishift_epi64_epi8(select, words),
                                                       low2, second_block, 0xEA);
-    const std::uint32_t* o = offsets + kSlots * J;
-    if constexpr (kSlots == 1) {
-      const auto v =
-          reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(control, palettes(o[0], o[1])));
-      ar = _mm512_dpbf16_ps(ar, v, b_pair(b_r, J));
-      ag = _mm512_dpbf16_ps(ag, v, b_pair(b_g, J));
-      ab = _mm512_dpbf16_ps(ab, v, b_pair(b_b, J));
-    } else {
-      ar = _mm512_dpbf16_ps(
-          ar, reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(control, palettes(o[0], o[3]))),
-          b_pair(b_r, J));
-      ag = _mm512_dpbf16_ps(
-          ag, reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(control, palettes(o[1], o[4]))),
-          b_pair(b_g, J));
-      ab = _mm512_dpbf16_ps(
-          ab, reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(control, palettes(o[2], o[5]))),
-          b_pair(b_b, J));
-    }
+    ar = _mm512_dpbf16_ps(ar,
+                          reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(
+                              control, palettes(pair.palette[0][0], pair.palette[1][0]))),
+                          b_pair(b_r, p));
+    ag = _mm512_dpbf16_ps(ag,
+                          reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(
+                              control, palettes(pair.palette[0][1], pair.palette[1][1]))),
+                          b_pair(b_g, p));
+    ab = _mm512_dpbf16_ps(ab,
+                          reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(
+                              control, palettes(pair.palette[0][2], pair.palette[1][2]))),
+                          b_pair(b_b, p));
   };
-  std::size_t J = 0;
-  for (; J + 4 <= nb; J += 4) {
-    step(blocks + 8 * J, J, r0, g0, b0);
-    step(blocks + 8 * J + 16, J + 2, r1, g1, b1);
+  std::size_t p = p0;
+  for (; p + 2 <= p1; p += 2) {
+    step(p, r0, g0, b0);
+    step(p + 1, r1, g1, b1);
   }
-  for (; J + 2 <= nb; J += 2) step(blocks + 8 * J, J, r0, g0, b0);
-  if (J < nb) {
-    alignas(16) std::uint8_t last[16] = {};
-    std::memcpy(last, blocks + 8 * J, 8);
-    step(last, J, r0, g0, b0);
-  }
-  add_rows(_mm512_add_ps(r0, r1), acc, 0);
-  add_rows(_mm512_add_ps(g0, g1), acc, 1);
-  add_rows(_mm512_add_ps(b0, b1), acc, 2);
+  if (p < p1) step(p, r0, g0, b0);
+  sums[0] = _mm512_add_ps(r0, r1);
+  sums[1] = _mm512_add_ps(g0, g1);
+  sums[2] = _mm512_add_ps(b0, b1);
 }
 
+// Block rows I0 .. I0 + rows - 1 (rows <= kBandRows) into acc[4 * i + r]
+// (block row I0 + i, row r), tile by tile; kTilePairs pairs per tile, 6 KB
+// (bfloat16) or 12 KB (float32) of b.
+template <bool kBf16>
+__attribute__((target("avx512f,avx2,fma"))) void block_band_avx512(const BlockRowInput& in,
+                                                                   std::size_t I0, std::size_t rows,
+                                                                   float (*acc)[3]) {
+  __m512 sums[kBandRows][3];
+  for (std::size_t i = 0; i < rows; ++i)
+    for (__m512& s : sums[i]) s = _mm512_setzero_ps();
+  const std::size_t count = in.pairs_per_row;
+  for (std::size_t p0 = 0; p0 < count; p0 += kTilePairs) {
+    const std::size_t p1 = std::min(p0 + kTilePairs, count);
+    for (std::size_t i = 0; i < rows; ++i) {
+      const Bc1BlockPair* first = in.pairs + pair_record(in.t.block_rows, count, I0 + i, p0);
+      if constexpr (kBf16)
+        avx512_bf16_pairs(in, first, p0, p1, sums[i]);
+      else
+        avx512_bc1_pairs(in, first, p0, p1, sums[i]);
+    }
+  }
+  for (std::size_t i = 0; i < rows; ++i)
+    for (int k = 0; k < 3; ++k) add_rows(sums[i][k], acc + 4 * i, k);
+}
 #pragma GCC diagnostic pop
 
 bool cpu_has_avx512() { return __builtin_cpu_supports("avx512f") && cpu_has_avx2(); }
@@ -487,23 +521,30 @@ bool cpu_has_avx512() { return false; }
 bool cpu_has_avx512_bf16() { return false; }
 #endif
 
-BlockRowFn block_row_function(const Tables& t, bool avx2, bool avx512, bool bf16) {
+// A band of the loops that take one block row at a time.
+template <BlockRowFn kRow>
+void rows_one_by_one(const BlockRowInput& in, std::size_t I0, std::size_t rows, float (*acc)[3]) {
+  for (std::size_t i = 0; i < rows; ++i) kRow(in, I0 + i, acc + 4 * i);
+}
+
+BlockBandFn block_band_function(const Tables& t, bool avx2, bool avx512, bool bf16) {
   const bool bc1 = t.format == DdsFormat::kBc1;
 #ifdef BOUNCE_AVX2_BLOCK_LOOP
-  if (bf16 && bc1) return t.slots == 3 ? block_row_avx512_bf16<3> : block_row_avx512_bf16<1>;
-  if (avx512 && bc1) return t.slots == 3 ? block_row_avx512_bc1<3> : block_row_avx512_bc1<1>;
+  if (bf16 && bc1) return block_band_avx512<true>;
+  if (avx512 && bc1) return block_band_avx512<false>;
   if (avx2) {
-    if (!bc1) return block_row_avx2<DdsFormat::kBc4, 1>;
-    return t.slots == 3 ? block_row_avx2<DdsFormat::kBc1, 3> : block_row_avx2<DdsFormat::kBc1, 1>;
+    if (!bc1) return rows_one_by_one<block_row_avx2<DdsFormat::kBc4, 1>>;
+    return t.slots == 3 ? rows_one_by_one<block_row_avx2<DdsFormat::kBc1, 3>>
+                        : rows_one_by_one<block_row_avx2<DdsFormat::kBc1, 1>>;
   }
 #else
   (void)avx2;
   (void)avx512;
   (void)bf16;
 #endif
-  if (!bc1) return block_row_portable<DdsFormat::kBc4, 1>;
-  return t.slots == 3 ? block_row_portable<DdsFormat::kBc1, 3>
-                      : block_row_portable<DdsFormat::kBc1, 1>;
+  if (!bc1) return rows_one_by_one<block_row_portable<DdsFormat::kBc4, 1>>;
+  return t.slots == 3 ? rows_one_by_one<block_row_portable<DdsFormat::kBc1, 3>>
+                      : rows_one_by_one<block_row_portable<DdsFormat::kBc1, 1>>;
 }
 
 // The kept entries of block row I, into the same accumulators as its blocks.
@@ -553,12 +594,48 @@ CompressedTransport::CompressedTransport(CompressedTransportTables tables, Block
       b_stored_(3 * tables_.padded, 0.0f),
       b_quad_(4 * tables_.padded, 0.0f) {
   if (bf16_) {
-    bc1_tables16_.resize(tables_.bc1_tables.size());
-    for (std::size_t i = 0; i < bc1_tables16_.size(); ++i)
-      bc1_tables16_[i] = to_bfloat16(tables_.bc1_tables[i]);
     // 8 zero entries past the padding per colour: the last block pair of a
     // row with an odd block count reads b of 4 columns past the end.
     b16_.assign(3 * (tables_.padded + 8), 0);
+  }
+  if (avx512_ && tables_.format == DdsFormat::kBc1) lay_out_block_pairs();
+}
+
+void CompressedTransport::lay_out_block_pairs() {
+  const Tables& t = tables_;
+  const std::size_t nb = t.block_rows;
+  pairs_per_row_ = (nb + 1) / 2;
+  block_pairs_.assign(nb * pairs_per_row_, Bc1BlockPair{});
+  // Colour k's palette, in units of 8 bytes into the tables: one bfloat16
+  // palette, half a float32 one. Below 2^16, as the three tables hold
+  // 2 * (2^10 + 2^12 + 2^10) palettes.
+  static_assert(2 * 2 * ((1u << 10) + (1u << 12) + (1u << 10)) <= 0x10000u);
+  const std::size_t units_per_palette = bf16_ ? 1 : 2;
+  const auto entry = [&t, units_per_palette](std::uint32_t endpoints, std::size_t k) {
+    const auto s = static_cast<std::size_t>(t.slot_of_colour[k]);
+    return static_cast<std::uint16_t>(
+        units_per_palette *
+        (t.bc1_table_offset[s] / 4 +
+         bc1_palette_key(endpoints, t.bc1_field_shift[s], t.bc1_field_bits[s])));
+  };
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t row = 0; row < static_cast<std::ptrdiff_t>(nb); ++row) {
+    const auto I = static_cast<std::size_t>(row);
+    for (std::size_t J = 0; J < nb; ++J) {
+      const std::uint8_t* block = &t.blocks[(I * nb + J) * 8];
+      Bc1BlockPair& pair = block_pairs_[pair_record(nb, pairs_per_row_, I, J / 2)];
+      const std::uint32_t endpoints = load_u32(block);
+      pair.indices[J % 2] = load_u32(block + 4);
+      for (std::size_t k = 0; k < 3; ++k) pair.palette[J % 2][k] = entry(endpoints, k);
+      // An odd last block's partner: zero indices into the same palettes.
+      if (J + 1 == nb && J % 2 == 0)
+        for (std::size_t k = 0; k < 3; ++k) pair.palette[1][k] = pair.palette[0][k];
+    }
+  }
+  if (bf16_) {
+    bc1_tables16_.resize(t.bc1_tables.size());
+    for (std::size_t i = 0; i < bc1_tables16_.size(); ++i)
+      bc1_tables16_[i] = to_bfloat16(t.bc1_tables[i]);
   }
 }
 
@@ -571,10 +648,14 @@ const char* CompressedTransport::block_loop() const {
 }
 
 std::size_t CompressedTransport::bytes_per_product() const {
-  // The bfloat16 loop reads its half-size copy of the BC1 palette tables.
+  const std::size_t b = tables_.n * sizeof(glm::vec3);
+  if (block_pairs_.empty()) return tables_.bytes() + b;
+  // The AVX-512 loops read the block pairs instead of the blocks, and the
+  // bfloat16 loop its half-size copy of the palette tables.
   const std::size_t tables16_saving =
       bf16_ ? tables_.bc1_tables.size() * (sizeof(float) - sizeof(std::uint16_t)) : 0;
-  return tables_.bytes() - tables16_saving + tables_.n * sizeof(glm::vec3);
+  return tables_.bytes() - tables_.blocks.size() + block_pairs_.size() * sizeof(Bc1BlockPair) -
+         tables16_saving + b;
 }
 
 void CompressedTransport::multiply(const std::vector<glm::vec3>& b,
@@ -608,21 +689,27 @@ void CompressedTransport::multiply(std::span<const glm::vec3> b,
     for (std::size_t k = 0; k < 3; ++k)
       for (std::size_t i = 0; i < padded; ++i)
         b16_[k * b16_stride + i] = to_bfloat16(bs[k * padded + i]);
-  const BlockRowInput input{t, bs, b16_.data(), b16_stride, bc1_tables16_.data()};
-  const BlockRowFn block_row = block_row_function(t, avx2_, avx512_, bf16_);
+  const BlockRowInput input{
+      t, bs, b16_.data(), b16_stride, bc1_tables16_.data(), block_pairs_.data(), pairs_per_row_};
+  const BlockBandFn block_band = block_band_function(t, avx2_, avx512_, bf16_);
   const CorrectionsFn corrections = corrections_function(t, avx2_);
   glm::vec3* out = indirect.data();
   // Block rows write disjoint patches (the permutation is a bijection).
   // Dynamic chunks: on a shared machine one core may be busy elsewhere, and
   // a static split would wait for its half.
-#pragma omp parallel for schedule(dynamic, 8)
-  for (std::ptrdiff_t row = 0; row < static_cast<std::ptrdiff_t>(t.block_rows); ++row) {
-    const auto I = static_cast<std::size_t>(row);
-    float acc[4][3] = {};
-    block_row(input, I, acc);
-    corrections(t, b4, I, acc);
-    for (std::size_t r = 0; r < 4 && 4 * I + r < t.n; ++r)
-      out[t.permutation[4 * I + r]] = glm::vec3(acc[r][0], acc[r][1], acc[r][2]);
+  const auto bands = static_cast<std::ptrdiff_t>((t.block_rows + kBandRows - 1) / kBandRows);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::ptrdiff_t band = 0; band < bands; ++band) {
+    const std::size_t I0 = static_cast<std::size_t>(band) * kBandRows;
+    const std::size_t rows = std::min(kBandRows, t.block_rows - I0);
+    float acc[4 * kBandRows][3] = {};
+    block_band(input, I0, rows, acc);
+    for (std::size_t I = I0; I < I0 + rows; ++I) {
+      float(*row_acc)[3] = acc + 4 * (I - I0);
+      corrections(t, b4, I, row_acc);
+      for (std::size_t r = 0; r < 4 && 4 * I + r < t.n; ++r)
+        out[t.permutation[4 * I + r]] = glm::vec3(row_acc[r][0], row_acc[r][1], row_acc[r][2]);
+    }
   }
 }
 

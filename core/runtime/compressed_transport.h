@@ -8,7 +8,7 @@
 // output up to float32 summation order.
 //
 // Per product: b is gathered into stored (permuted) order once, every block
-// row is multiplied (OpenMP over block rows; per block, the 2- or 3-bit
+// row is multiplied (OpenMP over bands of 8 block rows; per block, the 2- or 3-bit
 // indices select values from the block's palette, see
 // runtime/compressed_transport_tables.h), the corrections of the kept
 // entries are added to the same row accumulators, and the rows are scattered
@@ -44,6 +44,22 @@ enum class BlockLoop { kFastest, kAvx2, kPortable, kBf16 };
 std::uint16_t to_bfloat16(float x);
 float from_bfloat16(std::uint16_t h);
 
+// Two neighbouring BC1 blocks (J, J + 1) of a block row as the AVX-512
+// loops read them: both index words (bytes 4-7 of each block), then per
+// block and colour (R, G, B) where its palette is in the tables (the table
+// of the colour's slot at the key of the block's endpoints, in units of 8
+// bytes: one bfloat16 palette, half a float32 one), computed once when the
+// object is built rather than at every product. 20 bytes for two blocks
+// (the DDS has 16). A block row with an odd block count ends with a pair
+// whose second block has zero indices and the first block's palettes. The
+// records are stored in the order the loops read them (bands of block rows,
+// tiles of b; compressed_transport.cpp), not row by row.
+struct Bc1BlockPair {
+  std::uint32_t indices[2];
+  std::uint16_t palette[2][3];
+};
+static_assert(sizeof(Bc1BlockPair) == 20);
+
 class CompressedTransport {
  public:
   // Lays the matrix out once (see build_compressed_transport_tables, whose
@@ -78,6 +94,12 @@ class CompressedTransport {
   bool avx2_ = false;    // AVX2 block loop and corrections
   bool avx512_ = false;  // AVX-512 block loop (BC1)
   bool bf16_ = false;    // AVX-512 bfloat16 block loop (BC1)
+  // The BC1 blocks as the AVX-512 loops read them, pairs_per_row_ per
+  // block row (avx512_ and BC1 only; see Bc1BlockPair): 20 bytes per 16 of
+  // the DDS, held besides tables_.blocks (which the OpenCL path reads).
+  std::vector<Bc1BlockPair> block_pairs_;
+  std::size_t pairs_per_row_ = 0;
+  void lay_out_block_pairs();
   // BC1 palette tables rounded to bfloat16 (bf16_ only), same layout.
   std::vector<std::uint16_t> bc1_tables16_;
   // b in stored order, padding columns 0, twice: colour-major (R of every

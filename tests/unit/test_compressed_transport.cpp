@@ -257,6 +257,30 @@ TEST(CompressedTransport, Bf16LoopIsWithinItsRoundingBound) {
   }
 }
 
+// The AVX-512 loops run bands of 8 block rows over tiles of 128 block
+// pairs of b, reading the blocks in that order (compressed_transport.cpp).
+// kN fits one tile and a short last band; at n = 2049 (513 block rows and
+// columns) a row spans three tiles, the last holding only the odd last
+// block, and the last band has one block row. A record laid out in the wrong
+// place, a tile's b or a band's row mixed up, is a wrong block: off by far
+// more than either tolerance, as above.
+TEST(CompressedTransport, SeveralTilesAndBandsMatchTheDenseProduct) {
+  constexpr std::size_t n = 2049;
+  const CompressedMatrix m = random_blocks(n, 3, DdsFormat::kBc1, 31);
+  const std::vector<glm::vec3> b = random_light(n, 32);
+  const Reference r = dense_reference(m, {0, 1, 2}, b);
+  const double bf16_bound = std::ldexp(1.0, -8) + std::ldexp(1.0, -18) + kTolerance;
+  for (BlockLoop loop : {BlockLoop::kFastest, BlockLoop::kBf16, BlockLoop::kAvx2}) {
+    const CompressedTransport t(m, {0, 1, 2}, loop);
+    std::vector<glm::vec3> y;
+    t.multiply(b, y);
+    const double worst = worst_error(y, r);
+    const bool bf16 = std::string(t.block_loop()) == "avx512-bf16";
+    std::printf("n = %zu, %-12s loop: worst error / sum |T||b| = %.2e\n", n, t.block_loop(), worst);
+    EXPECT_LE(worst, bf16 ? bf16_bound : kTolerance) << t.block_loop() << " loop";
+  }
+}
+
 // Round to nearest even against the definition: the nearer of the two
 // bfloat16 neighbours (truncation and the next one up), the even one on a tie.
 TEST(Bfloat16, RoundsToNearestEven) {
