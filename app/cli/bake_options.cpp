@@ -55,6 +55,15 @@ void BakeOptions::add_to(CLI::App& cmd, bool with_output) {
                  "clblast (OpenCL)")
       ->check(CLI::IsMember({"auto", "openblas", "clblast"}))
       ->capture_default_str();
+  cmd.add_option("--out-of-core", out_of_core,
+                 "Keep the finished N x N matrices (form factors, transport) in memory-mapped "
+                 "temporary files the kernel can page out: auto (when the dense matrices would "
+                 "take more than half the machine's memory), on, off. Same result either way")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
+  cmd.add_option("--out-of-core-dir", out_of_core_dir,
+                 "Folder of the temporary matrix files (default: $TMPDIR, else /tmp); they are "
+                 "deleted as soon as they are created and vanish with the process");
   cmd.add_option("--codec", codec,
                  "How the transport matrix is stored: auto (ours, or dense when it is under "
                  "1 MiB and compression would not pay), dense (exact float32), paper (the "
@@ -126,6 +135,10 @@ BakeSettings BakeOptions::settings() const {
   s.transport.backend = gemm == "openblas"  ? TransportSettings::Backend::OpenBLAS
                         : gemm == "clblast" ? TransportSettings::Backend::CLBlast
                                             : TransportSettings::Backend::Auto;
+  s.out_of_core = out_of_core == "on"    ? OutOfCore::On
+                  : out_of_core == "off" ? OutOfCore::Off
+                                         : OutOfCore::Auto;
+  s.out_of_core_dir = out_of_core_dir;
   s.codec = codec == "dense"   ? CodecChoice::Dense
             : codec == "paper" ? CodecChoice::Paper
             : codec == "ours"  ? CodecChoice::Ours

@@ -3,8 +3,16 @@
 // (command_bench_<name>.cpp). register_bench (command_bench.cpp) adds them
 // under `bench`.
 #include <CLI/CLI.hpp>
+#include <vector>
 
 namespace bounce::cli {
+
+struct BakeOptions;
+// `bench bake --scaling N1,N2,...` (command_bench_bake_scaling.cpp): time and
+// peak memory per stage at each patch count, fitted exponents, and with
+// extrapolate_to > 0 a prediction (labelled as such) at that N.
+void run_bench_bake_scaling(const BakeOptions& opt, const std::vector<int>& sizes,
+                            int extrapolate_to);
 
 // `bench transport`: sgemm on OpenBLAS, CLBlast and a plain loop, and LU.
 void register_bench_transport(CLI::App& bench);

@@ -80,10 +80,29 @@ void register_bench(CLI::App& app) {
       "Benchmarks: time and memory of each stage, with baselines measured in the same run");
   bench->require_subcommand(1);
   auto opt = std::make_shared<BakeOptions>();
+  auto scaling = std::make_shared<std::vector<int>>();
+  auto extrapolate_to = std::make_shared<int>(0);
   CLI::App* bake =
       bench->add_subcommand("bake", "Time and peak memory per bake stage (nothing is written)");
   opt->add_to(*bake, false);
-  bake->callback([opt]() { run_bench_bake(*opt); });
+  CLI::Option* scaling_option =
+      bake->add_option("--scaling", *scaling,
+                       "Bake at each of these patch counts (e.g. 4096,8192,16384; overrides "
+                       "--voxel/--patches-total, no voxel baseline) and print time and peak "
+                       "memory per stage against N with each stage's fitted exponent")
+          ->delimiter(',')
+          ->check(CLI::Range(1, 1 << 20));
+  bake->add_option("--extrapolate-to", *extrapolate_to,
+                   "With --scaling: predict each stage's time at this N from the fitted "
+                   "exponents (printed as a prediction, not a measurement)")
+      ->needs(scaling_option)
+      ->check(CLI::Range(1, 1 << 20));
+  bake->callback([opt, scaling, extrapolate_to]() {
+    if (scaling->empty())
+      run_bench_bake(*opt);
+    else
+      run_bench_bake_scaling(*opt, *scaling, *extrapolate_to);
+  });
   register_bench_transport(*bench);
   register_bench_compress(*bench);
   register_bench_ordering(*bench);

@@ -33,6 +33,8 @@ struct BakeOptions {
   double kept_fraction = 0.04;
   double error_budget = BakeSettings::kDefaultErrorBudget;
   std::string gemm = "auto";
+  std::string out_of_core = "auto";
+  std::string out_of_core_dir;
   bool no_pictures = false;
   bool reference = false;  // bake: also measure against the path-traced reference
   bool json = false;

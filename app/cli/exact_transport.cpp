@@ -156,7 +156,7 @@ ExactTransport bake_exact_transport(const std::string& scene_path, BakeSettings 
              std::to_string(r.settings.voxel_resolution.value_or(0));
   x.bake_seconds = r.total_seconds;
   x.probe = std::move(r.probe);
-  for (ChannelTransport& c : r.transport.channels) x.channels.push_back(std::move(c.t));
+  for (ChannelTransport& c : r.transport.channels) x.channels.emplace_back(c.t.begin(), c.t.end());
   return x;
 }
 

@@ -166,6 +166,7 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
     if (r.settings.patch_mode == PatchMode::Virtual) {
       ClusteringSettings c;
       c.patches_per_voxel = *r.settings.patches_per_voxel;
+      if (distribution_) c.sharing = distribution_->sample_row_sharing();
       r.patches = cluster_virtual_patches(*tracer, r.voxels, r.samples, c, r.clustering, &progress);
       if (r.clustering.voxels_above_target > 0)
         diagnostics_.warn("patches", std::to_string(r.clustering.voxels_above_target) +
@@ -182,6 +183,12 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
     record_from(BakeStage::Geometry, diagnostics_before);
   }
 
+  // Out of core: F is computed on the heap and moved to a mapped file once
+  // final (after the checks), the transport maps each finished T (see
+  // spill_to_file: matrices being written stay on the heap).
+  r.out_of_core = decide_out_of_core(r.settings, r.patches.size());
+  const std::optional<OutOfCorePolicy> out_of_core = policy_of(r.out_of_core);
+
   diagnostics_before = diagnostics_.all().size();
   // Distributed bake: the root's executor, created as soon as the other
   // processes wait for it and destroyed (releasing them) however run() ends.
@@ -196,16 +203,17 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
       distribution_->check_same_patches(r.patches);
       fs.row_offset = distribution_->row_offset();
       fs.row_stride = distribution_->row_stride();
-    }
-    r.form_factors =
-        compute_form_factors(scene_, *tracer, r.voxels, r.samples, r.patches, fs, &progress);
-    if (distribution_) {
-      distribution_->merge_form_factors(r.form_factors);
+      r.form_factors = distribution_->form_factors(scene_, *tracer, r.voxels, r.samples, r.patches,
+                                                   fs, &progress);
       if (!distribution_->is_root()) {
-        distribution_->serve_transport();
+        r.stages.push_back(timer.finish());
+        distribution_->serve_transport(r.stages);
         return r;  // the root holds the bake
       }
       executor = distribution_->transport_executor();
+    } else {
+      r.form_factors =
+          compute_form_factors(scene_, *tracer, r.voxels, r.samples, r.patches, fs, &progress);
     }
     r.stages.push_back(timer.finish());
   }
@@ -240,6 +248,8 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
     for (std::size_t p = 0; p < r.patches.size(); ++p)
       for (std::uint32_t k = r.patches.member_first[p]; k < r.patches.member_first[p + 1]; ++k)
         r.patch_of_sample[r.patches.member_samples[k]] = static_cast<std::int32_t>(p);
+    if (out_of_core)
+      r.form_factors.values = spill_to_file(std::move(r.form_factors.values), *out_of_core);
     r.checks = check_form_factors(r.form_factors, r.patches);
     if (r.checks.non_finite > 0)
       throw Error("form factors", std::to_string(r.checks.non_finite) + " NaN/Inf entries");
@@ -284,11 +294,18 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
     std::vector<glm::vec3> albedo;
     albedo.reserve(r.patches.size());
     for (const Patch& p : r.patches.patches) albedo.push_back(p.albedo);
-    r.transport = compute_transport(r.form_factors, albedo, r.settings.transport, &progress,
-                                    diagnostics_, executor.get());
+    {
+      const OutOfCoreScope scope(out_of_core);  // where compute_transport puts each T
+      r.transport = compute_transport(r.form_factors, albedo, r.settings.transport, &progress,
+                                      diagnostics_, executor.get());
+    }
     executor.reset();  // the other processes are done
+    // F is not read again until the bake is written: out of core, its pages
+    // go back to their file (no-op for a heap matrix).
+    release_residency(r.form_factors.values);
     r.probe.channel_of_rgb = channel_of_rgb(r.transport);
     r.stages.push_back(timer.finish());
+    if (distribution_) distribution_->add_other_ranks_peaks(r.stages);
     record_from(BakeStage::Transport, diagnostics_before);
   }
 
@@ -296,6 +313,7 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
   if (plan.runs(BakeStage::Compress)) {
     StageTimer timer("compress");
     r.storage = store_transport(r.transport, r.probe, r.settings, &progress, diagnostics_);
+    for (const ChannelTransport& c : r.transport.channels) release_residency(c.t);
     r.stages.push_back(timer.finish());
     record_from(BakeStage::Compress, diagnostics_before);
   }

@@ -9,6 +9,7 @@
 #include "bake/bake_distribution.h"
 #include "bake/bake_settings.h"
 #include "bake/matrix_storage.h"
+#include "bake/out_of_core.h"
 #include "bake/rebake_plan.h"
 #include "base/diagnostics.h"
 #include "base/progress.h"
@@ -39,6 +40,9 @@ struct BakeResult {
   IndirectLightProbe probe;
   std::size_t probe_lights_total = 0;  // evaluation lights, dark ones included
   MatrixStorage storage;               // how T is stored, and its errors
+  // Whether F and T were moved to memory-mapped files once finished (decided
+  // once the patch count is known; a re-bake decides again).
+  OutOfCoreDecision out_of_core;
   // Stages of this run; those taken from a previous bake carry "(reused)".
   std::vector<StageStats> stages;
   double total_seconds = 0.0;  // of this run only

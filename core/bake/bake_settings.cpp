@@ -57,6 +57,18 @@ void BakeSettings::validate() const {
           "does not apply to --codec dense, which stores the exact matrix");
 }
 
+const char* to_string(OutOfCore mode) {
+  switch (mode) {
+    case OutOfCore::Auto:
+      return "auto";
+    case OutOfCore::On:
+      return "on";
+    case OutOfCore::Off:
+      return "off";
+  }
+  return "?";
+}
+
 std::string to_string(PatchMode mode) { return mode == PatchMode::Virtual ? "virtual" : "voxel"; }
 
 const char* to_string(CodecChoice codec) {

@@ -21,6 +21,12 @@ enum class PatchMode { Virtual, Voxel };
 //   Ours:  our codec, always, whatever the size.
 enum class CodecChoice { Auto, Dense, Paper, Ours };
 
+// Whether the finished dense N x N matrices (F, T) live in memory-mapped
+// temporary files (bake/out_of_core.h): Auto when the transport's dense
+// footprint would exceed half the machine's memory; On always, Off never.
+// The result is the same bit for bit either way.
+enum class OutOfCore { Auto, On, Off };
+
 struct BakeSettings {
   class InvalidSetting : public Error {
    public:
@@ -53,6 +59,9 @@ struct BakeSettings {
   std::optional<OrderingMethod> ordering;
   // Matrix pictures (PNG) in the bake folder.
   bool pictures = true;
+  OutOfCore out_of_core = OutOfCore::Auto;
+  // The temporary matrix files' folder; empty: $TMPDIR, else /tmp.
+  std::string out_of_core_dir;
 
   static constexpr int kDefaultVoxelResolution = 16;
   // 3: a voxel at a box corner holds three orientations, and clustering merges
@@ -77,5 +86,6 @@ struct BakeSettings {
 
 std::string to_string(PatchMode mode);
 const char* to_string(CodecChoice codec);
+const char* to_string(OutOfCore mode);
 
 }  // namespace bounce

@@ -1,5 +1,6 @@
 #include "bake/bake_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -161,10 +162,9 @@ json storage_json(const MatrixStorage& s, std::size_t probe_lights_total) {
 
 // T.npy: every stored channel, float32 [channels x n x n].
 void write_dense_transport(const fs::path& path, const TransportResult& t) {
-  std::vector<float> all;
-  all.reserve(t.channels.size() * t.n * t.n);
-  for (const ChannelTransport& c : t.channels) all.insert(all.end(), c.t.begin(), c.t.end());
-  write_npy(path, all, {t.channels.size(), t.n, t.n});
+  std::vector<std::span<const float>> channels;
+  for (const ChannelTransport& c : t.channels) channels.emplace_back(c.t);
+  write_npy(path, channels, {t.channels.size(), t.n, t.n});
 }
 
 }  // namespace
@@ -197,7 +197,8 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                    {"samples_per_face", s.samples_per_face.value_or(0)},
                    {"visibility_rays", s.visibility_rays},
                    {"seed", s.seed},
-                   {"dump_matrices", s.dump_matrices}};
+                   {"dump_matrices", s.dump_matrices},
+                   {"out_of_core", to_string(s.out_of_core)}};
   const VoxelGrid& g = r.voxels.grid;
   m["grid"] = {{"origin", vec(g.bounds().lo)},
                {"cell_size", g.cell_size()},
@@ -217,11 +218,27 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                        {"target_block_voxels", r.clustering.target_block},
                        {"voxels_above_target", r.clustering.voxels_above_target}};
   json stages = json::array();
-  for (const StageStats& st : r.stages)
-    stages.push_back(
-        {{"name", st.name}, {"seconds", st.seconds}, {"peak_rss_bytes", st.peak_rss_bytes}});
+  for (const StageStats& st : r.stages) {
+    json stage = {
+        {"name", st.name}, {"seconds", st.seconds}, {"peak_rss_bytes", st.peak_rss_bytes}};
+    // Distributed bake: the other ranks' highest peak in the same stage, and
+    // the highest over all ranks.
+    if (st.peak_rss_bytes_other_ranks > 0) {
+      stage["peak_rss_bytes_other_ranks"] = st.peak_rss_bytes_other_ranks;
+      stage["peak_rss_bytes_all_ranks"] =
+          std::max(st.peak_rss_bytes, st.peak_rss_bytes_other_ranks);
+    }
+    stages.push_back(stage);
+  }
   m["stages"] = stages;
   m["total_seconds"] = r.total_seconds;
+  // Peak RSS per stage (stages[].peak_rss_bytes) is this process's (rank 0's
+  // in a distributed bake), and counts the resident pages of mapped matrices.
+  m["memory"] = {{"out_of_core", r.out_of_core.on},
+                 {"why", r.out_of_core.why},
+                 {"dense_footprint_bytes", r.out_of_core.dense_footprint_bytes},
+                 {"physical_memory_bytes", r.out_of_core.physical_memory_bytes}};
+  if (r.out_of_core.on) m["memory"]["matrix_dir"] = r.out_of_core.dir.string();
   const FormFactorChecks& c = r.checks;
   m["checks"]["form_factors"] = {{"precision", "float32 storage, float32 kernel sums per pair"},
                                  {"row_sum_max", c.row_sum_max},

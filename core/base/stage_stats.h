@@ -11,6 +11,9 @@ struct StageStats {
   std::string name;
   double seconds = 0.0;
   std::uint64_t peak_rss_bytes = 0;  // high-water mark of the process during the stage
+  // Distributed bake: the highest of the other ranks' peaks in their stage of
+  // the same name (0: a single process, or no such stage on the other ranks).
+  std::uint64_t peak_rss_bytes_other_ranks = 0;
 };
 
 // Current peak resident set size of this process (VmHWM), in bytes.

@@ -6,6 +6,8 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "base/error.h"
@@ -71,14 +73,18 @@ void mpi_check(int code, const char* what) {
       "MPI", std::string(what) + " failed: " + std::string(text, static_cast<std::size_t>(length)));
 }
 
-int square_count(int n) {
-  const auto nn = static_cast<long long>(n) * n;
-  if (nn > std::numeric_limits<int>::max())
-    throw Error("transport", text_format("distributed transport: %d x %d entries exceed one MPI "
-                                         "message (part 2 of issue 9 streams row blocks)",
-                                         n, n));
-  return static_cast<int>(nn);
+// Entries of one rank's share as one MPI message's count.
+int message_count(int rows, int cols) {
+  const auto count = static_cast<long long>(rows) * cols;
+  if (count > std::numeric_limits<int>::max())
+    throw Error("transport", text_format("distributed transport: a rank's %d x %d share exceeds "
+                                         "one MPI message (use more ranks)",
+                                         rows, cols));
+  return static_cast<int>(count);
 }
+
+// Tag of the messages carrying a rank's share of a matrix.
+constexpr int kShareTag = 9;
 
 template <class Real>
 MPI_Datatype mpi_type() {
@@ -89,6 +95,8 @@ struct Grid {
   int context = -1;
   int rank = 0, ranks = 1;
   int rows = 1, cols = 1, row = 0, col = 0;
+  // Every rank's place on the grid: rank r at (row_of[r], col_of[r]).
+  std::vector<int> row_of, col_of;
 
   Grid() {
     Cblacs_pinfo(&rank, &ranks);
@@ -99,6 +107,14 @@ struct Grid {
     if (row < 0 || col < 0)
       throw Error("ScaLAPACK", text_format("rank %d is not on the %d x %d process grid", rank,
                                            shape.rows, shape.cols));
+    const int mine[2] = {row, col};
+    std::vector<int> places(2 * static_cast<std::size_t>(ranks));
+    mpi_check(MPI_Allgather(mine, 2, MPI_INT, places.data(), 2, MPI_INT, MPI_COMM_WORLD),
+              "MPI_Allgather");
+    for (int r = 0; r < ranks; ++r) {
+      row_of.push_back(places[2 * static_cast<std::size_t>(r)]);
+      col_of.push_back(places[2 * static_cast<std::size_t>(r) + 1]);
+    }
   }
   ~Grid() {
     if (context >= 0) Cblacs_gridexit(context);
@@ -138,93 +154,109 @@ LocalMatrix<Real> local_matrix(const Grid& g, int n) {
   return l;
 }
 
-// Fills the local share from the whole column-major matrix `full` (every rank
-// holds it); with identity_minus the share of I - full.
-template <class Real>
-void take_share(LocalMatrix<Real>& l, const Grid& g, const float* full, bool identity_minus) {
-  const auto n = static_cast<std::size_t>(l.n);
-  for (int jl = 0; jl < l.cols; ++jl) {
-    const auto jg = static_cast<std::size_t>(global_index(jl, g.col, g.cols));
-    for (int il = 0; il < l.rows; ++il) {
-      const auto ig = static_cast<std::size_t>(global_index(il, g.row, g.rows));
-      Real v = static_cast<Real>(full[jg * n + ig]);
-      // As inverse_transport.cpp forms I - M: negate, then add 1 on the diagonal.
-      if (identity_minus) v = ig == jg ? -v + Real(1) : -v;
-      l.a[static_cast<std::size_t>(jl) * static_cast<std::size_t>(l.lld) +
-          static_cast<std::size_t>(il)] = v;
+// Applies `f(local, global)` to every entry of the share of an n x n matrix
+// held by the process at (prow, pcol), local entries packed column-major with
+// leading dimension `lld`.
+template <class Visit>
+void for_each_entry(int n, int prow, int pcol, const Grid& g, int lld, Visit&& f) {
+  const int rows = local_count(n, prow, g.rows), cols = local_count(n, pcol, g.cols);
+  const auto un = static_cast<std::size_t>(n);
+  for (int jl = 0; jl < cols; ++jl) {
+    const auto jg = static_cast<std::size_t>(global_index(jl, pcol, g.cols));
+    for (int il = 0; il < rows; ++il) {
+      const auto ig = static_cast<std::size_t>(global_index(il, prow, g.rows));
+      f(static_cast<std::size_t>(jl) * static_cast<std::size_t>(lld) + static_cast<std::size_t>(il),
+        jg * un + ig);
     }
   }
+}
+
+// Collective: every rank's block-cyclic share of the root's column-major
+// n x n matrix `full` (read on the root only). The root packs and sends each
+// rank its share alone, one rank at a time, so a rank never holds more than
+// its share (about n^2 / ranks entries) and the root one share more than its
+// own; a whole copy of the matrix exists on the root only.
+LocalMatrix<float> scatter_from_root(const Grid& g, int n, const float* full) {
+  LocalMatrix<float> share = local_matrix<float>(g, n);
+  if (g.rank != 0) {
+    mpi_check(MPI_Recv(share.a.data(), message_count(share.rows, share.cols), MPI_FLOAT, 0,
+                       kShareTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE),
+              "MPI_Recv of a matrix share");
+    return share;
+  }
+  std::vector<float> packed;
+  for (int r = 1; r < g.ranks; ++r) {
+    const int rows = local_count(n, g.row_of[static_cast<std::size_t>(r)], g.rows);
+    const int cols = local_count(n, g.col_of[static_cast<std::size_t>(r)], g.cols);
+    const int count = message_count(rows, cols);
+    packed.resize(static_cast<std::size_t>(count));
+    for_each_entry(n, g.row_of[static_cast<std::size_t>(r)], g.col_of[static_cast<std::size_t>(r)],
+                   g, std::max(1, rows),
+                   [&](std::size_t local, std::size_t global) { packed[local] = full[global]; });
+    mpi_check(MPI_Send(packed.data(), count, MPI_FLOAT, r, kShareTag, MPI_COMM_WORLD),
+              "MPI_Send of a matrix share");
+  }
+  for_each_entry(n, g.row, g.col, g, share.lld,
+                 [&](std::size_t local, std::size_t global) { share.a[local] = full[global]; });
+  return share;
+}
+
+// The share of I - A (identity_minus) or A itself, in Real, from the float
+// share of A; I - A formed as inverse_transport.cpp forms it (negate, then add
+// 1 on the diagonal), so the entries are those the single process factorises.
+template <class Real>
+LocalMatrix<Real> converted(const LocalMatrix<float>& share, const Grid& g, bool identity_minus) {
+  LocalMatrix<Real> l = local_matrix<Real>(g, share.n);
+  for (int jl = 0; jl < l.cols; ++jl) {
+    const int jg = global_index(jl, g.col, g.cols);
+    for (int il = 0; il < l.rows; ++il) {
+      const int ig = global_index(il, g.row, g.rows);
+      const std::size_t at = static_cast<std::size_t>(jl) * static_cast<std::size_t>(l.lld) +
+                             static_cast<std::size_t>(il);
+      Real v = static_cast<Real>(share.a[at]);
+      if (identity_minus) v = ig == jg ? -v + Real(1) : -v;
+      l.a[at] = v;
+    }
+  }
+  return l;
 }
 
 // Collective: every rank's share into the whole column-major matrix on the
-// root (`full` is read on the root only).
+// root (`full` is read on the root only), one rank's share at a time.
 template <class Real>
 void gather_to_root(const LocalMatrix<Real>& l, const Grid& g, float* full) {
-  const int mine = l.rows * l.cols;
-  std::vector<Real> packed(static_cast<std::size_t>(std::max(1, mine)));
-  for (int jl = 0; jl < l.cols; ++jl)
-    for (int il = 0; il < l.rows; ++il)
-      packed[static_cast<std::size_t>(jl) * static_cast<std::size_t>(l.rows) +
-             static_cast<std::size_t>(il)] =
-          l.a[static_cast<std::size_t>(jl) * static_cast<std::size_t>(l.lld) +
-              static_cast<std::size_t>(il)];
-  int where[2] = {g.row, g.col};
-  std::vector<int> counts(static_cast<std::size_t>(g.ranks)), places(2 * counts.size());
-  mpi_check(MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD),
-            "MPI_Gather");
-  mpi_check(MPI_Gather(where, 2, MPI_INT, places.data(), 2, MPI_INT, 0, MPI_COMM_WORLD),
-            "MPI_Gather");
-  std::vector<int> offsets(counts.size(), 0);
-  std::vector<Real> all;
-  if (g.rank == 0) {
-    for (std::size_t r = 1; r < counts.size(); ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
-    all.resize(static_cast<std::size_t>(offsets.back() + counts.back()));
-  }
-  mpi_check(MPI_Gatherv(packed.data(), mine, mpi_type<Real>(), all.data(), counts.data(),
-                        offsets.data(), mpi_type<Real>(), 0, MPI_COMM_WORLD),
-            "MPI_Gatherv");
-  if (g.rank != 0) return;
-  const auto n = static_cast<std::size_t>(l.n);
-  for (std::size_t r = 0; r < counts.size(); ++r) {
-    const int pr = places[2 * r], pc = places[2 * r + 1];
-    const int rows = local_count(l.n, pr, g.rows), cols = local_count(l.n, pc, g.cols);
-    const Real* block = all.data() + offsets[r];
-    for (int jl = 0; jl < cols; ++jl) {
-      const auto jg = static_cast<std::size_t>(global_index(jl, pc, g.cols));
-      for (int il = 0; il < rows; ++il) {
-        const auto ig = static_cast<std::size_t>(global_index(il, pr, g.rows));
-        full[jg * n + ig] =
-            static_cast<float>(block[static_cast<std::size_t>(jl) * static_cast<std::size_t>(rows) +
-                                     static_cast<std::size_t>(il)]);
-      }
-    }
-  }
-}
-
-// A whole matrix from the root to every rank: `mine` on the root, a fresh
-// copy elsewhere.
-const float* broadcast_whole(const float* mine, int n, const Grid& g, std::vector<float>& copy) {
-  const int count = square_count(n);
-  float* data = const_cast<float*>(mine);
+  // lld = rows whenever the share has rows, so the local array is packed.
   if (g.rank != 0) {
-    copy.resize(static_cast<std::size_t>(count));
-    data = copy.data();
+    mpi_check(MPI_Send(l.a.data(), message_count(l.rows, l.cols), mpi_type<Real>(), 0, kShareTag,
+                       MPI_COMM_WORLD),
+              "MPI_Send of a result share");
+    return;
   }
-  mpi_check(MPI_Bcast(data, count, MPI_FLOAT, 0, MPI_COMM_WORLD), "MPI_Bcast");
-  return data;
+  for_each_entry(l.n, g.row, g.col, g, l.lld, [&](std::size_t local, std::size_t global) {
+    full[global] = static_cast<float>(l.a[local]);
+  });
+  std::vector<Real> packed;
+  for (int r = 1; r < g.ranks; ++r) {
+    const int pr = g.row_of[static_cast<std::size_t>(r)],
+              pc = g.col_of[static_cast<std::size_t>(r)];
+    const int rows = local_count(l.n, pr, g.rows), cols = local_count(l.n, pc, g.cols);
+    const int count = message_count(rows, cols);
+    packed.resize(static_cast<std::size_t>(std::max(1, count)));
+    mpi_check(MPI_Recv(packed.data(), count, mpi_type<Real>(), r, kShareTag, MPI_COMM_WORLD,
+                       MPI_STATUS_IGNORE),
+              "MPI_Recv of a result share");
+    for_each_entry(l.n, pr, pc, g, std::max(1, rows), [&](std::size_t local, std::size_t global) {
+      full[global] = static_cast<float>(packed[local]);
+    });
+  }
 }
 
 // Collective C = A B + beta C on row-major n x n buffers (read on the root).
 void gemm_collective(const Grid& g, int n, float beta, const float* a, const float* b, float* c) {
-  std::vector<float> ca, cb, cc;
-  const float* whole_a = broadcast_whole(a, n, g, ca);
-  const float* whole_b = broadcast_whole(b, n, g, cb);
   // Column-major, the buffers hold A^T, B^T, C^T: C^T = B^T A^T + beta C^T.
-  LocalMatrix<float> la = local_matrix<float>(g, n), lb = local_matrix<float>(g, n),
-                     lc = local_matrix<float>(g, n);
-  take_share(la, g, whole_a, false);
-  take_share(lb, g, whole_b, false);
-  if (beta != 0.0f) take_share(lc, g, broadcast_whole(c, n, g, cc), false);
+  LocalMatrix<float> la = scatter_from_root(g, n, a);
+  LocalMatrix<float> lb = scatter_from_root(g, n, b);
+  LocalMatrix<float> lc = beta != 0.0f ? scatter_from_root(g, n, c) : local_matrix<float>(g, n);
   const float one = 1.0f;
   psgemm_("N", "N", &n, &n, &n, &one, lb.a.data(), &kOne, &kOne, lb.desc, la.a.data(), &kOne, &kOne,
           la.desc, &beta, lc.a.data(), &kOne, &kOne, lc.desc);
@@ -269,27 +301,27 @@ struct SolveState {
 
 template <class Real>
 void factor_collective(const Grid& g, SolveState& s, LocalMatrix<Real>& lu, LocalMatrix<Real>& rhs,
-                       const float* whole_m) {
-  lu = local_matrix<Real>(g, s.n);
-  rhs = local_matrix<Real>(g, s.n);
-  take_share(lu, g, whole_m, true);
-  take_share(rhs, g, whole_m, false);
+                       LocalMatrix<float> share) {
+  lu = converted<Real>(share, g, true);
+  if constexpr (std::is_same_v<Real, float>)
+    rhs = std::move(share);
+  else
+    rhs = converted<Real>(share, g, false);
   s.ipiv.assign(static_cast<std::size_t>(lu.rows + kBlock), 0);
   Pscalapack<Real>::getrf(s.n, lu.a.data(), lu.desc, s.ipiv.data(), &s.info);
 }
 
-// Command Factor: the root's M (row-major, read column-major as M^T) reaches
-// every rank; all factorise I - M^T.
+// Command Factor: each rank receives its share of the root's M (row-major,
+// read column-major as M^T); all factorise I - M^T.
 void factor(const Grid& g, SolveState& s, const Command& c, const float* m) {
-  std::vector<float> copy;
-  const float* whole = broadcast_whole(m, c.n, g, copy);
   s = SolveState{};
   s.n = c.n;
   s.float64 = c.float64 != 0;
+  LocalMatrix<float> share = scatter_from_root(g, c.n, m);
   if (s.float64)
-    factor_collective<double>(g, s, s.lu64, s.rhs64, whole);
+    factor_collective<double>(g, s, s.lu64, s.rhs64, std::move(share));
   else
-    factor_collective<float>(g, s, s.lu32, s.rhs32, whole);
+    factor_collective<float>(g, s, s.lu32, s.rhs32, std::move(share));
 }
 
 // kappa_inf(I - M) = ||I - M||_inf ||(I - M)^-1||_inf, computed, not

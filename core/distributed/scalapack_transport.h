@@ -9,11 +9,15 @@
 // the lower bound let through is solved twice (float32, then float64).
 //
 // The root decides everything (compute_transport runs there only) and drives
-// the other ranks through a small command protocol: it broadcasts a command
-// and the full operands, every rank takes its block-cyclic share, calls
-// ScaLAPACK collectively, and the root gathers the result. Operands are held
-// whole on every rank (memory n^2 per matrix per rank): this distributes the
-// O(n^3) work, not yet the memory (issue 9, part 2).
+// the other ranks through a small command protocol: it broadcasts a command,
+// sends each rank only its block-cyclic share of the operands (packed by the
+// root, one rank at a time), every rank calls ScaLAPACK collectively, and the
+// root receives the shares of the result the same way. Whole matrices exist
+// on the root only; the other ranks hold about n^2 / ranks entries per
+// operand. (Packing by hand rather than p?gemr2d from a 1 x 1 grid on the
+// root: the root's extra memory is then exactly one share, the float shares
+// are converted to I - M^T and to float64 on each rank, and the gather is the
+// same code reversed.)
 //
 // Layout: the row-major buffers of transport.cpp read column-major are the
 // transposes, so C = A B + beta C is computed as C^T = B^T A^T + beta C^T, and

@@ -39,8 +39,19 @@ struct Clump {
   std::uint32_t first, count;  // pieces in PatchGeometry::surface[p]
 };
 
+constexpr std::size_t kRayEnds = 4;
+
 struct PatchGeometry {
-  std::vector<std::vector<Point>> far;         // a few points carrying the patch's area
+  std::vector<std::vector<Point>> far;  // a few points carrying the patch's area
+  // Where visibility rays start and end: kRayEnds piece centroids per far
+  // point, ray_ends[p][r * kRayEnds + m], picked in its group at the area
+  // quantiles (m + 1/2) / kRayEnds. A far point is a mean and need not lie on
+  // any surface: one averaging a light 1 cm below a ceiling with the ceiling
+  // (one voxel patch holds both) lies between the two, and rays from there
+  // hit the light's back, cutting the brightest patch off the scene. Pieces
+  // picked by area, rotated over the pairs, see each surface of a group in
+  // proportion to its area.
+  std::vector<std::vector<Point>> ray_ends;
   std::vector<std::vector<Receiver>> surface;  // the pieces of surface it stands for
   std::vector<std::vector<Clump>> clumps;      // the pieces grouped by sample
 };
@@ -49,8 +60,15 @@ struct PatchGeometry {
 // seeds by farthest-point sampling, every piece assigned to its nearest seed,
 // each representative the area-weighted mean of its group. Areas add up to
 // the patch's, so this is a quadrature of the patch, not a subsample.
-std::vector<Point> representatives(const std::vector<Point>& all, std::size_t k) {
-  if (all.size() <= k) return all;
+// `on_surface` gets kRayEnds pieces of each representative's group
+// (PatchGeometry::ray_ends).
+std::vector<Point> representatives(const std::vector<Point>& all, std::size_t k,
+                                   std::vector<Point>& on_surface) {
+  if (all.size() <= k) {
+    on_surface.clear();
+    for (const Point& x : all) on_surface.insert(on_surface.end(), kRayEnds, x);
+    return all;
+  }
   // Distance in position and orientation: a patch may hold pieces of several
   // faces (a box corner with one patch per voxel), and a representative that
   // averaged a floor piece with a wall piece would have a normal neither has.
@@ -73,7 +91,9 @@ std::vector<Point> representatives(const std::vector<Point>& all, std::size_t k)
     seeds.push_back(farthest);
   }
   std::vector<Point> reps(seeds.size(), Point{glm::vec3(0.0f), glm::vec3(0.0f), 0.0f});
-  for (const Point& x : all) {
+  std::vector<std::size_t> group(all.size(), 0);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const Point& x = all[i];
     std::size_t best = 0;
     float best_d = std::numeric_limits<float>::infinity();
     for (std::size_t r = 0; r < seeds.size(); ++r) {
@@ -83,6 +103,7 @@ std::vector<Point> representatives(const std::vector<Point>& all, std::size_t k)
         best = r;
       }
     }
+    group[i] = best;
     reps[best].position += x.area * x.position;
     reps[best].normal += x.area * x.normal;
     reps[best].area += x.area;
@@ -92,6 +113,23 @@ std::vector<Point> representatives(const std::vector<Point>& all, std::size_t k)
     const float len = glm::length(r.normal);
     r.normal = len > 0.0f ? r.normal / len : glm::vec3(0.0f, 0.0f, 1.0f);
   }
+  // Pieces in member order (samples spread over the voxel), walked by
+  // cumulative area within each group.
+  on_surface.assign(reps.size() * kRayEnds, Point{glm::vec3(0.0f), glm::vec3(0.0f), 0.0f});
+  std::vector<float> walked(reps.size(), 0.0f);
+  std::vector<std::size_t> next(reps.size(), 0);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    const std::size_t r = group[i];
+    walked[r] += all[i].area;
+    while (next[r] < kRayEnds && walked[r] >= (static_cast<float>(next[r]) + 0.5f) /
+                                                  static_cast<float>(kRayEnds) * reps[r].area)
+      on_surface[r * kRayEnds + next[r]++] = all[i];
+  }
+  // Rounding can leave the last quantiles of a group unreached: its last piece.
+  for (std::size_t i = all.size(); i-- > 0;) {
+    const std::size_t r = group[i];
+    while (next[r] < kRayEnds) on_surface[r * kRayEnds + next[r]++] = all[i];
+  }
   return reps;
 }
 
@@ -100,6 +138,7 @@ PatchGeometry gather(const Scene& scene, const Voxelization& vox, const SampleSe
   PatchGeometry g;
   const std::size_t n = patches.size();
   g.far.resize(n);
+  g.ray_ends.resize(n);
   g.surface.resize(n);
   g.clumps.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
@@ -167,7 +206,8 @@ PatchGeometry gather(const Scene& scene, const Voxelization& vox, const SampleSe
       }
       g.clumps[p].push_back(clump);
     }
-    g.far[p] = representatives(members, static_cast<std::size_t>(std::max(1, far_count)));
+    g.far[p] =
+        representatives(members, static_cast<std::size_t>(std::max(1, far_count)), g.ray_ends[p]);
   }
   return g;
 }
@@ -272,16 +312,15 @@ struct PairSum {
   std::uint32_t q = 0;
 };
 
-}  // namespace
-
-FormFactorMatrix compute_form_factors(const Scene& scene, const RayTracer& tracer,
-                                      const Voxelization& vox, const SampleSet& set,
-                                      const PatchSet& patches, const FormFactorSettings& settings,
-                                      Progress* progress) {
+// Computes the pairs (p, q >= p) of the rows settings deals to this process
+// and hands each pair's two entries to store(p, q, F_pq, F_qp) (F_qp unused
+// when q == p); pairs that exchange nothing are not stored. Returns how many
+// entries were capped at 1.
+template <class Store>
+std::size_t compute_pairs(const Scene& scene, const RayTracer& tracer, const Voxelization& vox,
+                          const SampleSet& set, const PatchSet& patches,
+                          const FormFactorSettings& settings, Progress* progress, Store&& store) {
   const std::size_t n = patches.size();
-  FormFactorMatrix f;
-  f.n = n;
-  f.values.assign(n * n, 0.0f);
   const PatchGeometry geo = gather(scene, vox, set, patches, settings.far_representatives);
   const float cell = vox.grid.cell_size();
   const float near2 = settings.near_cells * settings.near_cells * cell * cell;
@@ -362,8 +401,11 @@ FormFactorMatrix compute_form_factors(const Scene& scene, const RayTracer& trace
         const std::size_t picks = std::min(rays_per_pair, facing.size());
         for (std::size_t k = 0; k < picks; ++k) {
           const Candidate& c = facing[(2 * k + 1) * facing.size() / (2 * picks)];
-          const glm::vec3 from = P[c.i].position + eps * P[c.i].normal;
-          const glm::vec3 to = Q[c.j].position + eps * Q[c.j].normal;
+          // Each pair its own turn through the ray ends (PatchGeometry).
+          const Point& a = geo.ray_ends[p][c.i * kRayEnds + (q + k) % kRayEnds];
+          const Point& b = geo.ray_ends[q][c.j * kRayEnds + (p + k) % kRayEnds];
+          const glm::vec3 from = a.position + eps * a.normal;
+          const glm::vec3 to = b.position + eps * b.normal;
           rays.push_back({from, to - from, 0.0f, 1.0f - 1e-4f});
           ray_weight.push_back(c.w);
         }
@@ -380,17 +422,65 @@ FormFactorMatrix compute_form_factors(const Scene& scene, const RayTracer& trace
           if (!blocked[k]) seen += ray_weight[k];
         }
         const float v = total > 0.0f ? seen / total : 0.0f;
-        f.values[p * n + ps.q] = at_most_one(ps.unoccluded_pq * v / area_p);
-        if (ps.q != p)
-          f.values[ps.q * n + p] = at_most_one(ps.unoccluded_qp * v / patches.patches[ps.q].area);
+        const float f_pq = at_most_one(ps.unoccluded_pq * v / area_p);
+        const float f_qp =
+            ps.q != p ? at_most_one(ps.unoccluded_qp * v / patches.patches[ps.q].area) : 0.0f;
+        store(p, static_cast<std::size_t>(ps.q), f_pq, f_qp);
       }
       if (progress) progress->advance(n - p);
     }
   }
   if (progress) progress->check();
   if (progress) progress->end_stage();
-  f.clamped_to_one = clamped;
+  return clamped;
+}
+
+}  // namespace
+
+FormFactorMatrix compute_form_factors(const Scene& scene, const RayTracer& tracer,
+                                      const Voxelization& vox, const SampleSet& samples,
+                                      const PatchSet& patches, const FormFactorSettings& settings,
+                                      Progress* progress) {
+  const std::size_t n = patches.size();
+  FormFactorMatrix f;
+  f.n = n;
+  f.values.assign(n * n, 0.0f);
+  float* values = f.values.data();
+  f.clamped_to_one =
+      compute_pairs(scene, tracer, vox, samples, patches, settings, progress,
+                    [values, n](std::size_t p, std::size_t q, float f_pq, float f_qp) {
+                      values[p * n + q] = f_pq;
+                      if (q != p) values[q * n + p] = f_qp;
+                    });
   return f;
+}
+
+std::size_t FormFactorRows::segment_length(std::size_t n, std::size_t p) {
+  return p < n ? 2 * (n - p) - 1 : 0;
+}
+
+FormFactorRows compute_form_factor_rows(const Scene& scene, const RayTracer& tracer,
+                                        const Voxelization& vox, const SampleSet& samples,
+                                        const PatchSet& patches, const FormFactorSettings& settings,
+                                        Progress* progress) {
+  FormFactorRows r;
+  r.n = patches.size();
+  r.row_offset = settings.row_offset;
+  r.row_stride = std::max<std::size_t>(1, settings.row_stride);
+  r.first.push_back(0);
+  for (std::size_t p = r.row_offset; p < r.n; p += r.row_stride)
+    r.first.push_back(r.first.back() + FormFactorRows::segment_length(r.n, p));
+  r.values.assign(r.first.back(), 0.0f);
+  float* values = r.values.data();
+  const std::size_t* first = r.first.data();
+  const std::size_t n = r.n, offset = r.row_offset, stride = r.row_stride;
+  r.clamped_to_one = compute_pairs(scene, tracer, vox, samples, patches, settings, progress,
+                                   [=](std::size_t p, std::size_t q, float f_pq, float f_qp) {
+                                     float* row = values + first[(p - offset) / stride];
+                                     row[q - p] = f_pq;
+                                     if (q != p) row[(n - p) + (q - p - 1)] = f_qp;
+                                   });
+  return r;
 }
 
 FormFactorChecks check_form_factors(const FormFactorMatrix& f, const PatchSet& patches) {

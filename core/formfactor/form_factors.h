@@ -18,10 +18,14 @@
 // manifest reports as the reciprocity error.
 // Visibility V_PQ: `visibility_rays` rays between member pairs picked evenly
 // from the pairs that face each other, weighted by their kernel value, traced
-// in batches with Embree's stream API.
+// in batches with Embree's stream API. Rays start and end on the surface (a
+// piece of each far point's group picked by area), never at a far point
+// itself: a mean of pieces of two layers 1 cm apart (a light under a ceiling
+// in one voxel patch) lies between them, where every ray is blocked.
 #include <cstdint>
 #include <vector>
 
+#include "base/mapped_buffer.h"
 #include "base/progress.h"
 #include "patches/patch_set.h"
 #include "raytrace/ray_tracer.h"
@@ -43,10 +47,11 @@ struct FormFactorSettings {
   std::size_t row_stride = 1;
 };
 
-// Dense row-major N x N, float32: F[p * n + q] = F_pq.
+// Dense row-major N x N, float32: F[p * n + q] = F_pq. A std::vector whose
+// storage is a mapped file during an out-of-core bake (base/mapped_buffer.h).
 struct FormFactorMatrix {
   std::size_t n = 0;
-  std::vector<float> values;
+  MatrixValues values;
   // Entries whose estimate came out above 1 and were set to 1. F_pq is the
   // mean over P of the form factor from a point to Q, which is at most 1 at
   // every point, so an estimate above 1 is quadrature error (near surfaces,
@@ -60,6 +65,29 @@ FormFactorMatrix compute_form_factors(const Scene& scene, const RayTracer& trace
                                       const Voxelization& vox, const SampleSet& samples,
                                       const PatchSet& patches, const FormFactorSettings& settings,
                                       Progress* progress = nullptr);
+
+// Only the rows settings deals to this process (row_offset, row_stride), in a
+// compact buffer of about n^2 / row_stride values instead of the n x n matrix
+// (core/distributed gathers them into the full matrix on the root). Own row
+// p = row_at(k) is the segment values[first[k] .. first[k + 1]): F_pq for
+// q = p .. n-1, then F_qp for q = p+1 .. n-1, every entry its pairs produce;
+// the entries are bit-identical to the same entries of compute_form_factors.
+struct FormFactorRows {
+  std::size_t n = 0;
+  std::size_t row_offset = 0;
+  std::size_t row_stride = 1;
+  std::vector<std::size_t> first;  // one more than the own rows
+  std::vector<float> values;
+  std::size_t clamped_to_one = 0;  // in these rows only
+  std::size_t row_count() const { return first.empty() ? 0 : first.size() - 1; }
+  std::size_t row_at(std::size_t k) const { return row_offset + k * row_stride; }
+  static std::size_t segment_length(std::size_t n, std::size_t p);  // 2 (n - p) - 1
+};
+
+FormFactorRows compute_form_factor_rows(const Scene& scene, const RayTracer& tracer,
+                                        const Voxelization& vox, const SampleSet& samples,
+                                        const PatchSet& patches, const FormFactorSettings& settings,
+                                        Progress* progress = nullptr);
 
 // The checks every bake reports (DESIGN.md, numerics).
 struct FormFactorChecks {

@@ -1,10 +1,13 @@
 #include "io/npy.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
+#include "base/mapped_buffer.h"
 #include "io/atomic_file.h"
 
 namespace bounce {
@@ -31,8 +34,11 @@ std::size_t element_count(const std::vector<std::size_t>& shape) {
   return n;
 }
 
-void write_raw(const fs::path& path, const char* descr, const void* data, std::size_t bytes,
-               std::size_t elements, const std::vector<std::size_t>& shape) {
+// The data is the concatenation of `parts` (pointer, bytes).
+using RawParts = std::vector<std::pair<const void*, std::size_t>>;
+
+void write_raw(const fs::path& path, const char* descr, const RawParts& parts, std::size_t elements,
+               const std::vector<std::size_t>& shape) {
   if (element_count(shape) != elements)
     throw NpyError(path.string(), "shape " + shape_string(shape) + " does not match " +
                                       std::to_string(elements) + " elements");
@@ -49,7 +55,17 @@ void write_raw(const fs::path& path, const char* descr, const void* data, std::s
   const auto len = static_cast<std::uint16_t>(header.size());
   out.write(reinterpret_cast<const char*>(&len), 2);
   out.write(header.data(), static_cast<std::streamsize>(header.size()));
-  out.write(static_cast<const char*>(data), static_cast<std::streamsize>(bytes));
+  // In chunks, each handed back to its file once written when it is a mapped
+  // matrix (out-of-core bake), so writing F or T does not make all of it
+  // resident again.
+  constexpr std::size_t kChunk = std::size_t(64) << 20;
+  for (const auto& [data, bytes] : parts)
+    for (std::size_t at = 0; at < bytes; at += kChunk) {
+      const char* p = static_cast<const char*>(data) + at;
+      const std::size_t count = std::min(kChunk, bytes - at);
+      out.write(p, static_cast<std::streamsize>(count));
+      release_residency(p, count);
+    }
   file.commit();
 }
 
@@ -114,15 +130,25 @@ NpyArray<T> read_typed(const fs::path& path, const char* want) {
 }  // namespace
 
 void write_npy(const fs::path& path, std::span<const float> data, std::vector<std::size_t> shape) {
-  write_raw(path, "<f4", data.data(), data.size_bytes(), data.size(), shape);
+  write_raw(path, "<f4", {{data.data(), data.size_bytes()}}, data.size(), shape);
+}
+void write_npy(const fs::path& path, const std::vector<std::span<const float>>& parts,
+               std::vector<std::size_t> shape) {
+  RawParts raw;
+  std::size_t elements = 0;
+  for (std::span<const float> p : parts) {
+    raw.emplace_back(p.data(), p.size_bytes());
+    elements += p.size();
+  }
+  write_raw(path, "<f4", raw, elements, shape);
 }
 void write_npy(const fs::path& path, std::span<const std::uint32_t> data,
                std::vector<std::size_t> shape) {
-  write_raw(path, "<u4", data.data(), data.size_bytes(), data.size(), shape);
+  write_raw(path, "<u4", {{data.data(), data.size_bytes()}}, data.size(), shape);
 }
 void write_npy(const fs::path& path, std::span<const std::int32_t> data,
                std::vector<std::size_t> shape) {
-  write_raw(path, "<i4", data.data(), data.size_bytes(), data.size(), shape);
+  write_raw(path, "<i4", {{data.data(), data.size_bytes()}}, data.size(), shape);
 }
 
 NpyArray<float> read_npy_f32(const fs::path& path) { return read_typed<float>(path, "<f4"); }

@@ -19,6 +19,10 @@ class NpyError : public Error {
 
 void write_npy(const std::filesystem::path& path, std::span<const float> data,
                std::vector<std::size_t> shape);
+// The concatenation of `parts` as one array (T.npy: the channels one after
+// another, each possibly a mapped matrix), without copying them together.
+void write_npy(const std::filesystem::path& path, const std::vector<std::span<const float>>& parts,
+               std::vector<std::size_t> shape);
 void write_npy(const std::filesystem::path& path, std::span<const std::uint32_t> data,
                std::vector<std::size_t> shape);
 void write_npy(const std::filesystem::path& path, std::span<const std::int32_t> data,

@@ -71,20 +71,28 @@ Targets make_targets(const Voxelization& vox, const SampleSet& set, std::size_t 
   return t;
 }
 
-// F from each sample to each target, with one visibility ray per pair.
+// F from each sample to each target, with one visibility ray per pair; the
+// rows of this process's range only when shared (SampleRowSharing), then the
+// others' gathered into place.
 std::vector<float> sample_target_form_factors(const RayTracer& tracer, const SampleSet& set,
-                                              const Targets& targets, Progress* progress) {
+                                              const Targets& targets,
+                                              const SampleRowSharing& sharing, Progress* progress) {
   const std::size_t ns = set.samples.size(), nt = targets.samples.size();
   std::vector<float> f(ns * nt, 0.0f);
   const float eps = 10.0f * tracer.epsilon();
-  if (progress) progress->begin_stage("cluster: form factors to targets", ns);
+  const SampleRows own =
+      sharing.gather ? sample_rows_of(sharing.part, sharing.parts, ns) : SampleRows{0, ns};
+  if (progress)
+    progress->begin_stage("cluster: form factors to targets",
+                          std::max<std::size_t>(1, own.end - own.first));
 #pragma omp parallel
   {
     std::vector<ShadowRay> rays;
     std::vector<std::uint32_t> ray_target;
     std::vector<std::uint8_t> blocked;
 #pragma omp for schedule(dynamic, 16)
-    for (std::int64_t si = 0; si < static_cast<std::int64_t>(ns); ++si) {
+    for (std::int64_t si = static_cast<std::int64_t>(own.first);
+         si < static_cast<std::int64_t>(own.end); ++si) {
       if (progress && progress->should_stop()) continue;
       const Sample& a = set.samples[static_cast<std::size_t>(si)];
       float* row = &f[static_cast<std::size_t>(si) * nt];
@@ -112,6 +120,7 @@ std::vector<float> sample_target_form_factors(const RayTracer& tracer, const Sam
     }
   }
   if (progress) progress->check();
+  if (sharing.gather) sharing.gather(f.data(), ns, nt);
   return f;
 }
 
@@ -140,13 +149,20 @@ float metric(const Cluster& a, const Cluster& b, const std::vector<float>& targe
 
 }  // namespace
 
+SampleRows sample_rows_of(std::size_t part, std::size_t parts, std::size_t ns) {
+  parts = std::max<std::size_t>(1, parts);
+  part = std::min(part, parts - 1);
+  return {ns * part / parts, ns * (part + 1) / parts};
+}
+
 PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vox,
                                  const SampleSet& set, const ClusteringSettings& settings,
                                  ClusteringStats& stats, Progress* progress) {
   const Targets targets = make_targets(vox, set, settings.max_targets);
   stats.feature_targets = targets.samples.size();
   stats.target_block = targets.block;
-  const std::vector<float> f = sample_target_form_factors(tracer, set, targets, progress);
+  const std::vector<float> f =
+      sample_target_form_factors(tracer, set, targets, settings.sharing, progress);
   const std::size_t nt = targets.samples.size();
   const std::size_t nv = vox.voxels.size();
   const auto keep = static_cast<std::size_t>(std::max(1, settings.patches_per_voxel));

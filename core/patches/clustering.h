@@ -19,6 +19,7 @@
 // wall); such a voxel keeps more than `patches_per_voxel` patches and the
 // count is reported.
 #include <cstdint>
+#include <functional>
 
 #include "base/progress.h"
 #include "patches/patch_set.h"
@@ -26,9 +27,29 @@
 
 namespace bounce {
 
+// How a distributed bake shares the costliest part of the clustering, the
+// sample-to-target form factors: the samples are cut into `parts` contiguous
+// ranges of rows (sample_rows_of), this process computes the rows of range
+// `part`, and `gather` (collective) copies every process's rows into place,
+// so every process then holds the matrix a single process computes, bit for
+// bit. Without `gather` every row is computed here.
+struct SampleRowSharing {
+  std::size_t part = 0;
+  std::size_t parts = 1;
+  // f: the ns x nt row-major matrix with this process's rows filled in.
+  std::function<void(float* f, std::size_t ns, std::size_t nt)> gather;
+};
+
+// The sample rows [first, end) of range `part` of `parts` over ns samples.
+struct SampleRows {
+  std::size_t first = 0, end = 0;
+};
+SampleRows sample_rows_of(std::size_t part, std::size_t parts, std::size_t ns);
+
 struct ClusteringSettings {
   int patches_per_voxel = 3;
   std::size_t max_targets = 2048;
+  SampleRowSharing sharing;
 };
 
 struct ClusteringStats {

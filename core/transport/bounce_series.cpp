@@ -51,13 +51,13 @@ int doubling_gemm_count(int bounces) {
   return gemms;
 }
 
-void add_into(std::vector<float>& t, const std::vector<float>& p) {
+void add_into(MatrixValues& t, const MatrixValues& p) {
   for (std::size_t i = 0; i < t.size(); ++i) t[i] += p[i];
 }
 
-std::vector<float> sum_horner(const std::vector<float>& m, std::size_t n, int bounces,
-                              GemmBackend& gemm, const std::function<void()>& tick) {
-  std::vector<float> s = m, next(m.size());
+MatrixValues sum_horner(const MatrixValues& m, std::size_t n, int bounces, GemmBackend& gemm,
+                        const std::function<void()>& tick) {
+  MatrixValues s = m, next(m.size());
   for (int h = 2; h <= bounces; ++h) {
     next = m;  // S_h = M + M S_(h-1)
     gemm.multiply(n, m.data(), s.data(), 1.0f, next.data());
@@ -67,19 +67,19 @@ std::vector<float> sum_horner(const std::vector<float>& m, std::size_t n, int bo
   return s;
 }
 
-std::vector<float> sum_doubling(const std::vector<float>& m, std::size_t n, int bounces,
-                                GemmBackend& gemm, const std::function<void()>& tick) {
+MatrixValues sum_doubling(const MatrixValues& m, std::size_t n, int bounces, GemmBackend& gemm,
+                          const std::function<void()>& tick) {
   const std::vector<Step> steps = doubling_steps(bounces);
   // T_1 = M; P_1 = M is read from m itself until P is first formed.
-  std::vector<float> t = m, p(m.size()), tmp(m.size());
+  MatrixValues t = m, p(m.size()), tmp(m.size());
   bool p_is_m = true;
-  auto product = [&](const std::vector<float>& a, const std::vector<float>& b, float beta) {
+  auto product = [&](const MatrixValues& a, const MatrixValues& b, float beta) {
     gemm.multiply(n, a.data(), b.data(), beta, tmp.data());
     if (tick) tick();
   };
   for (std::size_t s = 0; s < steps.size(); ++s) {
     const bool p_needed_later = p_needed_after(steps, s);
-    const std::vector<float>& pk = p_is_m ? m : p;
+    const MatrixValues& pk = p_is_m ? m : p;
     if (steps[s] == Step::Double) {
       if (p_is_m) {
         // k = 1: P_2 = M M and T_2 = M + P_2, one product for both.
@@ -123,8 +123,8 @@ SeriesPlan plan_series(int bounces) {
   return plan;
 }
 
-std::vector<float> sum_bounces(const std::vector<float>& m, std::size_t n, const SeriesPlan& plan,
-                               GemmBackend& gemm, const std::function<void()>& after_each_gemm) {
+MatrixValues sum_bounces(const MatrixValues& m, std::size_t n, const SeriesPlan& plan,
+                         GemmBackend& gemm, const std::function<void()>& after_each_gemm) {
   if (m.size() != n * n) throw Error("transport", "sum_bounces: matrix size does not match n");
   return plan.scheme == SeriesScheme::Doubling
              ? sum_doubling(m, n, plan.bounces, gemm, after_each_gemm)

@@ -16,6 +16,7 @@
 #include <functional>
 #include <vector>
 
+#include "base/mapped_buffer.h"
 #include "transport/gemm_backend.h"
 
 namespace bounce {
@@ -33,10 +34,10 @@ struct SeriesPlan {
 SeriesPlan plan_series(int bounces);
 
 // Sums the series as planned. `after_each_gemm` is called after every product
-// (progress, cancellation). m is row-major n x n.
-std::vector<float> sum_bounces(const std::vector<float>& m, std::size_t n, const SeriesPlan& plan,
-                               GemmBackend& gemm,
-                               const std::function<void()>& after_each_gemm = {});
+// (progress, cancellation). m is row-major n x n; the work buffers and the
+// result are MatrixValues, mapped to files in an out-of-core bake.
+MatrixValues sum_bounces(const MatrixValues& m, std::size_t n, const SeriesPlan& plan,
+                         GemmBackend& gemm, const std::function<void()>& after_each_gemm = {});
 
 // `--bounces auto`. The light of bounce h when every patch sends out one unit
 // is e_h = 1^T M^h 1, the sum of the entries of M^h; it is found with
@@ -46,9 +47,9 @@ std::vector<float> sum_bounces(const std::vector<float>& m, std::size_t n, const
 // far: e_(K+1) < tolerance * (e_1 + ... + e_K).
 struct AutoBounces {
   int bounces = 1;
-  bool converged = false;        // false: not reached by max_bounces
-  double next_fraction = 0.0;    // e_(K+1) / (e_1 + ... + e_K)
-  std::vector<double> energy;    // e_1, e_2, ... as computed
+  bool converged = false;      // false: not reached by max_bounces
+  double next_fraction = 0.0;  // e_(K+1) / (e_1 + ... + e_K)
+  std::vector<double> energy;  // e_1, e_2, ... as computed
 };
 
 AutoBounces choose_auto_bounces(const float* m, std::size_t n, double tolerance, int max_bounces);

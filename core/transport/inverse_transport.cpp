@@ -6,6 +6,8 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
+#include <type_traits>
+#include <vector>
 
 #include "base/error.h"
 #include "transport/blas_int.h"
@@ -66,7 +68,7 @@ void check_info(lapack_int info, const char* routine) {
 
 template <class Real>
 struct Factorisation {
-  std::vector<Real> lu;
+  MatrixBuffer<Real> lu;
   std::vector<lapack_int> ipiv;
   double condition = 0.0;
 };
@@ -89,16 +91,31 @@ Factorisation<Real> factorise(const Source* m, std::size_t n, double anorm) {
 
 // Overwrites rhs (column-major n x n, i.e. the row-major M) with the solution,
 // block by block so progress and cancellation are heard during the solve.
+// Float rhs with a double factorisation: each block is solved in a double
+// copy and rounded back, so no n x n double right-hand side is ever held.
 template <class Real>
-void solve(const Factorisation<Real>& f, Real* rhs, std::size_t n, const InverseOptions& options) {
+void solve(const Factorisation<Real>& f, float* rhs, std::size_t n, const InverseOptions& options) {
   const int k = blas_dim(n, "LAPACKE_?getrs");
   const std::size_t blocks = std::clamp<std::size_t>(options.solve_blocks, 1, n);
+  std::vector<Real> block;
   for (std::size_t b = 0; b < blocks; ++b) {
     const std::size_t first = n * b / blocks, last = n * (b + 1) / blocks;
-    if (last > first)
-      check_info(Lapack<Real>::getrs(k, static_cast<int>(last - first), f.lu.data(), f.ipiv.data(),
-                                     rhs + first * n),
-                 "LAPACKE_?getrs");
+    if (last > first) {
+      float* x = rhs + first * n;
+      const std::size_t count = (last - first) * n;
+      Real* xr = nullptr;
+      if constexpr (std::is_same_v<Real, float>) {
+        xr = x;
+      } else {
+        block.assign(x, x + count);
+        xr = block.data();
+      }
+      check_info(
+          Lapack<Real>::getrs(k, static_cast<int>(last - first), f.lu.data(), f.ipiv.data(), xr),
+          "LAPACKE_?getrs");
+      if constexpr (!std::is_same_v<Real, float>)
+        for (std::size_t i = 0; i < count; ++i) x[i] = static_cast<float>(block[i]);
+    }
     if (options.tick) options.tick();
   }
 }
@@ -156,10 +173,17 @@ const char* precision_name(TransportPrecision p) {
 InverseTransport solve_infinite_bounces(std::vector<float> m, std::size_t n, double spectral_radius,
                                         const InverseOptions& options) {
   if (m.size() != n * n) throw Error("transport", "solve_infinite_bounces: size does not match n");
+  InverseTransport r = solve_infinite_bounces_in_place(m.data(), n, spectral_radius, options);
+  if (n > 0) r.t = std::move(m);
+  return r;
+}
+
+InverseTransport solve_infinite_bounces_in_place(float* m, std::size_t n, double spectral_radius,
+                                                 const InverseOptions& options) {
   InverseTransport r;
   if (n == 0) return r;
   // ||I - M||_inf, also the anorm ?gecon needs for the column-major I - M^T.
-  const double anorm = inf_norm_of_identity_minus(m.data(), n);
+  const double anorm = inf_norm_of_identity_minus(m, n);
   r.condition_lower_bound = spectral_radius < 1.0 ? anorm / (1.0 - spectral_radius)
                                                   : std::numeric_limits<double>::infinity();
   const double limit = options.float32_error_limit;
@@ -169,7 +193,7 @@ InverseTransport solve_infinite_bounces(std::vector<float> m, std::size_t n, dou
   r.why = std::move(choice.why);
 
   if (!use_float64) {
-    Factorisation<float> f = factorise<float>(m.data(), n, anorm);
+    Factorisation<float> f = factorise<float>(m, n, anorm);
     r.condition = f.condition;
     if (!options.force && f.condition * FLT_EPSILON > limit) {
       use_float64 = true;
@@ -183,27 +207,23 @@ InverseTransport solve_infinite_bounces(std::vector<float> m, std::size_t n, dou
         r.why = text_format("float32: condition estimate %.3g gives kappa * eps = %.2g <= %.0e",
                             f.condition, f.condition * FLT_EPSILON, limit);
       if (options.tick) options.tick();
-      solve(f, m.data(), n, options);
+      solve(f, m, n, options);
       r.precision = TransportPrecision::Float32;
-      r.t = std::move(m);
       return r;
     }
   }
 
-  // float64: the right-hand side first, then M's float copy can go, then the
-  // factorisation is built from the double copy -- at most 4 n^2 floats.
-  std::vector<double> x(m.begin(), m.end());
-  m = {};
-  Factorisation<double> f = factorise<double>(x.data(), n, anorm);
+  // float64: the factorisation from the float M (exact in double), the
+  // right-hand side converted block by block in solve().
+  Factorisation<double> f = factorise<double>(m, n, anorm);
   r.condition = f.condition;
   if (f.condition * DBL_EPSILON > kFloat64ErrorLimit)
     throw Error("transport", text_format("I - diag(albedo) F is numerically singular (condition "
                                          "%.3g): check form-factor row sums and albedo",
                                          f.condition));
   if (options.tick) options.tick();
-  solve(f, x.data(), n, options);
+  solve(f, m, n, options);
   r.precision = TransportPrecision::Float64;
-  r.t.assign(x.begin(), x.end());
   return r;
 }
 

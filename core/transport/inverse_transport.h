@@ -24,6 +24,8 @@
 #include <string>
 #include <vector>
 
+#include "base/mapped_buffer.h"
+
 namespace bounce {
 
 enum class TransportPrecision { Float32, Float64 };
@@ -80,5 +82,14 @@ double lu_cost_in_gemms(TransportPrecision precision);
 // the estimate of rho(M), < 1. Throws bounce::Error when I - M is singular.
 InverseTransport solve_infinite_bounces(std::vector<float> m, std::size_t n, double spectral_radius,
                                         const InverseOptions& options = {});
+
+// The same in place: m (row-major n x n M) is overwritten with T and the
+// result's t is left empty. The factorisation is a MatrixBuffer (a mapped
+// file in an out-of-core bake), and float64 converts the right-hand side one
+// solve block at a time, so the solve holds m and the factorisation only:
+// 2 n^2 floats in float32, 3 n^2 in float64. Same arithmetic, bit for bit,
+// as the vector version.
+InverseTransport solve_infinite_bounces_in_place(float* m, std::size_t n, double spectral_radius,
+                                                 const InverseOptions& options = {});
 
 }  // namespace bounce

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "base/error.h"
 #include "transport/bounce_series.h"
@@ -118,10 +119,9 @@ std::vector<std::vector<int>> channel_groups(const std::vector<glm::vec3>& albed
 }
 
 // M = diag(rho_c) F: row p scaled by patch p's albedo in channel c.
-std::vector<float> scaled_rows(const FormFactorMatrix& f, const std::vector<glm::vec3>& albedo,
-                               int c) {
+MatrixValues scaled_rows(const FormFactorMatrix& f, const std::vector<glm::vec3>& albedo, int c) {
   const std::size_t n = f.n;
-  std::vector<float> m(n * n);
+  MatrixValues m(n * n);
   for (std::size_t p = 0; p < n; ++p) {
     const float a = albedo[p][c];
     for (std::size_t q = 0; q < n; ++q) m[p * n + q] = a * f.values[p * n + q];
@@ -150,7 +150,7 @@ ChannelPlan plan_channel(const FormFactorMatrix& f, const std::vector<glm::vec3>
   plan.rgb = std::move(rgb);
   plan.label = channel_label(plan.rgb);
   const std::string who = "channel " + plan.label;
-  const std::vector<float> m = scaled_rows(f, albedo, plan.rgb.front());
+  const MatrixValues m = scaled_rows(f, albedo, plan.rgb.front());
   plan.radius = estimate_spectral_radius(m.data(), f.n);
   plan.radius.weights = {};
   const SpectralRadius& r = plan.radius;
@@ -268,7 +268,7 @@ std::size_t progress_units(const ChannelPlan& plan) {
   return static_cast<std::size_t>(plan.series.gemms) * kGemmUnits;
 }
 
-void check_finite(const std::vector<float>& t, std::size_t n, const std::string& label) {
+void check_finite(const MatrixValues& t, std::size_t n, const std::string& label) {
   std::size_t bad = 0, first = t.size();
   for (std::size_t i = 0; i < t.size(); ++i)
     if (!std::isfinite(t[i])) {
@@ -294,6 +294,10 @@ TransportResult compute_transport(const FormFactorMatrix& form_factors,
                                   const TransportSettings& settings, Progress* progress,
                                   Diagnostics& diagnostics, TransportExecutor* executor) {
   const auto start = Clock::now();
+  // Out of core (base/mapped_buffer.h): the work buffers stay on the heap,
+  // each finished T goes to a mapped file.
+  const std::optional<OutOfCorePolicy> out_of_core = out_of_core_policy();
+  const OutOfCoreScope work_on_heap(std::nullopt);
   validate_settings(settings);
   const double max_row_sum = validate_inputs(form_factors, albedo);
   const std::size_t n = form_factors.n;
@@ -388,7 +392,7 @@ TransportResult compute_transport(const FormFactorMatrix& form_factors,
     ct.spectral_radius = plan.radius.estimate;
     ct.spectral_radius_lower = plan.radius.lower;
     ct.spectral_radius_upper = plan.radius.upper;
-    std::vector<float> m = scaled_rows(form_factors, albedo, plan.rgb.front());
+    MatrixValues m = scaled_rows(form_factors, albedo, plan.rgb.front());
     if (plan.infinite) {
       InverseOptions options;
       options.solve_blocks = kSolveBlocks;
@@ -398,10 +402,17 @@ TransportResult compute_transport(const FormFactorMatrix& form_factors,
         progress->advance(factorised ? 1 : kFactorUnits);
         factorised = true;
       };
-      InverseTransport inv =
-          executor ? executor->solve_infinite(std::move(m), n, plan.radius.estimate, options)
-                   : solve_infinite_bounces(std::move(m), n, plan.radius.estimate, options);
-      ct.t = std::move(inv.t);
+      InverseTransport inv;
+      if (executor) {
+        // The executor's interface takes and returns heap vectors.
+        inv = executor->solve_infinite(std::vector<float>(m.begin(), m.end()), n,
+                                       plan.radius.estimate, options);
+        m.assign(inv.t.begin(), inv.t.end());
+        inv.t = {};
+      } else {
+        inv = solve_infinite_bounces_in_place(m.data(), n, plan.radius.estimate, options);
+      }
+      ct.t = std::move(m);
       ct.bounces = TransportSettings::kInfiniteBounces;
       ct.auto_bounces = plan.auto_bounces;
       ct.precision = inv.precision;
@@ -426,6 +437,10 @@ TransportResult compute_transport(const FormFactorMatrix& form_factors,
       }
     }
     check_finite(ct.t, n, plan.label);
+    // A finished channel is not read again until compression: out of core,
+    // it goes to its file now and the next channel's work buffers get the
+    // memory.
+    if (out_of_core) ct.t = spill_to_file(std::move(ct.t), *out_of_core);
     ct.seconds = seconds_since(channel_start);
     result.channels.push_back(std::move(ct));
   }

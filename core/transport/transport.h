@@ -38,8 +38,10 @@ namespace bounce {
 
 struct ChannelTransport {
   std::vector<int> rgb;  // the channels this matrix stands for: 0 = R, 1 = G, 2 = B
-  std::vector<float> t;  // row-major n x n: indirect light = T b
-  int bounces = 1;       // K, or TransportSettings::kInfiniteBounces
+  // Row-major n x n: indirect light = T b. A std::vector whose storage is a
+  // mapped file during an out-of-core bake (base/mapped_buffer.h).
+  MatrixValues t;
+  int bounces = 1;  // K, or TransportSettings::kInfiniteBounces
   // Auto: the K at which the series converged (also when the exact K =
   // infinity was computed because it was cheaper); 0 otherwise.
   int auto_bounces = 0;

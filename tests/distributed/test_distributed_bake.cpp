@@ -186,6 +186,64 @@ TEST_F(DistributedBake, FourRanksEqualOneProcessWithInfiniteBounces) {
               d.frobenius, tolerance, d.max_relative);
 }
 
+// A stage's peak RSS in a manifest: this process's (rank 0's), or with
+// `other_ranks` the highest of the other ranks'.
+double stage_peak(const json& manifest, const std::string& stage, bool other_ranks) {
+  for (const json& s : manifest["stages"])
+    if (s["name"] == stage) {
+      const char* key = other_ranks ? "peak_rss_bytes_other_ranks" : "peak_rss_bytes";
+      EXPECT_TRUE(s.contains(key)) << stage << " has no " << key;
+      return s.contains(key) ? s[key].get<double>() : 0.0;
+    }
+  ADD_FAILURE() << "no stage " << stage;
+  return 0.0;
+}
+
+TEST(DistributedBakeMemory, OtherRankHoldsItsShareOfTheTransportNotWholeMatrices) {
+  TempDir work;
+  const std::vector<std::string> settings = {"--patches-total", "800",   "--bounces", "4",
+                                             "--codec",         "dense", "--quiet"};
+  auto args = [&](const fs::path& out) {
+    std::vector<std::string> a = {"bake", scene("cornell-box"), "--out", out.string()};
+    a.insert(a.end(), settings.begin(), settings.end());
+    return a;
+  };
+  const RunResult one = run_in(work, single(args(work / "one")));
+  ASSERT_EQ(one.exit_code, 0) << one;
+  const RunResult two = run_in(work, distributed(2, args(work / "two")));
+  ASSERT_EQ(two.exit_code, 0) << two;
+  const json a = read_manifest(work / "one"), b = read_manifest(work / "two");
+  const double n = b["transport"]["patches"].get<double>();
+  const double matrix = 4.0 * n * n;  // one n x n float32 matrix, bytes
+  // Each process's growth over its own "patches" stage, the last before any
+  // n x n matrix: up to there every process runs the same code on the same
+  // data, so the baseline carries what differs between processes (MPI's
+  // libraries and buffers, the progress display) and what the heap kept from
+  // the clustering, alike.
+  const double single_growth = stage_peak(a, "transport", false) - stage_peak(a, "patches", false);
+  const double other_growth = stage_peak(b, "transport", true) - stage_peak(b, "patches", true);
+  // The single process's transport holds F, M and at least one T (3 matrices)
+  // at once. The other rank of two holds no F and no whole operand: its
+  // shares of A, B and C of a product, 3 x matrix / 2. The gap is at least
+  // 1.5 matrices; asserting one leaves half a matrix for the noise of RSS.
+  // (Before operands were sent by share, that rank held F and whole copies of
+  // A and B besides the shares: 4.5 matrices, more than the single process.)
+  EXPECT_LT(other_growth + matrix, single_growth)
+      << "n = " << n << ": other rank grew " << other_growth / 1e6 << " MB, single process "
+      << single_growth / 1e6 << " MB, one matrix " << matrix / 1e6 << " MB";
+  // Rank 0's own peak and the highest over all ranks are both reported.
+  for (const json& s : b["stages"]) {
+    if (!s.contains("peak_rss_bytes_other_ranks")) continue;
+    EXPECT_EQ(
+        s["peak_rss_bytes_all_ranks"].get<double>(),
+        std::max(s["peak_rss_bytes"].get<double>(), s["peak_rss_bytes_other_ranks"].get<double>()));
+  }
+  std::printf(
+      "n = %.0f: transport growth over the patches stage, other rank %.1f MB, single "
+      "process %.1f MB (one matrix %.1f MB)\n",
+      n, other_growth / 1e6, single_growth / 1e6, matrix / 1e6);
+}
+
 TEST(DistributedBakeErrors, BadSceneIsOneErrorOnRankZeroAndNothingWritten) {
   TempDir work;
   const fs::path out = work / "bad";

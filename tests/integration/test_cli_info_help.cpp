@@ -65,19 +65,21 @@ TEST_P(Help, ExitsZeroWithUsageAndOptions) {
 
 INSTANTIATE_TEST_SUITE_P(
     Commands, Help,
-    ::testing::Values(
-        HelpCase{{}, {"bounce", "bake", "info", "bench", "--version"}, {}},
-        HelpCase{{"bake"},
-                 {"scenes", "--out", "--voxel", "--patches-total", "--patches-per-voxel",
-                  "--patches", "--samples-per-face", "--visibility-rays", "--seed",
-                  "--dump-matrices", "--json", "--quiet"},
-                 {}},
-        HelpCase{{"info"}, {"scene", "--json"}, {"--voxel"}},
-        // bench writes nothing: no --out, no --dump-matrices.
-        HelpCase{{"bench", "bake"},
-                 {"scenes", "--voxel", "--patches-total", "--patches-per-voxel", "--patches",
-                  "--samples-per-face", "--visibility-rays", "--seed", "--json"},
-                 {"--out", "--dump-matrices"}}),
+    ::testing::Values(HelpCase{{}, {"bounce", "bake", "info", "bench", "--version"}, {}},
+                      HelpCase{
+                          {"bake"},
+                          {"scenes", "--out", "--voxel", "--patches-total", "--patches-per-voxel",
+                           "--patches", "--samples-per-face", "--visibility-rays", "--seed",
+                           "--dump-matrices", "--json", "--quiet"},
+                          {}},
+                      HelpCase{{"info"}, {"scene", "--json"}, {"--voxel"}},
+                      // bench writes nothing: no --out folder (--out-of-core is a setting of
+                      // the bake it times), no --dump-matrices.
+                      HelpCase{{"bench", "bake"},
+                               {"scenes", "--voxel", "--patches-total", "--patches-per-voxel",
+                                "--patches", "--samples-per-face", "--visibility-rays", "--seed",
+                                "--json", "--scaling", "--out-of-core"},
+                               {"--out TEXT", "--dump-matrices"}}),
     [](const ::testing::TestParamInfo<HelpCase>& p) {
       std::string name;
       for (const std::string& c : p.param.command) name += (name.empty() ? "" : "_") + c;

@@ -42,7 +42,7 @@ TEST(ClassicRadiosity, KIterationsEqualTheKBounceMatrix) {
     }
     std::vector<glm::vec3> expected, got;
     dense_indirect(m, n, map, b, expected);
-    const ClassicRadiosity classic(f.values, albedo, k);
+    const ClassicRadiosity classic({f.values.begin(), f.values.end()}, albedo, k);
     classic.multiply(b, got);
     for (std::size_t p = 0; p < n; ++p)
       for (int c = 0; c < 3; ++c)

@@ -405,7 +405,7 @@ std::vector<glm::vec3> cornell_indirect(const Cornell& c, const RayTracer& trace
   const std::size_t n = b.size();
   std::vector<glm::vec3> tb(n, glm::vec3(0.0f));
   for (int ch = 0; ch < 3; ++ch) {
-    const std::vector<float>& t = c.bake.transport.channel(ch).t;
+    const MatrixValues& t = c.bake.transport.channel(ch).t;
     for (std::size_t i = 0; i < n; ++i) {
       double sum = 0.0;
       for (std::size_t j = 0; j < n; ++j) sum += double(t[i * n + j]) * b[j][ch];

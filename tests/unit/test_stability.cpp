@@ -17,6 +17,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -64,14 +65,14 @@ double series(double x, int k) {
   return sum;
 }
 
-std::vector<double> times_ones(const std::vector<float>& t, std::size_t n) {
+std::vector<double> times_ones(std::span<const float> t, std::size_t n) {
   std::vector<double> y(n, 0.0);
   for (std::size_t p = 0; p < n; ++p)
     for (std::size_t q = 0; q < n; ++q) y[p] += t[p * n + q];
   return y;
 }
 
-std::size_t non_finite(const std::vector<float>& v) {
+std::size_t non_finite(std::span<const float> v) {
   return static_cast<std::size_t>(
       std::count_if(v.begin(), v.end(), [](float x) { return !std::isfinite(x); }));
 }

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <limits>
 #include <random>
+#include <span>
 #include <string>
 
 #include "bake/bake.h"
@@ -90,7 +91,7 @@ std::vector<double> matvec(const std::vector<double>& m, const std::vector<doubl
   return y;
 }
 
-std::vector<double> matvec(const std::vector<float>& t, const std::vector<double>& x) {
+std::vector<double> matvec(std::span<const float> t, const std::vector<double>& x) {
   return matvec(std::vector<double>(t.begin(), t.end()), x);
 }
 
@@ -433,7 +434,7 @@ TEST(TransportSpectralRadius, KnownSpectra) {
   // Uniform furnace: diag(rho) F = rho 1 a^T, spectrum {rho, 0, ...}.
   const std::size_t n = 80;
   const FormFactorMatrix f = uniform_furnace(n, 16);
-  std::vector<float> m(f.values);
+  std::vector<float> m(f.values.begin(), f.values.end());
   for (float& x : m) x *= 0.7f;
   const SpectralRadius r = estimate_spectral_radius(m.data(), n);
   EXPECT_NEAR(r.estimate, 0.7, 1e-5);
