@@ -114,7 +114,7 @@ void* allocate_matrix_bytes(std::size_t bytes) {
   return file.release();
 }
 
-void deallocate_matrix_bytes(void* p, std::size_t bytes) noexcept {
+void deallocate_matrix_bytes(void* p, [[maybe_unused]] std::size_t bytes) noexcept {
   if (!p) return;
   {
     Registry& r = registry();
@@ -127,7 +127,9 @@ void deallocate_matrix_bytes(void* p, std::size_t bytes) noexcept {
       return;
     }
   }
-  ::operator delete(p, bytes);
+  // Unsized: clang does not declare the sized delete without
+  // -fsized-deallocation (the fuzz build), and the heap needs no size.
+  ::operator delete(p);
 }
 
 bool is_mapped_matrix(const void* p) {
