@@ -12,6 +12,7 @@
 #include "compress/matrix_error.h"
 #include "compress/matrix_picture.h"
 #include "compress/sparse_split.h"
+#include "scratch_dir.h"
 
 namespace bounce {
 
@@ -93,12 +94,12 @@ TEST(MatrixPicture, LogColoursZerosBlackAndAColourBar) {
   const std::uint8_t* d2 = const_cast<Rgb8Image&>(flipped).at(margin + 10, margin + 10);
   for (int c = 0; c < 3; ++c) EXPECT_EQ(d2[c], top[c]);
   // And it survives a PNG round trip.
-  const auto path = std::filesystem::temp_directory_path() / "bounce-matrix-picture-test.png";
+  const test::ScratchDir dir("bounce-matrix-picture");
+  const auto path = dir / "picture.png";
   write_png(path, img);
   const Rgb8Image back = read_png(path);
   EXPECT_EQ(back.width, img.width);
   EXPECT_EQ(back.pixels, img.pixels);
-  std::filesystem::remove(path);
 }
 
 TEST(IndirectLightError, ScaledMatrixGivesTheScaleAsRelativeError) {

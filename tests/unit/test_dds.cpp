@@ -17,6 +17,7 @@
 #include "compress/block_bc4.h"
 #include "compress/block_image.h"
 #include "compress/dds.h"
+#include "scratch_dir.h"
 
 namespace bounce {
 
@@ -26,15 +27,8 @@ namespace {
 
 class DdsTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir = fs::temp_directory_path() /
-          ("bounce-dds-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
-           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
-  fs::path dir;
+  test::ScratchDir scratch{"bounce-dds"};
+  const fs::path dir = scratch.path();
 };
 
 // Random blocks: both BC1 modes (c0 > c1 and c0 <= c1) and both BC4 modes

@@ -3,7 +3,6 @@
 // process's mappings when the matrix is freed, and a folder that cannot hold
 // the file gives an error naming it.
 #include <gtest/gtest.h>
-#include <stdlib.h>
 
 #include <filesystem>
 #include <fstream>
@@ -14,21 +13,14 @@
 #include "bake/out_of_core.h"
 #include "base/error.h"
 #include "base/mapped_buffer.h"
+#include "scratch_dir.h"
 
 namespace bounce {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct ScratchDir {
-  ScratchDir() {
-    std::string pattern = (fs::temp_directory_path() / "bounce-mapped-XXXXXX").string();
-    if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-    path = pattern;
-  }
-  ~ScratchDir() { fs::remove_all(path); }
-  fs::path path;
-};
+using test::ScratchDir;
 
 // Lines of /proc/self/maps naming a file in `dir`.
 int mappings_in(const fs::path& dir) {
@@ -42,7 +34,7 @@ int mappings_in(const fs::path& dir) {
 TEST(MappedBuffer, WritesReadBackAndTheFileIsGoneWithTheMatrix) {
   ScratchDir dir;
   {
-    const OutOfCoreScope scope(OutOfCorePolicy{dir.path});
+    const OutOfCoreScope scope(OutOfCorePolicy{dir.path()});
     MatrixValues m(300 * 300);
     EXPECT_TRUE(is_mapped_matrix(m.data()));
     EXPECT_GE(mapped_matrix_bytes(), m.size() * sizeof(float));
@@ -52,16 +44,16 @@ TEST(MappedBuffer, WritesReadBackAndTheFileIsGoneWithTheMatrix) {
     for (std::size_t i = 0; i < m.size(); i += 997) ASSERT_EQ(m[i], static_cast<float>(i));
     // The file was unlinked when it was mapped: nothing in the folder, one
     // mapping of a deleted file in the process.
-    EXPECT_TRUE(fs::is_empty(dir.path));
-    EXPECT_EQ(mappings_in(dir.path), 1);
+    EXPECT_TRUE(fs::is_empty(dir.path()));
+    EXPECT_EQ(mappings_in(dir.path()), 1);
     // A copy under the policy is a second mapping with the same bytes.
     const MatrixValues copy = m;
     EXPECT_TRUE(is_mapped_matrix(copy.data()));
     EXPECT_TRUE(std::equal(copy.begin(), copy.end(), m.begin()));
-    EXPECT_EQ(mappings_in(dir.path), 2);
+    EXPECT_EQ(mappings_in(dir.path()), 2);
   }
-  EXPECT_EQ(mappings_in(dir.path), 0);
-  EXPECT_TRUE(fs::is_empty(dir.path));
+  EXPECT_EQ(mappings_in(dir.path()), 0);
+  EXPECT_TRUE(fs::is_empty(dir.path()));
 }
 
 TEST(MappedBuffer, WithoutAPolicyMatricesAreOnTheHeap) {
@@ -78,31 +70,31 @@ TEST(MappedBuffer, SpillMovesAFinishedHeapMatrixToAFile) {
   std::iota(m.begin(), m.end(), 1.0f);
   const MatrixValues expected = m;
   ASSERT_FALSE(is_mapped_matrix(m.data()));
-  const MatrixValues mapped = spill_to_file(std::move(m), OutOfCorePolicy{dir.path});
+  const MatrixValues mapped = spill_to_file(std::move(m), OutOfCorePolicy{dir.path()});
   EXPECT_TRUE(is_mapped_matrix(mapped.data()));
   EXPECT_TRUE(mapped == expected);
   EXPECT_FALSE(out_of_core_policy().has_value());  // the spill's scope ended with it
-  EXPECT_EQ(mappings_in(dir.path), 1);
+  EXPECT_EQ(mappings_in(dir.path()), 1);
 }
 
 TEST(MappedBuffer, ScopesNestAndRestoreThePreviousPolicy) {
   ScratchDir a, b;
   {
-    const OutOfCoreScope outer(OutOfCorePolicy{a.path});
+    const OutOfCoreScope outer(OutOfCorePolicy{a.path()});
     {
       const OutOfCoreScope inner(std::nullopt);
       EXPECT_FALSE(out_of_core_policy().has_value());
     }
     ASSERT_TRUE(out_of_core_policy().has_value());
-    EXPECT_EQ(out_of_core_policy()->dir, a.path);
+    EXPECT_EQ(out_of_core_policy()->dir, a.path());
   }
   EXPECT_FALSE(out_of_core_policy().has_value());
 }
 
 TEST(MappedBuffer, AFolderThatCannotHoldTheFileIsNamedInTheError) {
   ScratchDir dir;
-  const fs::path missing = dir.path / "no-such-folder";
-  const fs::path file = dir.path / "a-file";
+  const fs::path missing = dir.path() / "no-such-folder";
+  const fs::path file = dir.path() / "a-file";
   std::ofstream(file) << "x";
   for (const fs::path& bad : {missing, file}) {
     const OutOfCoreScope scope(OutOfCorePolicy{bad});
@@ -114,7 +106,7 @@ TEST(MappedBuffer, AFolderThatCannotHoldTheFileIsNamedInTheError) {
       EXPECT_NE(std::string(e.what()).find("temporary matrix file"), std::string::npos) << e.what();
     }
   }
-  EXPECT_EQ(mappings_in(dir.path), 0);
+  EXPECT_EQ(mappings_in(dir.path()), 0);
 }
 
 TEST(OutOfCoreDecision, AutoMapsWhenTheDenseMatricesExceedHalfTheMemory) {

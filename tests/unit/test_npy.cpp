@@ -6,6 +6,7 @@
 
 #include "io/atomic_file.h"
 #include "io/npy.h"
+#include "scratch_dir.h"
 
 namespace bounce {
 
@@ -13,15 +14,8 @@ namespace fs = std::filesystem;
 
 class NpyTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir = fs::temp_directory_path() /
-          ("bounce-npy-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
-           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
-  fs::path dir;
+  test::ScratchDir scratch{"bounce-npy"};
+  const fs::path dir = scratch.path();
 };
 
 TEST_F(NpyTest, FloatRoundTripAndHeaderAlignment) {

@@ -4,7 +4,6 @@
 // names) must be backed by values in the file. Well-formed files in
 // the variants the check has to follow (CR LF, tabs, both endians) still load.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -13,6 +12,7 @@
 
 #include "base/diagnostics.h"
 #include "scene/scene_loader.h"
+#include "scratch_dir.h"
 
 namespace bounce {
 namespace {
@@ -21,14 +21,8 @@ namespace fs = std::filesystem;
 
 class PlyCheck : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() /
-          ("bounce-ply-" + std::to_string(::getpid()) + "-" + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
+  test::ScratchDir scratch{"bounce-ply"};
+  const fs::path dir = scratch.path();
 
   fs::path write(const std::string& text) const {
     const fs::path p = dir / "mesh.ply";
@@ -53,8 +47,6 @@ class PlyCheck : public ::testing::Test {
     Diagnostics diagnostics;
     return SceneLoader(diagnostics).load(write(text)).triangle_count();
   }
-
-  fs::path dir;
 };
 
 // A unit quad: 4 vertices, one quad face (two triangles once triangulated).

@@ -7,6 +7,7 @@
 
 #include "raytrace/ray_tracer.h"
 #include "reference/reference_cache.h"
+#include "scratch_dir.h"
 #include "test_scenes.h"
 
 namespace bounce {
@@ -14,17 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() /
-           ("bounce-reference-cache-" +
-            std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
+using test::ScratchDir;
 
 Scene lit_furnace(float intensity) {
   Scene scene = test_scenes::furnace_box(glm::vec3(0.5f), glm::vec3(0.0f));
@@ -37,8 +28,8 @@ Scene lit_furnace(float intensity) {
 }
 
 TEST(ReferenceCache, HitReturnsIdenticalImagesAndChangedLightMisses) {
-  TempDir dir;
-  const ReferenceCache cache(dir.path);
+  const ScratchDir dir("bounce-reference-cache");
+  const ReferenceCache cache(dir.path());
   ReferenceSettings settings;
   settings.samples = 4;
   const Scene scene = lit_furnace(1.0f);
@@ -55,7 +46,7 @@ TEST(ReferenceCache, HitReturnsIdenticalImagesAndChangedLightMisses) {
   EXPECT_EQ(first.full_variance.pixels, second.full_variance.pixels);
   EXPECT_EQ(first.coverage, second.coverage);
   // No temporary files left behind: exactly one entry.
-  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()), 1);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);
 
   const Scene brighter = lit_furnace(2.0f);
   const RayTracer tracer2(brighter);
@@ -78,8 +69,8 @@ TEST(ReferenceCache, HitReturnsIdenticalImagesAndChangedLightMisses) {
 }
 
 TEST(ReferenceCache, PointsRoundTripAndCorruptEntryIsAMiss) {
-  TempDir dir;
-  const ReferenceCache cache(dir.path);
+  const ScratchDir dir("bounce-reference-cache");
+  const ReferenceCache cache(dir.path());
   ReferenceSettings settings;
   settings.samples = 3;
   const Scene scene = lit_furnace(1.0f);
@@ -97,7 +88,7 @@ TEST(ReferenceCache, PointsRoundTripAndCorruptEntryIsAMiss) {
   EXPECT_EQ(a.indirect_irradiance, b.indirect_irradiance);
   EXPECT_EQ(a.radiosity_variance, b.radiosity_variance);
   // Truncate the entry: the next call must miss and recompute, not crash.
-  for (const auto& f : fs::directory_iterator(dir.path)) fs::resize_file(f.path(), 20);
+  for (const auto& f : fs::directory_iterator(dir.path())) fs::resize_file(f.path(), 20);
   const PointReference c = cached_reference_points(pt, points, &cache, nullptr, &hit);
   EXPECT_FALSE(hit);
   EXPECT_EQ(c.radiosity, a.radiosity);

@@ -8,6 +8,7 @@
 
 #include "base/error.h"
 #include "report/report_data.h"
+#include "scratch_dir.h"
 
 namespace bounce {
 namespace {
@@ -94,8 +95,7 @@ TEST(ReportData, JsonRoundTripAndErrorsNameTheFile) {
   EXPECT_EQ(back.rows[1].matrix_bytes, 1234u);
   EXPECT_EQ(back.rows[0].pareto, d.rows[0].pareto);
 
-  const auto dir = std::filesystem::temp_directory_path() / "bounce_test_report_data";
-  std::filesystem::create_directories(dir);
+  const test::ScratchDir dir("bounce-report-data");
   const auto bad = dir / "report.json";
   {
     std::ofstream out(bad);
@@ -108,7 +108,6 @@ TEST(ReportData, JsonRoundTripAndErrorsNameTheFile) {
     EXPECT_NE(std::string(e.what()).find(bad.string()), std::string::npos) << e.what();
   }
   EXPECT_THROW(read_report(dir / "missing.json"), Error);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

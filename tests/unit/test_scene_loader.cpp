@@ -3,7 +3,6 @@
 // fails with a LoadError naming the file and the problem or loads with a
 // warning saying what was repaired. Format: docs/scene-format.md.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +15,7 @@
 
 #include "base/diagnostics.h"
 #include "scene/scene_loader.h"
+#include "scratch_dir.h"
 
 namespace bounce {
 
@@ -274,7 +274,8 @@ TEST(SceneLoaderShipped, EveryShippedSceneLoadsWithoutOtherWarnings) {
     EXPECT_GT(s.triangle_count(), 0u) << entry.path();
     // The Cornell OBJ's duplicated box faces are the one known, reported flaw.
     EXPECT_EQ(d.warnings().size(), count_warnings(d, {"duplicate triangles"}))
-        << entry.path() << "\n" << all_warnings(d);
+        << entry.path() << "\n"
+        << all_warnings(d);
     EXPECT_EQ(s.name, entry.path().filename().string());
     for (const Material& m : s.materials) {
       for (int c = 0; c < 3; ++c) {
@@ -291,14 +292,8 @@ TEST(SceneLoaderShipped, EveryShippedSceneLoadsWithoutOtherWarnings) {
 
 class SceneLoaderInput : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = fs::temp_directory_path() / ("bounce-scene-" + std::to_string(::getpid()) + "-" +
-                                       info->test_suite_name() + "-" + info->name());
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-  }
-  void TearDown() override { fs::remove_all(dir); }
+  test::ScratchDir scratch{"bounce-scene"};
+  const fs::path dir = scratch.path();
 
   fs::path write(const std::string& name, const std::string& text) const {
     const fs::path p = dir / name;
@@ -332,7 +327,6 @@ class SceneLoaderInput : public ::testing::Test {
 
   Scene load(const fs::path& path) { return SceneLoader(diagnostics).load(path); }
 
-  fs::path dir;
   Diagnostics diagnostics;
 };
 
