@@ -21,7 +21,7 @@
 #include "base/error.h"
 #include "io/tone_map.h"
 #include "preview_lighting.h"
-#include "views/embedded_shaders.h"
+#include "preview_programs.h"
 
 namespace bounce::views {
 
@@ -32,17 +32,6 @@ struct PreviewWidget::SolveResult {
 };
 
 namespace {
-
-const char* shader_source(const char* name) {
-  for (const EmbeddedShader& s : kEmbeddedShaders)
-    if (std::strcmp(s.name, name) == 0) return s.source;
-  throw Error(std::string("shaders/") + name, "not built into the studio (rerun CMake)");
-}
-
-// G-buffer targets, in the order of preview_gbuffer.frag's outputs. RGBA16F
-// throughout: the paper's RGB16F is not required to be colour-renderable in
-// OpenGL 3.3, RGBA16F is.
-constexpr int kGbufferTargets = 5;
 
 // The six faces of a cube map as OpenGL orders them, with the up vectors
 // its face layout implies.
@@ -304,7 +293,7 @@ void PreviewWidget::initializeGL() {
     return;
   }
   try {
-    build_programs();
+    programs_ = PreviewPrograms::build();
   } catch (const std::exception& e) {
     gl_error_ = QString::fromStdString(e.what());
     return;
@@ -347,39 +336,8 @@ void PreviewWidget::initializeGL() {
   shadow_dirty_ = true;
 }
 
-void PreviewWidget::build_programs() {
-  auto make = [](const char* vert, const char* frag) {
-    auto p = std::make_unique<QOpenGLShaderProgram>();
-    if (!p->addShaderFromSourceCode(QOpenGLShader::Vertex, shader_source(vert)))
-      throw Error(std::string("shaders/") + vert, p->log().toStdString());
-    if (!p->addShaderFromSourceCode(QOpenGLShader::Fragment, shader_source(frag)))
-      throw Error(std::string("shaders/") + frag, p->log().toStdString());
-    if (!p->link())
-      throw Error(std::string("shaders/") + vert + " + " + frag, p->log().toStdString());
-    return p;
-  };
-  shadow_program_ = make("preview_shadow.vert", "preview_shadow.frag");
-  gbuffer_program_ = make("preview_gbuffer.vert", "preview_gbuffer.frag");
-  ssao_program_ = make("preview_fullscreen.vert", "preview_ssao.frag");
-  blur_program_ = make("preview_fullscreen.vert", "preview_blur.frag");
-  composite_program_ = make("preview_fullscreen.vert", "preview_composite.frag");
-}
-
-void PreviewWidget::release_gbuffer() {
-  if (gbuffer_fbo_) glDeleteFramebuffers(1, &gbuffer_fbo_);
-  if (gbuffer_depth_) glDeleteRenderbuffers(1, &gbuffer_depth_);
-  glDeleteTextures(kGbufferTargets, gbuffer_textures_);
-  if (ao_fbo_) glDeleteFramebuffers(1, &ao_fbo_);
-  if (blur_fbo_) glDeleteFramebuffers(1, &blur_fbo_);
-  if (ao_texture_) glDeleteTextures(1, &ao_texture_);
-  if (blur_texture_) glDeleteTextures(1, &blur_texture_);
-  gbuffer_fbo_ = gbuffer_depth_ = ao_fbo_ = blur_fbo_ = ao_texture_ = blur_texture_ = 0;
-  std::fill(std::begin(gbuffer_textures_), std::end(gbuffer_textures_), 0u);
-  gbuffer_width_ = gbuffer_height_ = 0;
-}
-
 void PreviewWidget::release_gl() {
-  release_gbuffer();
+  targets_.release();
   if (mesh_vao_) glDeleteVertexArrays(1, &mesh_vao_);
   if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
   if (static_vbo_) glDeleteBuffers(1, &static_vbo_);
@@ -389,57 +347,8 @@ void PreviewWidget::release_gl() {
   if (noise_texture_) glDeleteTextures(1, &noise_texture_);
   mesh_vao_ = empty_vao_ = static_vbo_ = indirect_vbo_ = shadow_fbo_ = shadow_cube_ =
       noise_texture_ = 0;
-  shadow_program_.reset();
-  gbuffer_program_.reset();
-  ssao_program_.reset();
-  blur_program_.reset();
-  composite_program_.reset();
+  programs_ = {};
   gl_ready_ = false;
-}
-
-void PreviewWidget::make_gbuffer(int width, int height) {
-  release_gbuffer();
-  auto texture = [this](GLenum internal, GLenum format, int w, int h) {
-    GLuint t = 0;
-    glGenTextures(1, &t);
-    glBindTexture(GL_TEXTURE_2D, t);
-    glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal), w, h, 0, format, GL_FLOAT,
-                 nullptr);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return t;
-  };
-  auto check = [this](const char* what) {
-    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-      throw Error("preview", std::string("the ") + what + " framebuffer is incomplete");
-  };
-  glGenFramebuffers(1, &gbuffer_fbo_);
-  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo_);
-  GLenum attachments[kGbufferTargets];
-  for (int k = 0; k < kGbufferTargets; ++k) {
-    gbuffer_textures_[k] = texture(GL_RGBA16F, GL_RGBA, width, height);
-    attachments[k] = static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + k);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, attachments[k], GL_TEXTURE_2D, gbuffer_textures_[k], 0);
-  }
-  glDrawBuffers(kGbufferTargets, attachments);
-  glGenRenderbuffers(1, &gbuffer_depth_);
-  glBindRenderbuffer(GL_RENDERBUFFER, gbuffer_depth_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, gbuffer_depth_);
-  check("G-buffer");
-
-  for (auto [fbo, tex] :
-       {std::pair{&ao_fbo_, &ao_texture_}, std::pair{&blur_fbo_, &blur_texture_}}) {
-    *tex = texture(GL_R16F, GL_RED, width, height);
-    glGenFramebuffers(1, fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, *fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, *tex, 0);
-    check("occlusion");
-  }
-  gbuffer_width_ = width;
-  gbuffer_height_ = height;
 }
 
 void PreviewWidget::resizeGL(int, int) {}
@@ -513,9 +422,9 @@ void PreviewWidget::render_shadow_map() {
   glViewport(0, 0, kShadowSize, kShadowSize);
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);  // single-sided walls shadow from both sides
-  shadow_program_->bind();
-  shadow_program_->setUniformValue("far_plane", far_plane);
-  glUniform3fv(shadow_program_->uniformLocation("light_position"), 1,
+  programs_.shadow->bind();
+  programs_.shadow->setUniformValue("far_plane", far_plane);
+  glUniform3fv(programs_.shadow->uniformLocation("light_position"), 1,
                glm::value_ptr(light_position_));
   glBindVertexArray(mesh_vao_);
   for (int f = 0; f < 6; ++f) {
@@ -526,7 +435,7 @@ void PreviewWidget::render_shadow_map() {
     const glm::mat4 view =
         glm::lookAt(light_position_, light_position_ + kCubeForward[f], kCubeUp[f]);
     const glm::mat4 vp = projection * view;
-    glUniformMatrix4fv(shadow_program_->uniformLocation("light_view_projection"), 1, GL_FALSE,
+    glUniformMatrix4fv(programs_.shadow->uniformLocation("light_view_projection"), 1, GL_FALSE,
                        glm::value_ptr(vp));
     glDrawArrays(GL_TRIANGLES, 0, corner_count_);
   }
@@ -546,14 +455,14 @@ void PreviewWidget::render(GLuint target) {
   }
   if (mesh_dirty_) upload_mesh();
   if (indirect_dirty_) upload_indirect();
-  if (gbuffer_width_ != w || gbuffer_height_ != h) make_gbuffer(w, h);
+  targets_.ensure_size(w, h);
   if (shadow_dirty_) render_shadow_map();
 
   const glm::mat4 view = view_matrix();
   const glm::mat4 projection = projection_matrix();
 
   // 1. G-buffer.
-  glBindFramebuffer(GL_FRAMEBUFFER, gbuffer_fbo_);
+  glBindFramebuffer(GL_FRAMEBUFFER, targets_.gbuffer_fbo());
   glViewport(0, 0, w, h);
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);  // from outside, the walls' backs open the box up
@@ -561,11 +470,11 @@ void PreviewWidget::render(GLuint target) {
   const float far_position[4] = {0.0f, 0.0f, -1e4f, 0.0f};
   const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
   glClearBufferfv(GL_COLOR, 0, far_position);
-  for (int k = 1; k < kGbufferTargets; ++k) glClearBufferfv(GL_COLOR, k, zero);
+  for (int k = 1; k < PreviewTargets::kGbufferTargets; ++k) glClearBufferfv(GL_COLOR, k, zero);
   glClear(GL_DEPTH_BUFFER_BIT);
-  gbuffer_program_->bind();
-  glUniformMatrix4fv(gbuffer_program_->uniformLocation("view"), 1, GL_FALSE, glm::value_ptr(view));
-  glUniformMatrix4fv(gbuffer_program_->uniformLocation("projection"), 1, GL_FALSE,
+  programs_.gbuffer->bind();
+  glUniformMatrix4fv(programs_.gbuffer->uniformLocation("view"), 1, GL_FALSE, glm::value_ptr(view));
+  glUniformMatrix4fv(programs_.gbuffer->uniformLocation("projection"), 1, GL_FALSE,
                      glm::value_ptr(projection));
   glBindVertexArray(mesh_vao_);
   glDrawArrays(GL_TRIANGLES, 0, corner_count_);
@@ -581,34 +490,34 @@ void PreviewWidget::render(GLuint target) {
   // 2-3. Occlusion and its blur (only when they are shown).
   const bool ao = passes_.ao && passes_.indirect;
   if (ao) {
-    glBindFramebuffer(GL_FRAMEBUFFER, ao_fbo_);
-    ssao_program_->bind();
-    bind(0, GL_TEXTURE_2D, gbuffer_textures_[0]);
-    bind(1, GL_TEXTURE_2D, gbuffer_textures_[1]);
-    bind(2, GL_TEXTURE_2D, gbuffer_textures_[2]);
+    glBindFramebuffer(GL_FRAMEBUFFER, targets_.ao_fbo());
+    programs_.ssao->bind();
+    bind(0, GL_TEXTURE_2D, targets_.gbuffer_texture(0));
+    bind(1, GL_TEXTURE_2D, targets_.gbuffer_texture(1));
+    bind(2, GL_TEXTURE_2D, targets_.gbuffer_texture(2));
     bind(3, GL_TEXTURE_2D, noise_texture_);
-    ssao_program_->setUniformValue("g_position", 0);
-    ssao_program_->setUniformValue("g_normal", 1);
-    ssao_program_->setUniformValue("g_albedo", 2);
-    ssao_program_->setUniformValue("noise", 3);
-    glUniform3fv(ssao_program_->uniformLocation("kernel"), kAoSamples,
+    programs_.ssao->setUniformValue("g_position", 0);
+    programs_.ssao->setUniformValue("g_normal", 1);
+    programs_.ssao->setUniformValue("g_albedo", 2);
+    programs_.ssao->setUniformValue("noise", 3);
+    glUniform3fv(programs_.ssao->uniformLocation("kernel"), kAoSamples,
                  glm::value_ptr(ao_kernel_.front()));
-    ssao_program_->setUniformValue("kernel_size", kAoSamples);
+    programs_.ssao->setUniformValue("kernel_size", kAoSamples);
     // R and delta belong to the scene (the paper picks them per scene): a
     // twentieth of its diagonal reaches into corners without darkening whole
     // walls; delta is above the RGBA16F position's step at this depth.
-    ssao_program_->setUniformValue("radius", 0.05f * scene_diagonal_);
-    ssao_program_->setUniformValue("delta", 0.005f * scene_diagonal_);
-    glUniformMatrix4fv(ssao_program_->uniformLocation("projection"), 1, GL_FALSE,
+    programs_.ssao->setUniformValue("radius", 0.05f * scene_diagonal_);
+    programs_.ssao->setUniformValue("delta", 0.005f * scene_diagonal_);
+    glUniformMatrix4fv(programs_.ssao->uniformLocation("projection"), 1, GL_FALSE,
                        glm::value_ptr(projection));
-    ssao_program_->setUniformValue(
+    programs_.ssao->setUniformValue(
         "noise_scale", QVector2D(static_cast<float>(w) / 4.0f, static_cast<float>(h) / 4.0f));
     glDrawArrays(GL_TRIANGLES, 0, 3);
 
-    glBindFramebuffer(GL_FRAMEBUFFER, blur_fbo_);
-    blur_program_->bind();
-    bind(0, GL_TEXTURE_2D, ao_texture_);
-    blur_program_->setUniformValue("ao", 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, targets_.blur_fbo());
+    programs_.blur->bind();
+    bind(0, GL_TEXTURE_2D, targets_.ao_texture());
+    programs_.blur->setUniformValue("ao", 0);
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
 
@@ -661,37 +570,38 @@ void PreviewWidget::draw_composite(bool direct, bool indirect, bool ao, float ex
     glBindTexture(kind, t);
   };
   const glm::mat4 view = view_matrix();
-  composite_program_->bind();
-  for (int k = 0; k < kGbufferTargets; ++k) bind(k, GL_TEXTURE_2D, gbuffer_textures_[k]);
-  bind(5, GL_TEXTURE_2D, blur_texture_);
+  programs_.composite->bind();
+  for (int k = 0; k < PreviewTargets::kGbufferTargets; ++k)
+    bind(k, GL_TEXTURE_2D, targets_.gbuffer_texture(k));
+  bind(5, GL_TEXTURE_2D, targets_.blur_texture());
   bind(6, GL_TEXTURE_CUBE_MAP, shadow_cube_);
   const char* samplers[] = {"g_position", "g_normal", "g_albedo",  "g_emission",
                             "g_indirect", "ao",       "shadow_map"};
-  for (int k = 0; k < 7; ++k) composite_program_->setUniformValue(samplers[k], k);
+  for (int k = 0; k < 7; ++k) programs_.composite->setUniformValue(samplers[k], k);
   const Light& light = lighting_->light();
   const glm::mat3 view_rotation(view);
   const glm::vec3 light_view = glm::vec3(view * glm::vec4(light_position_, 1.0f));
   const glm::vec3 power = light.color * light.intensity;
   const glm::vec3 axis = view_rotation * glm::normalize(light.direction);
   const glm::mat3 to_world = glm::transpose(view_rotation);
-  glUniformMatrix3fv(composite_program_->uniformLocation("view_to_world"), 1, GL_FALSE,
+  glUniformMatrix3fv(programs_.composite->uniformLocation("view_to_world"), 1, GL_FALSE,
                      glm::value_ptr(to_world));
-  glUniform3fv(composite_program_->uniformLocation("light_view"), 1, glm::value_ptr(light_view));
-  glUniform3fv(composite_program_->uniformLocation("light_power"), 1, glm::value_ptr(power));
-  composite_program_->setUniformValue("light_is_spot", light.type == Light::Type::Spot ? 1 : 0);
-  glUniform3fv(composite_program_->uniformLocation("spot_axis_view"), 1, glm::value_ptr(axis));
-  composite_program_->setUniformValue("spot_cos",
-                                      QVector2D(std::cos(glm::radians(light.spot_inner_deg)),
-                                                std::cos(glm::radians(light.spot_outer_deg))));
-  composite_program_->setUniformValue("far_plane", 2.0f * scene_diagonal_);
-  composite_program_->setUniformValue("shadow_bias", 0.003f * scene_diagonal_);
-  composite_program_->setUniformValue("pcf_radius", 0.006f);
-  composite_program_->setUniformValue("show_direct", direct);
-  composite_program_->setUniformValue("show_indirect", indirect);
-  composite_program_->setUniformValue("use_ao", ao);
-  composite_program_->setUniformValue("exposure", exposure);
-  composite_program_->setUniformValue("linear_output", linear);
-  composite_program_->setUniformValue("background", QVector3D(0.12f, 0.12f, 0.13f));
+  glUniform3fv(programs_.composite->uniformLocation("light_view"), 1, glm::value_ptr(light_view));
+  glUniform3fv(programs_.composite->uniformLocation("light_power"), 1, glm::value_ptr(power));
+  programs_.composite->setUniformValue("light_is_spot", light.type == Light::Type::Spot ? 1 : 0);
+  glUniform3fv(programs_.composite->uniformLocation("spot_axis_view"), 1, glm::value_ptr(axis));
+  programs_.composite->setUniformValue("spot_cos",
+                                       QVector2D(std::cos(glm::radians(light.spot_inner_deg)),
+                                                 std::cos(glm::radians(light.spot_outer_deg))));
+  programs_.composite->setUniformValue("far_plane", 2.0f * scene_diagonal_);
+  programs_.composite->setUniformValue("shadow_bias", 0.003f * scene_diagonal_);
+  programs_.composite->setUniformValue("pcf_radius", 0.006f);
+  programs_.composite->setUniformValue("show_direct", direct);
+  programs_.composite->setUniformValue("show_indirect", indirect);
+  programs_.composite->setUniformValue("use_ao", ao);
+  programs_.composite->setUniformValue("exposure", exposure);
+  programs_.composite->setUniformValue("linear_output", linear);
+  programs_.composite->setUniformValue("background", QVector3D(0.12f, 0.12f, 0.13f));
   glBindVertexArray(empty_vao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
 }

@@ -36,8 +36,8 @@
 #include <glm/glm.hpp>
 
 #include "bake_view_data.h"
-
-class QOpenGLShaderProgram;
+#include "preview_programs.h"
+#include "preview_targets.h"
 
 namespace bounce::views {
 
@@ -112,9 +112,6 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   void draw_composite(bool direct, bool indirect, bool ao, float exposure, bool linear);
   void calibrate_exposure(int width, int height);
   void draw_overlay();
-  void build_programs();
-  void make_gbuffer(int width, int height);
-  void release_gbuffer();
   void release_gl();
   void upload_mesh();
   void upload_indirect();
@@ -160,16 +157,13 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   // OpenGL objects (0: not made).
   bool gl_ready_ = false, mesh_dirty_ = false, indirect_dirty_ = false, shadow_dirty_ = true;
   QString gl_error_;
-  std::unique_ptr<QOpenGLShaderProgram> shadow_program_, gbuffer_program_, ssao_program_,
-      blur_program_, composite_program_;
+  PreviewPrograms programs_;
   GLuint mesh_vao_ = 0, static_vbo_ = 0, indirect_vbo_ = 0, empty_vao_ = 0;
   GLsizei corner_count_ = 0;
   std::vector<std::uint32_t> corner_vertex_;  // mesh vertex of each drawn corner
   GLuint shadow_fbo_ = 0, shadow_cube_ = 0;
-  GLuint gbuffer_fbo_ = 0, gbuffer_depth_ = 0;
-  GLuint gbuffer_textures_[5] = {0, 0, 0, 0, 0};  // position, normal, albedo, emission, indirect
-  GLuint ao_fbo_ = 0, ao_texture_ = 0, blur_fbo_ = 0, blur_texture_ = 0, noise_texture_ = 0;
-  int gbuffer_width_ = 0, gbuffer_height_ = 0;
+  PreviewTargets targets_{*this};
+  GLuint noise_texture_ = 0;
   std::vector<glm::vec3> ao_kernel_;
   // Set from the first frame drawn after set_data, then fixed (see render()).
   std::optional<float> exposure_full_, exposure_indirect_;

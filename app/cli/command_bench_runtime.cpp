@@ -61,6 +61,7 @@ void run(const RuntimeBenchOptions& opt) {
     for (const RuntimeBenchEntry& e : bench.entries)
       entries.push_back({{"what", e.what},
                          {"available", e.available},
+                         {"default_loop", e.default_loop},
                          {"error", e.error},
                          {"best_ms", e.best_ms},
                          {"median_ms", e.median_ms},
@@ -85,8 +86,9 @@ void run(const RuntimeBenchOptions& opt) {
   if (!classic)
     std::printf("  (no classic row: the bake has no F.npy; bake with --dump-matrices)\n");
   std::printf(
-      "  rel diff: max |y - y_C++| / max |y_C++| against the compressed C++ product (dense: the "
-      "compression error; classic: that and K = %d against the bake's K)\n",
+      "  rel diff: max |y - y_C++| / max |y_C++| against the compressed C++ float32 product "
+      "(bfloat16: its rounding; dense: the compression error; classic: that and K = %d against "
+      "the bake's K)\n",
       k);
 }
 
@@ -97,8 +99,10 @@ void register_bench_runtime(CLI::App& bench) {
   CLI::App* cmd = bench.add_subcommand(
       "runtime",
       "Milliseconds per light update of the indirect light T b: compressed on OpenCL and in "
-      "C++, against dense float32 sgemv and classic K iterations (bake with --dump-matrices for "
-      "those two), with bytes read, GB/s and the machine's read bandwidth from the same run");
+      "C++ (the default loop, bfloat16 where the CPU has it, and float32), against dense "
+      "float32 sgemv and classic K iterations (bake with --dump-matrices for those two), with "
+      "bytes read, GB/s, the machine's read bandwidth from the same run and the default loop "
+      "against the issue's targets");
   cmd->add_option("bake", opt->bake, "Bake folder with a compressed matrix")->required();
   cmd->add_option("--repeats", opt->repeats, "Timed updates per path (after one warm-up)")
       ->capture_default_str();

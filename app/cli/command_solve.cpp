@@ -46,6 +46,7 @@ struct SolveOptions {
   int width = 640, height = 480, samples = 1;
   bool no_images = false, no_mesh = false;
   bool json = false, quiet = false;
+  bool float32 = false;  // the C++ product in float32 instead of the default bfloat16 loop
 };
 
 using Clock = std::chrono::steady_clock;
@@ -86,7 +87,8 @@ struct Multiplier {
   std::vector<const float*> dense;
 };
 
-Multiplier make_multiplier(const LoadedBake& b, const std::string& choice, Diagnostics& diag) {
+Multiplier make_multiplier(const LoadedBake& b, const std::string& choice, bool float32,
+                           Diagnostics& diag) {
   Multiplier m;
   const bool compressed = b.compressed.has_value();
   if (choice == "dense" || (!compressed && choice == "auto")) {
@@ -139,7 +141,11 @@ Multiplier make_multiplier(const LoadedBake& b, const std::string& choice, Diagn
       diag.warn("solve", std::string("OpenCL failed, using the C++ path: ") + e.what());
     }
   }
-  auto cpp = std::make_shared<CompressedTransport>(*b.compressed, b.channel_of_rgb);
+  // The default C++ loop is bfloat16 where the CPU has it (~1.4x faster than
+  // float32 on this machine, its rounding ~170x below the compression error;
+  // docs/benchmarks.md, runtime); --float32 opts out.
+  auto cpp = std::make_shared<CompressedTransport>(
+      *b.compressed, b.channel_of_rgb, float32 ? BlockLoop::kFloat32 : BlockLoop::kFastest);
   m.what = std::string("compressed, C++ (") + cpp->block_loop() + ")";
   m.multiply = [cpp](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
     cpp->multiply(in, out);
@@ -185,7 +191,7 @@ void run_solve(const SolveOptions& opt) {
   timings["load_scene"] = since(t);
 
   t = Clock::now();
-  const Multiplier multiplier = make_multiplier(bake, opt.multiply, diag);
+  const Multiplier multiplier = make_multiplier(bake, opt.multiply, opt.float32, diag);
   timings["prepare_multiply"] = since(t);
 
   const std::vector<AreaLight> area = area_lights(scene);
@@ -330,6 +336,9 @@ void register_solve(CLI::App& app) {
   cmd->add_option("--height", opt->height, "Camera image height in pixels")->capture_default_str();
   cmd->add_option("--samples", opt->samples, "n x n camera rays per pixel (anti-aliasing)")
       ->capture_default_str();
+  cmd->add_flag("--float32", opt->float32,
+                "Compressed C++ product in float32 (default: bfloat16 products with float32 "
+                "sums where the CPU has AVX-512 BF16, ~1e-3 of the largest entry off float32)");
   cmd->add_flag("--no-images", opt->no_images, "Skip the camera pictures");
   cmd->add_flag("--no-mesh", opt->no_mesh, "Skip the lit PLY mesh");
   cmd->add_flag("--json", opt->json, "Print a machine-readable summary with timings per step");

@@ -190,8 +190,10 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
   const std::optional<OutOfCorePolicy> out_of_core = policy_of(r.out_of_core);
 
   diagnostics_before = diagnostics_.all().size();
-  // Distributed bake: the root's executor, created as soon as the other
-  // processes wait for it and destroyed (releasing them) however run() ends.
+  // Distributed bake: the root's executors, created as soon as the other
+  // processes wait for them and destroyed (releasing them) however run()
+  // ends: the transport's first (declared last), then the compression's.
+  std::unique_ptr<CompressionExecutor> compressor;
   std::unique_ptr<TransportExecutor> executor;
   if (distribution_ && !plan.runs(BakeStage::FormFactors))
     throw Error("bake", "a distributed bake cannot reuse an earlier bake's form factors");
@@ -208,9 +210,11 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
       if (!distribution_->is_root()) {
         r.stages.push_back(timer.finish());
         distribution_->serve_transport(r.stages);
+        distribution_->serve_compression(r.stages);
         return r;  // the root holds the bake
       }
       executor = distribution_->transport_executor();
+      compressor = distribution_->compression_executor();
     } else {
       r.form_factors =
           compute_form_factors(scene_, *tracer, r.voxels, r.samples, r.patches, fs, &progress);
@@ -305,17 +309,21 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
     release_residency(r.form_factors.values);
     r.probe.channel_of_rgb = channel_of_rgb(r.transport);
     r.stages.push_back(timer.finish());
-    if (distribution_) distribution_->add_other_ranks_peaks(r.stages);
     record_from(BakeStage::Transport, diagnostics_before);
   }
 
   diagnostics_before = diagnostics_.all().size();
   if (plan.runs(BakeStage::Compress)) {
     StageTimer timer("compress");
-    r.storage = store_transport(r.transport, r.probe, r.settings, &progress, diagnostics_);
+    r.storage = store_transport(r.transport, r.probe, r.settings, &progress, diagnostics_,
+                                compressor.get());
     for (const ChannelTransport& c : r.transport.channels) release_residency(c.t);
     r.stages.push_back(timer.finish());
     record_from(BakeStage::Compress, diagnostics_before);
+  }
+  if (distribution_) {
+    compressor.reset();  // the other processes are done, and send their stages' peaks
+    distribution_->add_other_ranks_peaks(r.stages);
   }
   r.total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;

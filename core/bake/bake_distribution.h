@@ -3,9 +3,10 @@
 // MPI ranks). Every process runs the same pipeline on the same scene up to the
 // form factors; each computes only its share of the form-factor rows, holding
 // only those, and form_factors gathers the full matrix on the root. The root then runs
-// the rest of the bake alone, handing the dense algebra of the transport
-// stage to transport_executor(); the other processes serve that executor
-// (serve_transport) and return without a result. Without a distribution
+// the rest of the bake, handing the dense algebra of the transport stage to
+// transport_executor() and the block encoding of the compression stage to
+// compression_executor(); the other processes serve those executors
+// (serve_transport, then serve_compression) and return without a result. Without a distribution
 // (nullptr) Baker::run is the single-process bake, unchanged.
 #include <cstdint>
 #include <memory>
@@ -13,6 +14,7 @@
 
 #include "base/progress.h"
 #include "base/stage_stats.h"
+#include "compress/codec.h"
 #include "formfactor/form_factors.h"
 #include "patches/clustering.h"
 #include "patches/patch_set.h"
@@ -47,10 +49,20 @@ class BakeDistribution {
   virtual std::unique_ptr<TransportExecutor> transport_executor() = 0;
   // Not the root: takes part in the root's products and solves until the
   // root's executor is destroyed, as a stage of its own ("transport")
-  // appended to `stages`; then sends every stage's peak memory to the root.
+  // appended to `stages`.
   virtual void serve_transport(std::vector<StageStats>& stages) = 0;
-  // Root, once its executor is destroyed: each stage's peak memory over the
-  // other processes, by stage name (StageStats::peak_rss_bytes_other_ranks).
+  // Root: the executor the compression stage's block encoding uses. Create
+  // it with transport_executor() and destroy it after that one (however the
+  // bake ends): its destruction releases the other processes from
+  // serve_compression and receives their stages' peak memory.
+  virtual std::unique_ptr<CompressionExecutor> compression_executor() = 0;
+  // Not the root, after serve_transport: encodes the root's block rows until
+  // its compression executor is destroyed, as a stage of its own
+  // ("compress"); then sends every stage's peak memory to the root.
+  virtual void serve_compression(std::vector<StageStats>& stages) = 0;
+  // Root, once its compression executor is destroyed: each stage's peak
+  // memory over the other processes, by stage name
+  // (StageStats::peak_rss_bytes_other_ranks).
   virtual void add_other_ranks_peaks(std::vector<StageStats>& stages) const = 0;
 };
 

@@ -18,9 +18,10 @@ struct Trial {
 
 Trial compress_and_measure(const std::vector<const float*>& exact, std::size_t n,
                            const CodecSettings& codec, const IndirectLightProbe& probe,
-                           std::vector<float>* abs_error_sum, Progress* progress) {
+                           std::vector<float>* abs_error_sum, Progress* progress,
+                           CompressionExecutor* executor) {
   Trial t;
-  t.compressed = compress_matrix(exact, n, codec, progress);
+  t.compressed = compress_matrix(exact, n, codec, progress, executor);
   t.errors = measure_compression(exact, t.compressed, probe, abs_error_sum, progress);
   return t;
 }
@@ -42,14 +43,15 @@ std::array<int, 3> channel_of_rgb(const TransportResult& transport) {
 
 MatrixStorage store_transport(const TransportResult& transport, const IndirectLightProbe& probe,
                               const BakeSettings& settings, Progress* progress,
-                              Diagnostics& diagnostics) {
+                              Diagnostics& diagnostics, CompressionExecutor* executor) {
   return store_matrices(stored_channels(transport), transport.n, probe, settings, progress,
-                        diagnostics);
+                        diagnostics, executor);
 }
 
 MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t n,
                              const IndirectLightProbe& probe, const BakeSettings& settings,
-                             Progress* progress, Diagnostics& diagnostics) {
+                             Progress* progress, Diagnostics& diagnostics,
+                             CompressionExecutor* executor) {
   const auto start = Clock::now();
   MatrixStorage s;
   s.dense_bytes = exact.size() * n * n * sizeof(float);
@@ -83,6 +85,8 @@ MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t
     return s;
   }
 
+  if (executor)
+    s.decisions.push_back({"block encoding: " + executor->description(), "distributed bake"});
   CodecSettings codec;
   codec.kind = choice == CodecChoice::Paper ? CodecKind::Paper : CodecKind::Ours;
   codec.ordering = settings.ordering;
@@ -92,7 +96,7 @@ MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t
     s.decisions.push_back(
         {text_format("kept fraction: %g", codec.kept_fraction),
          settings.kept_fraction ? "requested" : "the published pipeline keeps 4% of the entries"});
-    chosen = compress_and_measure(exact, n, codec, probe, &s.abs_error_sum, progress);
+    chosen = compress_and_measure(exact, n, codec, probe, &s.abs_error_sum, progress, executor);
   } else {
     // The smallest kept fraction of the ladder whose relative Frobenius error
     // meets the budget. The error falls as more entries are kept, so bisect.
@@ -108,7 +112,7 @@ MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t
     while (lo <= hi) {
       const int mid = (lo + hi) / 2;
       codec.kept_fraction = kKeptFractionLadder[mid];
-      last = compress_and_measure(exact, n, codec, probe, &last_map, progress);
+      last = compress_and_measure(exact, n, codec, probe, &last_map, progress, executor);
       s.trials.push_back(
           {codec.kept_fraction, last->errors.matrix.rel_frobenius, last->compressed.total_bytes()});
       if (last->errors.matrix.rel_frobenius <= budget) {

@@ -46,15 +46,18 @@ struct MatrixStorage {
 // Kept fractions tried by the error budget, smallest first.
 inline constexpr double kKeptFractionLadder[] = {0.0025, 0.005, 0.01, 0.02, 0.04, 0.08, 0.16, 0.32};
 
+// `executor`: where the block encoding of every compression tried runs (a
+// distributed bake's ranks; compress_matrix); nullptr: in this process.
 MatrixStorage store_transport(const TransportResult& transport, const IndirectLightProbe& probe,
                               const BakeSettings& settings, Progress* progress,
-                              Diagnostics& diagnostics);
+                              Diagnostics& diagnostics, CompressionExecutor* executor = nullptr);
 // The same from the stored channels alone (n x n each, patch order): the
 // bake's compression stage, and the studio's re-compression of a bake folder's
 // exact T.npy with another codec or ordering for comparison.
 MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t n,
                              const IndirectLightProbe& probe, const BakeSettings& settings,
-                             Progress* progress, Diagnostics& diagnostics);
+                             Progress* progress, Diagnostics& diagnostics,
+                             CompressionExecutor* executor = nullptr);
 
 // The stored channels of `transport` as matrix pointers, and which of them
 // stands for R, G and B.

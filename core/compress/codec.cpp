@@ -66,8 +66,52 @@ const char* ordering_name(OrderingMethod method) {
   return "?";
 }
 
+std::vector<std::uint8_t> encode_block_rows(const BlockEncoding& e, std::size_t count,
+                                            std::span<const std::uint8_t> codes,
+                                            std::span<const float> weights) {
+  if (count == 0) return {};
+  const std::size_t width = e.width, height = 4 * count;
+  if (e.bc4_per_channel) {
+    // One BC4 image per channel of the interleaved texels.
+    std::vector<std::uint8_t> out;
+    std::vector<std::uint8_t> plane(width * height);
+    std::vector<float> plane_weights(width * height);
+    if (codes.size() != plane.size() * 3 || weights.size() != plane.size() * 3)
+      throw Error("compress", "BC4 per channel: texels do not match the block rows");
+    for (std::size_t c = 0; c < 3; ++c) {
+      for (std::size_t k = 0; k < width * height; ++k) {
+        plane[k] = codes[k * 3 + c];
+        plane_weights[k] = weights[k * 3 + c];
+      }
+      const std::vector<std::uint8_t> b =
+          encode_bc4_image(width, height, plane, plane_weights, Bc4Encoder::kWeighted);
+      out.insert(out.end(), b.begin(), b.end());
+    }
+    return out;
+  }
+  if (e.format == DdsFormat::kBc4)
+    return encode_bc4_image(width, height, codes, weights, Bc4Encoder::kWeighted);
+  return encode_bc1_image(width, height, codes, weights, e.bc1);
+}
+
+void place_block_rows(const BlockEncoding& e, std::size_t first, std::size_t count,
+                      std::span<const std::uint8_t> rows, std::span<std::uint8_t> blocks) {
+  const std::size_t row_bytes = e.block_row_bytes();
+  const std::size_t image_bytes = e.block_rows() * row_bytes;
+  if (first + count > e.block_rows() || rows.size() != e.images() * count * row_bytes ||
+      blocks.size() != e.images() * image_bytes)
+    throw Error("compress", "encoded block rows " + std::to_string(first) + ".." +
+                                std::to_string(first + count) + " do not fit the image of " +
+                                std::to_string(e.block_rows()) + " block rows");
+  for (std::size_t i = 0; i < e.images(); ++i)
+    std::copy_n(rows.begin() + static_cast<std::ptrdiff_t>(i * count * row_bytes),
+                count * row_bytes,
+                blocks.begin() + static_cast<std::ptrdiff_t>(i * image_bytes + first * row_bytes));
+}
+
 CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std::size_t n,
-                                 const CodecSettings& settings, Progress* progress) {
+                                 const CodecSettings& settings, Progress* progress,
+                                 CompressionExecutor* executor) {
   CompressedMatrix m;
   m.n = n;
   m.padded = (n + 3) / 4 * 4;
@@ -158,28 +202,21 @@ CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std:
       }
     }
   }
+  BlockEncoding e;
+  e.width = w;
+  e.format = m.format;
+  e.bc4_per_channel = planar_bc4;
   if (planar_bc4) {
     m.encoder = std::string(bc4_encoder_name(Bc4Encoder::kWeighted)) + " BC4 per channel";
-    std::vector<std::uint8_t> plane(w * w);
-    std::vector<float> plane_weights(w * w);
-    for (int c = 0; c < m.channels; ++c) {
-      for (std::size_t k = 0; k < w * w; ++k) {
-        plane[k] = image[k * 3 + static_cast<std::size_t>(c)];
-        plane_weights[k] = image_weights[k * 3 + static_cast<std::size_t>(c)];
-      }
-      const std::vector<std::uint8_t> b =
-          encode_bc4_image(w, w, plane, plane_weights, Bc4Encoder::kWeighted);
-      m.blocks.insert(m.blocks.end(), b.begin(), b.end());
-    }
   } else if (bc4) {
     m.encoder = bc4_encoder_name(Bc4Encoder::kWeighted);
-    m.blocks = encode_bc4_image(w, w, image, image_weights, Bc4Encoder::kWeighted);
   } else {
-    const Bc1Encoder enc = settings.bc1_encoder.value_or(paper ? Bc1Encoder::kSquishClusterFit
-                                                               : Bc1Encoder::kWeighted);
-    m.encoder = bc1_encoder_name(enc);
-    m.blocks = encode_bc1_image(w, w, image, image_weights, enc);
+    e.bc1 = settings.bc1_encoder.value_or(paper ? Bc1Encoder::kSquishClusterFit
+                                                : Bc1Encoder::kWeighted);
+    m.encoder = bc1_encoder_name(e.bc1);
   }
+  m.blocks = executor ? executor->encode_blocks(e, image, image_weights)
+                      : encode_block_rows(e, e.block_rows(), image, image_weights);
   m.seconds_encoding = since(t);
   if (progress) progress->end_stage();
   return m;

@@ -14,6 +14,7 @@
 //          grey scenes, whose single channel does not need RGB.
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -72,10 +73,59 @@ struct CompressedMatrix {
   std::size_t total_bytes() const { return sparse_bytes() + block_bytes() + permutation_bytes(); }
 };
 
+// How compress_matrix encodes its padded, permuted image of codes (its last
+// step): width x width texels of texel_channels() codes each, with a weight
+// per code. Blocks are independent and each is encoded deterministically, so
+// the image can be encoded by block rows anywhere (a distributed bake shares
+// them among its processes) with the same bytes as in one piece.
+struct BlockEncoding {
+  std::size_t width = 0;  // the padded matrix size, a multiple of 4
+  DdsFormat format = DdsFormat::kBc1;
+  Bc1Encoder bc1 = Bc1Encoder::kWeighted;  // BC1 only (BC4 is always weighted)
+  // BC4 per channel: three channels per texel, one BC4 image each, stored one
+  // after another.
+  bool bc4_per_channel = false;
+
+  std::size_t texel_channels() const {
+    return format == DdsFormat::kBc4 && !bc4_per_channel ? 1 : 3;
+  }
+  std::size_t block_rows() const { return width / 4; }
+  // Bytes of one block row of one image (width / 4 blocks of 8 bytes).
+  std::size_t block_row_bytes() const { return width / 4 * 8; }
+  std::size_t images() const { return bc4_per_channel ? 3 : 1; }
+};
+
+// Encodes `count` block rows given only their texels (`codes`, `weights`:
+// 4 count rows of width x texel_channels() each): their blocks in image
+// order, and for BC4 per channel each channel's blocks, channel after channel.
+std::vector<std::uint8_t> encode_block_rows(const BlockEncoding& e, std::size_t count,
+                                            std::span<const std::uint8_t> codes,
+                                            std::span<const float> weights);
+// Copies block rows first .. first + count - 1, as encode_block_rows returns
+// them, into their places among the whole image's blocks (images() x
+// block_rows() x block_row_bytes() bytes).
+void place_block_rows(const BlockEncoding& e, std::size_t first, std::size_t count,
+                      std::span<const std::uint8_t> rows, std::span<std::uint8_t> blocks);
+
+// Where compress_matrix encodes its blocks: in this process when none is
+// given; a distributed bake's executor (core/distributed) encodes the block
+// rows on all its processes and gathers them, with the same bytes.
+class CompressionExecutor {
+ public:
+  virtual ~CompressionExecutor() = default;
+  // The whole image's blocks (see place_block_rows), as
+  // encode_block_rows(e, e.block_rows(), codes, weights) returns them.
+  virtual std::vector<std::uint8_t> encode_blocks(const BlockEncoding& e,
+                                                  std::span<const std::uint8_t> codes,
+                                                  std::span<const float> weights) = 0;
+  virtual std::string description() const = 0;
+};
+
 // `matrices`: 1 or 3 row-major n x n float32 matrices (T_R, T_G, T_B, or the
 // one matrix of a grey scene).
 CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std::size_t n,
-                                 const CodecSettings& settings, Progress* progress = nullptr);
+                                 const CodecSettings& settings, Progress* progress = nullptr,
+                                 CompressionExecutor* executor = nullptr);
 
 // Stored channel c back to a dense n x n matrix in patch order (kept entries
 // exact, the rest decoded from the blocks, the permutation undone).

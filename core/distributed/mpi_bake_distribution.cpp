@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "distributed/mpi_compression.h"
 #include "distributed/scalapack_transport.h"
 #include "transport/text_format.h"
 
@@ -37,10 +38,6 @@ constexpr int kStagesTag = 2;
 // this many floats (4 MB): the root's receive buffer stays small and the
 // messages large enough for the transfer to run at speed.
 constexpr std::size_t kMessageFloats = std::size_t{1} << 20;
-
-void mpi_check(int code, const char* what) {
-  if (code != MPI_SUCCESS) throw Error("MPI", text_format("%s failed (code %d)", what, code));
-}
 
 // The own rows k = first .. end-1 of `rows` that go in one message: whole
 // rows, at least one, up to kMessageFloats floats. The root computes the
@@ -117,16 +114,16 @@ void unpack_stages(const std::vector<char>& bytes, std::map<std::string, std::ui
   }
 }
 
-// The root's transport executor: the ScaLAPACK one, and once it has released
+// The root's compression executor: the MPI one, and once it has released
 // the other ranks, their stage peaks (each sends them when released, so the
 // root receives them on every path, errors included).
-class ReleasingExecutor : public TransportExecutor {
+class ReleasingCompressionExecutor : public CompressionExecutor {
  public:
-  ReleasingExecutor(std::unique_ptr<TransportExecutor> inner, int ranks,
-                    std::map<std::string, std::uint64_t>& other_peaks)
+  ReleasingCompressionExecutor(std::unique_ptr<CompressionExecutor> inner, int ranks,
+                               std::map<std::string, std::uint64_t>& other_peaks)
       : inner_(std::move(inner)), ranks_(ranks), other_peaks_(other_peaks) {}
-  ~ReleasingExecutor() override {
-    inner_.reset();  // Stop: the other ranks leave serve_transport
+  ~ReleasingCompressionExecutor() override {
+    inner_.reset();  // Stop: the other ranks leave serve_compression
     try {
       for (int r = 1; r < ranks_; ++r) {
         MPI_Status status;
@@ -143,15 +140,15 @@ class ReleasingExecutor : public TransportExecutor {
       // The statistics are for the manifest only; an MPI failure ends the job.
     }
   }
-  GemmBackend& gemm() override { return inner_->gemm(); }
-  InverseTransport solve_infinite(std::vector<float> m, std::size_t n, double spectral_radius,
-                                  const InverseOptions& options) override {
-    return inner_->solve_infinite(std::move(m), n, spectral_radius, options);
+  std::vector<std::uint8_t> encode_blocks(const BlockEncoding& e,
+                                          std::span<const std::uint8_t> codes,
+                                          std::span<const float> weights) override {
+    return inner_->encode_blocks(e, codes, weights);
   }
   std::string description() const override { return inner_->description(); }
 
  private:
-  std::unique_ptr<TransportExecutor> inner_;
+  std::unique_ptr<CompressionExecutor> inner_;
   int ranks_;
   std::map<std::string, std::uint64_t>& other_peaks_;
 };
@@ -251,13 +248,23 @@ FormFactorMatrix MpiBakeDistribution::form_factors(
 }
 
 std::unique_ptr<TransportExecutor> MpiBakeDistribution::transport_executor() {
-  return std::make_unique<ReleasingExecutor>(make_scalapack_executor(), session_.size(),
-                                             other_peaks_);
+  return make_scalapack_executor();
 }
 
 void MpiBakeDistribution::serve_transport(std::vector<StageStats>& stages) {
   const StageTimer timer("transport");
   serve_scalapack_transport();
+  stages.push_back(timer.finish());
+}
+
+std::unique_ptr<CompressionExecutor> MpiBakeDistribution::compression_executor() {
+  return std::make_unique<ReleasingCompressionExecutor>(make_mpi_compression_executor(),
+                                                        session_.size(), other_peaks_);
+}
+
+void MpiBakeDistribution::serve_compression(std::vector<StageStats>& stages) {
+  const StageTimer timer("compress");
+  serve_mpi_compression();
   stages.push_back(timer.finish());
   const std::vector<char> bytes = pack_stages(stages);
   mpi_check(

@@ -7,7 +7,9 @@
 // root, which gives the single-process matrix bit for bit (every entry is
 // computed by exactly one rank with the same code); the transport stage's
 // algebra runs on all ranks with ScaLAPACK, each holding only its share
-// (scalapack_transport.h); compression and writing stay on the root.
+// (scalapack_transport.h); the compression's block encoding by block rows on
+// all ranks (mpi_compression.h); the rest of compression and writing stay on
+// the root.
 #include <map>
 #include <string>
 
@@ -31,12 +33,14 @@ class MpiBakeDistribution : public BakeDistribution {
                                 Progress* progress) override;
   std::unique_ptr<TransportExecutor> transport_executor() override;
   void serve_transport(std::vector<StageStats>& stages) override;
+  std::unique_ptr<CompressionExecutor> compression_executor() override;
+  void serve_compression(std::vector<StageStats>& stages) override;
   void add_other_ranks_peaks(std::vector<StageStats>& stages) const override;
 
  private:
   const MpiSession& session_;
   // Root: the other ranks' peak RSS per stage name (the highest), received
-  // when the transport executor releases them.
+  // when the compression executor releases them.
   std::map<std::string, std::uint64_t> other_peaks_;
 };
 

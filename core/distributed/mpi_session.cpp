@@ -3,9 +3,19 @@
 #include <mpi.h>
 
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 namespace bounce {
+
+void mpi_check(int code, const char* what) {
+  if (code == MPI_SUCCESS) return;
+  char text[MPI_MAX_ERROR_STRING];
+  int length = 0;
+  MPI_Error_string(code, text, &length);
+  throw Error(
+      "MPI", std::string(what) + " failed: " + std::string(text, static_cast<std::size_t>(length)));
+}
 
 bool MpiSession::launched_by_mpi() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK"})

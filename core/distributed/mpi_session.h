@@ -21,6 +21,10 @@ class RankFailure : public Error {
   bool root_;
 };
 
+// Throws bounce::Error naming `what` and MPI's text for `code` unless it is
+// MPI_SUCCESS (an int, so this header needs no <mpi.h>).
+void mpi_check(int code, const char* what);
+
 class MpiSession {
  public:
   // True when the environment says an MPI launcher started this process

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "base/error.h"
+#include "distributed/mpi_session.h"
 #include "transport/text_format.h"
 
 // BLACS, PBLAS and ScaLAPACK have no C header in Debian; these are their
@@ -63,15 +64,6 @@ struct Command {
   float beta = 0.0f;
   int float64 = 0;
 };
-
-void mpi_check(int code, const char* what) {
-  if (code == MPI_SUCCESS) return;
-  char text[MPI_MAX_ERROR_STRING];
-  int length = 0;
-  MPI_Error_string(code, text, &length);
-  throw Error(
-      "MPI", std::string(what) + " failed: " + std::string(text, static_cast<std::size_t>(length)));
-}
 
 // Entries of one rank's share as one MPI message's count.
 int message_count(int rows, int cols) {

@@ -186,6 +186,24 @@ PatchGeometry gather(const Scene& scene, const Voxelization& vox, const SampleSe
         lumped.centroid /= lumped.area;
         const float len = glm::length(lumped.normal);
         lumped.normal = len > 0.0f ? lumped.normal / len : glm::vec3(0.0f, 0.0f, 1.0f);
+        // The mean of parts spread over a curved surface lies off it (inside
+        // a convex mesh such as the bunny), where rays to and from it are
+        // blocked by the surface itself: the point stands at the centroid of
+        // the carried part nearest that mean, on the surface.
+        float nearest = std::numeric_limits<float>::infinity();
+        glm::vec3 on_surface = lumped.centroid;
+        for (std::uint32_t c = set.carried_first[si]; c < set.carried_first[si + 1]; ++c) {
+          const CarriedArea& piece = set.carried[c];
+          if (!piece.whole_part) continue;
+          const glm::vec3 x =
+              polygon_centroid(&set.carried_vertices[piece.first_vertex], piece.vertex_count);
+          const glm::vec3 d = x - lumped.centroid;
+          if (glm::dot(d, d) < nearest) {
+            nearest = glm::dot(d, d);
+            on_surface = x;
+          }
+        }
+        lumped.centroid = on_surface;
         add_piece(lumped);
       }
       if (clump.count == 0 || !(clump.area > 0.0f)) continue;

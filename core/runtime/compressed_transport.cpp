@@ -21,17 +21,20 @@ namespace {
 
 using Tables = CompressedTransportTables;
 // What a block loop reads besides the tables: b in stored order, colour-major
-// (float32), and for the bfloat16 loop the same b and the BC1 palette tables
-// rounded to bfloat16 (b16_stride entries per colour, zero past the padding).
+// (float32), or for the bfloat16 loop the same b and the BC1 palette tables
+// rounded to bfloat16 (b16_stride entries per colour, zero past n).
 struct BlockRowInput {
   const Tables& t;
   const float* b;
   const std::uint16_t* b16 = nullptr;
   std::size_t b16_stride = 0;
   const std::uint16_t* tables16 = nullptr;
-  // The AVX-512 loops (BC1): pairs_per_row records per block row.
+  // The float32 AVX-512 loop (BC1): pairs_per_row records per block row.
   const Bc1BlockPair* pairs = nullptr;
   std::size_t pairs_per_row = 0;
+  // The bfloat16 loop (BC1): groups_per_row records per block row.
+  const Bc1BlockGroup* groups = nullptr;
+  std::size_t groups_per_row = 0;
 };
 // Accumulates block row I of T~ times b into acc[row within the block
 // row][colour].
@@ -40,17 +43,27 @@ using BlockRowFn = void (*)(const BlockRowInput&, std::size_t, float (*)[3]);
 // acc[4 * i + r] (block row I0 + i, row r). The product runs bands of
 // block rows on the threads (the AVX-512 loops tile b over a band, below).
 constexpr std::size_t kBandRows = 8;
-// Pairs of a tile of b: 128 (256 stored columns; 6 KB of b in bfloat16,
+// Pairs of a tile of b: 128 (1024 stored columns; 6 KB of b in bfloat16,
 // 12 KB in float32) was faster than 64 and 256 on this machine.
 constexpr std::size_t kTilePairs = 128;
-// Where the record of pair p of block row I is in the block pairs: in the
-// order the AVX-512 loops read them, band by band, tile by tile, and in a
-// tile row by row, so that the loops read one sequential stream.
-std::size_t pair_record(std::size_t nb, std::size_t pairs_per_row, std::size_t I, std::size_t p) {
+// The bfloat16 loop's tile: the same 1024 stored columns, 32 groups of 8
+// blocks.
+constexpr std::size_t kTileGroups = kTilePairs / 4;
+// Where record p (per_row records per block row, `tile` per tile) of block
+// row I is: in the order the AVX-512 loops read them, band by band, tile by
+// tile, and in a tile row by row, so that the loops read one sequential
+// stream.
+std::size_t loop_order(std::size_t nb, std::size_t per_row, std::size_t tile, std::size_t I,
+                       std::size_t p) {
   const std::size_t I0 = I / kBandRows * kBandRows, rows = std::min(kBandRows, nb - I0);
-  const std::size_t p0 = p / kTilePairs * kTilePairs,
-                    count = std::min(kTilePairs, pairs_per_row - p0);
-  return I0 * pairs_per_row + p0 * rows + (I - I0) * count + (p - p0);
+  const std::size_t p0 = p / tile * tile, count = std::min(tile, per_row - p0);
+  return I0 * per_row + p0 * rows + (I - I0) * count + (p - p0);
+}
+std::size_t pair_record(std::size_t nb, std::size_t pairs_per_row, std::size_t I, std::size_t p) {
+  return loop_order(nb, pairs_per_row, kTilePairs, I, p);
+}
+std::size_t group_record(std::size_t nb, std::size_t groups_per_row, std::size_t I, std::size_t g) {
+  return loop_order(nb, groups_per_row, kTileGroups, I, g);
 }
 using BlockBandFn = void (*)(const BlockRowInput&, std::size_t, std::size_t, float (*)[3]);
 // Adds the kept entries' corrections of block row I (b: 4 floats per stored
@@ -364,6 +377,9 @@ __attribute__((target("avx512f,avx2,fma"))) inline void bc1_block_avx512(
 // sums of the band wait in memory (3 registers per row) between tiles.
 // kBandRows is above, with BlockBandFn.
 
+// How far ahead the float32 loop prefetches its records: 2.5 KB, as the
+// bfloat16 loop's kPrefetchGroups.
+constexpr std::size_t kPrefetchPairs = 128;
 // Pairs [p0, p1) of a block row (float32), whose records start at first,
 // into sums (R, G, B).
 __attribute__((target("avx512f,avx2,fma"))) inline void avx512_bc1_pairs(const BlockRowInput& in,
@@ -385,6 +401,12 @@ __attribute__((target("avx512f,avx2,fma"))) inline void avx512_bc1_pairs(const B
   for (std::size_t p = p0; p < full_end; ++p) {
     const std::size_t c = 8 * p;  // first stored column of the pair
     const Bc1BlockPair& pair = first[p - p0];
+    // The record stream prefetched as in the bfloat16 loop (below), one line
+    // ahead per 64 bytes of records.
+    if ((p - p0) % 4 == 0)
+      _mm_prefetch(reinterpret_cast<const char*>(reinterpret_cast<std::uintptr_t>(&pair) +
+                                                 kPrefetchPairs * sizeof(Bc1BlockPair)),
+                   _MM_HINT_NTA);
     bc1_block_avx512<false>(pair, tables, b_r + c, b_g + c, b_b + c, shift, r0, g0, b0);
     bc1_block_avx512<true>(pair, tables, b_r + c, b_g + c, b_b + c, shift, r1, g1, b1);
   }
@@ -400,92 +422,140 @@ __attribute__((target("avx512f,avx2,fma"))) inline void avx512_bc1_pairs(const B
   sums[2] = _mm512_add_ps(b0, b1);
 }
 
-// AVX-512 with bfloat16 products (BlockLoop::kBf16): the two blocks of a
-// pair (J, J + 1) in one 32-lane register of 16-bit values per colour.
-// vpmultishiftqb picks each texel's 2-bit index out of the pair's two index
-// words (broadcast as one qword: block J's in bits 0-31, J + 1's in 32-63;
-// qwords alternate block J, block J + 1, qword 2r and 2r + 1 hold row r),
-// one vpternlogd keeps the 2 bits and adds 4 in block J + 1's lanes, and
-// vpermw reads the texel values from the two palettes (bfloat16 tables,
-// block J's in words 0-3, J + 1's in 4-7). vdpbf16ps multiplies pairs of
-// texels by b (bfloat16) and adds both products into a float32 lane: one
-// instruction per colour for 2 blocks, where the float32 loop needs two FMAs
-// and two permutes. Lanes 4r..4r+3 still hold row r, so add_rows() sums
-// them as above. Rounding: palettes and b to 8-bit mantissas (relative 2^-9
-// each), sums in float32. An odd last block is paired with a padding block
-// of zero indices and the last block's palettes (finite values) whose b is
-// the zero padding of b16.
-// vpmultishiftqb's selectors: word m of qword q is texel (row q / 2,
-// column m) of block q % 2 of the pair, whose index is bit
-// 2 * (4 * row + column) of that block's word, 32 * (q % 2) into the qword.
-alignas(64) constexpr std::array<std::uint8_t, 64> kBf16Select = [] {
-  std::array<std::uint8_t, 64> bytes{};
-  for (int q = 0; q < 8; ++q)
-    for (int m = 0; m < 4; ++m)
-      bytes[static_cast<std::size_t>(8 * q + 2 * m)] =
-          static_cast<std::uint8_t>(32 * (q % 2) + 8 * (q / 2) + 2 * m);
-  return bytes;
+// AVX-512 with bfloat16 products (the default for BC1 where the CPU has
+// AVX512_BF16 and VBMI): one row of 8 neighbouring blocks (32 texels, one
+// Bc1BlockGroup) in one 32-lane register of 16-bit values per colour, rows
+// 0-3 of the group in four registers. Per group:
+// - the 8 index words, zero-extended to one qword per block, and per row r
+//   vpmultishiftqb + vpternlogd turn them into the control of a vpermw:
+//   word 4q + c is texel (r, c) of block q, its 2-bit index plus 4q, block
+//   q's palette (words 4q .. 4q + 3 of the palette register);
+// - per colour, the 8 blocks' palettes (8 bytes each, bfloat16 tables) into
+//   one register, then per row vpermw reads the texels' values and
+//   vdpbf16ps multiplies pairs of texels by b (bfloat16) and adds both
+//   products into a float32 lane. b of the group's 32 columns is one
+//   aligned 64-byte load, shared by the 4 rows (no broadcast).
+// Row r's sum is the sum of its register's 16 lanes. Rounding: palettes and
+// b to 8-bit mantissas (relative 2^-9 each), sums in float32.
+//
+// Why this layout (docs/benchmarks.md, runtime, session 7): this CPU
+// (Zen 5) runs 512-bit operations at full width but at most 2 vector loads
+// per cycle; the earlier loop (two blocks per register) needed 10 vector
+// loads per two blocks (index word, 6 palettes, 3 broadcasts of b), this
+// one 7 (6 palettes, 1/4 index load, 3/4 b load). What bounded both more
+// was the record stream itself (45 MB per product, more than the caches):
+// the records are prefetched kPrefetchGroups ahead (2.5 KB; 16 to 64 groups
+// were within noise of each other, 8 and 128 slower), non-temporal (they
+// are read once; measured a few percent faster than into all levels).
+constexpr std::size_t kPrefetchGroups = 32;
+// vpmultishiftqb's selectors for row r: both bytes of word c of every qword
+// take the 8 bits from bit 2 * (4r + c) of the block's index word.
+alignas(64) constexpr std::array<std::array<std::uint8_t, 64>, 4> kRowSelect = [] {
+  std::array<std::array<std::uint8_t, 64>, 4> select{};
+  for (std::size_t r = 0; r < 4; ++r)
+    for (std::size_t q = 0; q < 8; ++q)
+      for (std::size_t c = 0; c < 4; ++c)
+        select[r][8 * q + 2 * c] = select[r][8 * q + 2 * c + 1] =
+            static_cast<std::uint8_t>(8 * r + 2 * c);
+  return select;
+}();
+// Word m (block m / 4) reads its block's palette at words 4 (m / 4) ...
+alignas(64) constexpr std::array<std::uint16_t, 32> kGroupPaletteBase = [] {
+  std::array<std::uint16_t, 32> base{};
+  for (std::size_t m = 0; m < 32; ++m) base[m] = static_cast<std::uint16_t>(m & ~std::size_t{3});
+  return base;
 }();
 
+// Groups [g0, g1) of a block row, whose records start at first, into sums
+// (row r, colour k at 3 r + k).
 __attribute__((target("avx512f,avx512bw,avx512vl,avx512vbmi,avx512bf16,avx2,fma"))) inline void
-avx512_bf16_pairs(const BlockRowInput& in, const Bc1BlockPair* first, std::size_t p0,
-                  std::size_t p1, __m512* sums) {
-  const __m512i select = _mm512_load_si512(kBf16Select.data());
+avx512_bf16_groups(const BlockRowInput& in, const Bc1BlockGroup* first, std::size_t g0,
+                   std::size_t g1, __m512* sums) {
+  const __m512i select0 = _mm512_load_si512(kRowSelect[0].data());
+  const __m512i select1 = _mm512_load_si512(kRowSelect[1].data());
+  const __m512i select2 = _mm512_load_si512(kRowSelect[2].data());
+  const __m512i select3 = _mm512_load_si512(kRowSelect[3].data());
   const __m512i low2 = _mm512_set1_epi16(3);
-  const __m512i second_block = _mm512_set_epi64(0x0004000400040004LL, 0, 0x0004000400040004LL, 0,
-                                                0x0004000400040004LL, 0, 0x0004000400040004LL, 0);
+  const __m512i base = _mm512_load_si512(kGroupPaletteBase.data());
   const std::uint16_t* tables = in.tables16;
-  const std::uint16_t *b_r = in.b16, *b_g = in.b16 + in.b16_stride,
-                      *b_b = in.b16 + 2 * in.b16_stride;
-  __m512 r0 = sums[0], g0 = sums[1], b0 = sums[2];
-  __m512 r1 = _mm512_setzero_ps(), g1 = r1, b1 = r1;
-  const auto palettes = [&](std::uint16_t units0, std::uint16_t units1)
+  const auto eight_palettes = [tables](const std::uint16_t* units)
       __attribute__((always_inline, target("avx512f,avx512bw,avx512vl,avx2"))) {
-    return _mm512_castsi128_si512(_mm_unpacklo_epi64(
-        _mm_loadl_epi64(reinterpret_cast<const __m128i*>(palette(tables, units0))),
-        _mm_loadl_epi64(reinterpret_cast<const __m128i*>(palette(tables, units1)))));
+    const auto two = [ tables, units ](int j) __attribute__((always_inline, target("avx2"))) {
+      return _mm_unpacklo_epi64(
+          _mm_loadl_epi64(reinterpret_cast<const __m128i*>(palette(tables, units[j]))),
+          _mm_loadl_epi64(reinterpret_cast<const __m128i*>(palette(tables, units[j + 1]))));
+    };
+    const __m256i lo = _mm256_inserti128_si256(_mm256_castsi128_si256(two(0)), two(2), 1);
+    const __m256i hi = _mm256_inserti128_si256(_mm256_castsi128_si256(two(4)), two(6), 1);
+    return _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
   };
-  const auto b_pair = [&](const std::uint16_t* b, std::size_t p)
-      __attribute__((always_inline, target("avx512f,avx512bw,avx512vl,avx512bf16,avx2"))) {
-    return reinterpret_cast<__m512bh>(
-        _mm512_broadcast_i32x4(_mm_loadu_si128(reinterpret_cast<const __m128i*>(b + 8 * p))));
-  };
-  const auto step = [&](std::size_t p, __m512 & ar, __m512 & ag, __m512 & ab) __attribute__((
-      always_inline, target("avx512f,avx512bw,avx512vl,avx512vbmi,avx512bf16,avx2,fma"))) {
-    const Bc1BlockPair& pair = first[p - p0];
-    const __m512i words = _mm512_set1_epi64(
-        static_cast<long long>(load_u64(reinterpret_cast<const std::uint8_t*>(pair.indices))));
-    // (indices & 3) | 4 in the second block's lanes.
-    const __m512i control = _mm512_ternarylogic_epi32(_mm512_multishift_epi64_epi8(select, words),
-                                                      low2, second_block, 0xEA);
-    ar = _mm512_dpbf16_ps(ar,
-                          reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(
-                              control, palettes(pair.palette[0][0], pair.palette[1][0]))),
-                          b_pair(b_r, p));
-    ag = _mm512_dpbf16_ps(ag,
-                          reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(
-                              control, palettes(pair.palette[0][1], pair.palette[1][1]))),
-                          b_pair(b_g, p));
-    ab = _mm512_dpbf16_ps(ab,
-                          reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(
-                              control, palettes(pair.palette[0][2], pair.palette[1][2]))),
-                          b_pair(b_b, p));
-  };
-  std::size_t p = p0;
-  for (; p + 2 <= p1; p += 2) {
-    step(p, r0, g0, b0);
-    step(p + 1, r1, g1, b1);
+  // Named accumulators (see avx512_bc1_pairs): row r, R / G / B.
+  __m512 r0 = sums[0], g0s = sums[1], b0 = sums[2], r1 = sums[3], g1s = sums[4], b1 = sums[5];
+  __m512 r2 = sums[6], g2s = sums[7], b2 = sums[8], r3 = sums[9], g3s = sums[10], b3 = sums[11];
+  for (std::size_t g = g0; g < g1; ++g) {
+    const Bc1BlockGroup& group = first[g - g0];
+    // As an integer: the address may be past the end of the records (a
+    // prefetch does not fault), which pointer arithmetic may not be.
+    _mm_prefetch(reinterpret_cast<const char*>(reinterpret_cast<std::uintptr_t>(&group) +
+                                               kPrefetchGroups * sizeof(Bc1BlockGroup)),
+                 _MM_HINT_NTA);
+    const __m512i words =
+        _mm512_cvtepu32_epi64(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(group.indices)));
+    // (index & 3) | 4 * block.
+    const __m512i c0 =
+        _mm512_ternarylogic_epi32(_mm512_multishift_epi64_epi8(select0, words), low2, base, 0xEA);
+    const __m512i c1 =
+        _mm512_ternarylogic_epi32(_mm512_multishift_epi64_epi8(select1, words), low2, base, 0xEA);
+    const __m512i c2 =
+        _mm512_ternarylogic_epi32(_mm512_multishift_epi64_epi8(select2, words), low2, base, 0xEA);
+    const __m512i c3 =
+        _mm512_ternarylogic_epi32(_mm512_multishift_epi64_epi8(select3, words), low2, base, 0xEA);
+    const auto colour = [&](std::size_t k, __m512 & a0, __m512 & a1, __m512 & a2, __m512 & a3)
+        __attribute__((always_inline,
+                       target("avx512f,avx512bw,avx512vl,avx512vbmi,avx512bf16,avx2,fma"))) {
+      const __m512i values = eight_palettes(group.palette[k]);
+      const auto b =
+          reinterpret_cast<__m512bh>(_mm512_load_si512(in.b16 + k * in.b16_stride + 32 * g));
+      a0 =
+          _mm512_dpbf16_ps(a0, reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(c0, values)), b);
+      a1 =
+          _mm512_dpbf16_ps(a1, reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(c1, values)), b);
+      a2 =
+          _mm512_dpbf16_ps(a2, reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(c2, values)), b);
+      a3 =
+          _mm512_dpbf16_ps(a3, reinterpret_cast<__m512bh>(_mm512_permutexvar_epi16(c3, values)), b);
+    };
+    colour(0, r0, r1, r2, r3);
+    colour(1, g0s, g1s, g2s, g3s);
+    colour(2, b0, b1, b2, b3);
   }
-  if (p < p1) step(p, r0, g0, b0);
-  sums[0] = _mm512_add_ps(r0, r1);
-  sums[1] = _mm512_add_ps(g0, g1);
-  sums[2] = _mm512_add_ps(b0, b1);
+  sums[0] = r0, sums[1] = g0s, sums[2] = b0, sums[3] = r1, sums[4] = g1s, sums[5] = b1;
+  sums[6] = r2, sums[7] = g2s, sums[8] = b2, sums[9] = r3, sums[10] = g3s, sums[11] = b3;
+}
+
+// The bfloat16 loop over a band: as block_band_avx512 below, tiles of
+// kTileGroups groups, then each row's 12 sums reduced.
+__attribute__((target("avx512f,avx512bw,avx512vl,avx512vbmi,avx512bf16,avx2,fma"))) void
+block_band_bf16(const BlockRowInput& in, std::size_t I0, std::size_t rows, float (*acc)[3]) {
+  __m512 sums[kBandRows][12];
+  for (std::size_t i = 0; i < rows; ++i)
+    for (__m512& s : sums[i]) s = _mm512_setzero_ps();
+  const std::size_t count = in.groups_per_row;
+  for (std::size_t g0 = 0; g0 < count; g0 += kTileGroups) {
+    const std::size_t g1 = std::min(g0 + kTileGroups, count);
+    for (std::size_t i = 0; i < rows; ++i)
+      avx512_bf16_groups(in, in.groups + group_record(in.t.block_rows, count, I0 + i, g0), g0, g1,
+                         sums[i]);
+  }
+  for (std::size_t i = 0; i < rows; ++i)
+    for (std::size_t r = 0; r < 4; ++r)
+      for (std::size_t k = 0; k < 3; ++k)
+        acc[4 * i + r][k] += _mm512_reduce_add_ps(sums[i][3 * r + k]);
 }
 
 // Block rows I0 .. I0 + rows - 1 (rows <= kBandRows) into acc[4 * i + r]
-// (block row I0 + i, row r), tile by tile; kTilePairs pairs per tile, 6 KB
-// (bfloat16) or 12 KB (float32) of b.
-template <bool kBf16>
+// (block row I0 + i, row r), tile by tile; kTilePairs pairs per tile, 12 KB
+// of b.
 __attribute__((target("avx512f,avx2,fma"))) void block_band_avx512(const BlockRowInput& in,
                                                                    std::size_t I0, std::size_t rows,
                                                                    float (*acc)[3]) {
@@ -497,10 +567,7 @@ __attribute__((target("avx512f,avx2,fma"))) void block_band_avx512(const BlockRo
     const std::size_t p1 = std::min(p0 + kTilePairs, count);
     for (std::size_t i = 0; i < rows; ++i) {
       const Bc1BlockPair* first = in.pairs + pair_record(in.t.block_rows, count, I0 + i, p0);
-      if constexpr (kBf16)
-        avx512_bf16_pairs(in, first, p0, p1, sums[i]);
-      else
-        avx512_bc1_pairs(in, first, p0, p1, sums[i]);
+      avx512_bc1_pairs(in, first, p0, p1, sums[i]);
     }
   }
   for (std::size_t i = 0; i < rows; ++i)
@@ -530,8 +597,8 @@ void rows_one_by_one(const BlockRowInput& in, std::size_t I0, std::size_t rows, 
 BlockBandFn block_band_function(const Tables& t, bool avx2, bool avx512, bool bf16) {
   const bool bc1 = t.format == DdsFormat::kBc1;
 #ifdef BOUNCE_AVX2_BLOCK_LOOP
-  if (bf16 && bc1) return block_band_avx512<true>;
-  if (avx512 && bc1) return block_band_avx512<false>;
+  if (bf16 && bc1) return block_band_bf16;
+  if (avx512 && bc1) return block_band_avx512;
   if (avx2) {
     if (!bc1) return rows_one_by_one<block_row_avx2<DdsFormat::kBc4, 1>>;
     return t.slots == 3 ? rows_one_by_one<block_row_avx2<DdsFormat::kBc1, 3>>
@@ -588,36 +655,42 @@ CompressedTransport::CompressedTransport(const CompressedMatrix& m,
 
 CompressedTransport::CompressedTransport(CompressedTransportTables tables, BlockLoop loop)
     : tables_(std::move(tables)),
-      avx2_(loop != BlockLoop::kPortable && cpu_has_avx2()),
-      avx512_((loop == BlockLoop::kFastest || loop == BlockLoop::kBf16) && cpu_has_avx512()),
-      bf16_(loop == BlockLoop::kBf16 && tables_.format == DdsFormat::kBc1 && cpu_has_avx512_bf16()),
-      b_stored_(3 * tables_.padded, 0.0f),
-      b_quad_(4 * tables_.padded, 0.0f) {
-  if (bf16_) {
-    // 8 zero entries past the padding per colour: the last block pair of a
-    // row with an odd block count reads b of 4 columns past the end.
-    b16_.assign(3 * (tables_.padded + 8), 0);
+      avx2_((loop == BlockLoop::kFastest || loop == BlockLoop::kFloat32 ||
+             loop == BlockLoop::kAvx2) &&
+            cpu_has_avx2()),
+      avx512_((loop == BlockLoop::kFastest || loop == BlockLoop::kFloat32) && cpu_has_avx512()),
+      bf16_(loop == BlockLoop::kFastest && tables_.format == DdsFormat::kBc1 &&
+            cpu_has_avx512_bf16()),
+      b_quad_(4 * tables_.padded, 0.0f),
+      y_stored_(3 * tables_.padded, 0.0f) {
+  if (bf16_)
+    lay_out_block_groups();
+  else {
+    b_stored_.assign(3 * tables_.padded, 0.0f);
+    if (avx512_ && tables_.format == DdsFormat::kBc1) lay_out_block_pairs();
   }
-  if (avx512_ && tables_.format == DdsFormat::kBc1) lay_out_block_pairs();
 }
+
+namespace {
+// Colour k's palette of a BC1 block with these endpoints, in units of 8
+// bytes into the tables: `units_per_palette` is 1 for the bfloat16 tables,
+// 2 for the float32 ones. Below 2^16, as the three tables hold
+// 2 * (2^10 + 2^12 + 2^10) palettes.
+std::uint16_t palette_units(const Tables& t, std::uint32_t endpoints, std::size_t k,
+                            std::size_t units_per_palette) {
+  static_assert(2 * 2 * ((1u << 10) + (1u << 12) + (1u << 10)) <= 0x10000u);
+  const auto s = static_cast<std::size_t>(t.slot_of_colour[k]);
+  return static_cast<std::uint16_t>(
+      units_per_palette * (t.bc1_table_offset[s] / 4 +
+                           bc1_palette_key(endpoints, t.bc1_field_shift[s], t.bc1_field_bits[s])));
+}
+}  // namespace
 
 void CompressedTransport::lay_out_block_pairs() {
   const Tables& t = tables_;
   const std::size_t nb = t.block_rows;
   pairs_per_row_ = (nb + 1) / 2;
   block_pairs_.assign(nb * pairs_per_row_, Bc1BlockPair{});
-  // Colour k's palette, in units of 8 bytes into the tables: one bfloat16
-  // palette, half a float32 one. Below 2^16, as the three tables hold
-  // 2 * (2^10 + 2^12 + 2^10) palettes.
-  static_assert(2 * 2 * ((1u << 10) + (1u << 12) + (1u << 10)) <= 0x10000u);
-  const std::size_t units_per_palette = bf16_ ? 1 : 2;
-  const auto entry = [&t, units_per_palette](std::uint32_t endpoints, std::size_t k) {
-    const auto s = static_cast<std::size_t>(t.slot_of_colour[k]);
-    return static_cast<std::uint16_t>(
-        units_per_palette *
-        (t.bc1_table_offset[s] / 4 +
-         bc1_palette_key(endpoints, t.bc1_field_shift[s], t.bc1_field_bits[s])));
-  };
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t row = 0; row < static_cast<std::ptrdiff_t>(nb); ++row) {
     const auto I = static_cast<std::size_t>(row);
@@ -626,17 +699,44 @@ void CompressedTransport::lay_out_block_pairs() {
       Bc1BlockPair& pair = block_pairs_[pair_record(nb, pairs_per_row_, I, J / 2)];
       const std::uint32_t endpoints = load_u32(block);
       pair.indices[J % 2] = load_u32(block + 4);
-      for (std::size_t k = 0; k < 3; ++k) pair.palette[J % 2][k] = entry(endpoints, k);
+      for (std::size_t k = 0; k < 3; ++k)
+        pair.palette[J % 2][k] = palette_units(t, endpoints, k, 2);
       // An odd last block's partner: zero indices into the same palettes.
       if (J + 1 == nb && J % 2 == 0)
         for (std::size_t k = 0; k < 3; ++k) pair.palette[1][k] = pair.palette[0][k];
     }
   }
-  if (bf16_) {
-    bc1_tables16_.resize(t.bc1_tables.size());
-    for (std::size_t i = 0; i < bc1_tables16_.size(); ++i)
-      bc1_tables16_[i] = to_bfloat16(t.bc1_tables[i]);
+}
+
+void CompressedTransport::lay_out_block_groups() {
+  const Tables& t = tables_;
+  const std::size_t nb = t.block_rows;
+  groups_per_row_ = (nb + 7) / 8;
+  block_groups_.assign(nb * groups_per_row_, Bc1BlockGroup{});
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t row = 0; row < static_cast<std::ptrdiff_t>(nb); ++row) {
+    const auto I = static_cast<std::size_t>(row);
+    for (std::size_t G = 0; G < groups_per_row_; ++G) {
+      Bc1BlockGroup& group = block_groups_[group_record(nb, groups_per_row_, I, G)];
+      for (std::size_t j = 0; j < 8; ++j) {
+        // Padding past the last block: zero indices, the last block's
+        // palettes (finite values), zero b.
+        const std::size_t J = std::min(8 * G + j, nb - 1);
+        const std::uint8_t* block = &t.blocks[(I * nb + J) * 8];
+        group.indices[j] = 8 * G + j < nb ? load_u32(block + 4) : 0;
+        for (std::size_t k = 0; k < 3; ++k)
+          group.palette[k][j] = palette_units(t, load_u32(block), k, 1);
+      }
+    }
   }
+  bc1_tables16_.resize(t.bc1_tables.size());
+  for (std::size_t i = 0; i < bc1_tables16_.size(); ++i)
+    bc1_tables16_[i] = to_bfloat16(t.bc1_tables[i]);
+  // 32 columns per group and colour, 32 entries of slack to start at a
+  // 64-byte boundary.
+  b16_.assign(3 * 32 * groups_per_row_ + 32, 0);
+  const auto address = reinterpret_cast<std::uintptr_t>(b16_.data());
+  b16_start_ = (64 - address % 64) % 64 / sizeof(std::uint16_t);
 }
 
 bool CompressedTransport::has_bf16_loop() { return cpu_has_avx512_bf16(); }
@@ -649,13 +749,15 @@ const char* CompressedTransport::block_loop() const {
 
 std::size_t CompressedTransport::bytes_per_product() const {
   const std::size_t b = tables_.n * sizeof(glm::vec3);
-  if (block_pairs_.empty()) return tables_.bytes() + b;
-  // The AVX-512 loops read the block pairs instead of the blocks, and the
+  // The AVX-512 loops read their records instead of the blocks, and the
   // bfloat16 loop its half-size copy of the palette tables.
-  const std::size_t tables16_saving =
-      bf16_ ? tables_.bc1_tables.size() * (sizeof(float) - sizeof(std::uint16_t)) : 0;
-  return tables_.bytes() - tables_.blocks.size() + block_pairs_.size() * sizeof(Bc1BlockPair) -
-         tables16_saving + b;
+  if (bf16_)
+    return tables_.bytes() - tables_.blocks.size() - tables_.bc1_tables.size() * sizeof(float) +
+           block_groups_.size() * sizeof(Bc1BlockGroup) +
+           bc1_tables16_.size() * sizeof(std::uint16_t) + b;
+  if (!block_pairs_.empty())
+    return tables_.bytes() - tables_.blocks.size() + block_pairs_.size() * sizeof(Bc1BlockPair) + b;
+  return tables_.bytes() + b;
 }
 
 void CompressedTransport::multiply(const std::vector<glm::vec3>& b,
@@ -673,42 +775,68 @@ void CompressedTransport::multiply(std::span<const glm::vec3> b,
   if (indirect.size() != t.n)
     throw Error("compressed transport", "the output has " + std::to_string(indirect.size()) +
                                             " entries for " + std::to_string(t.n) + " patches");
-  // Gather into stored order, colour-major for the blocks and 4 floats per
-  // column for the corrections; padding columns stay 0 from construction.
+  // One parallel region, three passes: gather b into stored order (4 floats
+  // per column for the corrections, colour-major for the block loop, in
+  // float32 or rounded to bfloat16; padding columns stay 0 from
+  // construction); the block loop over bands of block rows into y_stored_;
+  // the corrections and the scatter back to patch order. Block rows write
+  // disjoint stored rows and patches (the permutation is a bijection).
   float* bs = b_stored_.data();
   float* b4 = b_quad_.data();
-  const std::size_t padded = t.padded;
-  for (std::size_t i = 0; i < t.n; ++i) {
-    const glm::vec3& v = b[t.permutation[i]];
-    bs[i] = b4[4 * i] = v.x;
-    bs[padded + i] = b4[4 * i + 1] = v.y;
-    bs[2 * padded + i] = b4[4 * i + 2] = v.z;
-  }
-  const std::size_t b16_stride = padded + 8;
-  if (bf16_)
-    for (std::size_t k = 0; k < 3; ++k)
-      for (std::size_t i = 0; i < padded; ++i)
-        b16_[k * b16_stride + i] = to_bfloat16(bs[k * padded + i]);
-  const BlockRowInput input{
-      t, bs, b16_.data(), b16_stride, bc1_tables16_.data(), block_pairs_.data(), pairs_per_row_};
+  std::uint16_t* b16 = bf16_ ? b16_.data() + b16_start_ : nullptr;
+  const std::size_t padded = t.padded, b16_stride = 32 * groups_per_row_;
+  float(*y)[3] = reinterpret_cast<float(*)[3]>(y_stored_.data());
+  const BlockRowInput input{t,
+                            bs,
+                            b16,
+                            b16_stride,
+                            bc1_tables16_.data(),
+                            block_pairs_.data(),
+                            pairs_per_row_,
+                            block_groups_.data(),
+                            groups_per_row_};
   const BlockBandFn block_band = block_band_function(t, avx2_, avx512_, bf16_);
   const CorrectionsFn corrections = corrections_function(t, avx2_);
   glm::vec3* out = indirect.data();
-  // Block rows write disjoint patches (the permutation is a bijection).
-  // Dynamic chunks: on a shared machine one core may be busy elsewhere, and
-  // a static split would wait for its half.
+  const auto n = static_cast<std::ptrdiff_t>(t.n);
+  const auto block_rows = static_cast<std::ptrdiff_t>(t.block_rows);
   const auto bands = static_cast<std::ptrdiff_t>((t.block_rows + kBandRows - 1) / kBandRows);
-#pragma omp parallel for schedule(dynamic, 1)
-  for (std::ptrdiff_t band = 0; band < bands; ++band) {
-    const std::size_t I0 = static_cast<std::size_t>(band) * kBandRows;
-    const std::size_t rows = std::min(kBandRows, t.block_rows - I0);
-    float acc[4 * kBandRows][3] = {};
-    block_band(input, I0, rows, acc);
-    for (std::size_t I = I0; I < I0 + rows; ++I) {
-      float(*row_acc)[3] = acc + 4 * (I - I0);
-      corrections(t, b4, I, row_acc);
+#pragma omp parallel
+  {
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t si = 0; si < n; ++si) {
+      const auto i = static_cast<std::size_t>(si);
+      const glm::vec3& v = b[t.permutation[i]];
+      b4[4 * i] = v.x;
+      b4[4 * i + 1] = v.y;
+      b4[4 * i + 2] = v.z;
+      if (b16) {
+        b16[i] = to_bfloat16(v.x);
+        b16[b16_stride + i] = to_bfloat16(v.y);
+        b16[2 * b16_stride + i] = to_bfloat16(v.z);
+      } else {
+        bs[i] = v.x;
+        bs[padded + i] = v.y;
+        bs[2 * padded + i] = v.z;
+      }
+    }
+    // Dynamic chunks: on a shared machine one core may be busy elsewhere,
+    // and a static split would wait for its half.
+#pragma omp for schedule(dynamic, 1)
+    for (std::ptrdiff_t band = 0; band < bands; ++band) {
+      const std::size_t I0 = static_cast<std::size_t>(band) * kBandRows;
+      const std::size_t rows = std::min(kBandRows, t.block_rows - I0);
+      float acc[4 * kBandRows][3] = {};
+      block_band(input, I0, rows, acc);
+      std::memcpy(y + 4 * I0, acc, sizeof(float) * 3 * 4 * rows);
+    }
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t row = 0; row < block_rows; ++row) {
+      const auto I = static_cast<std::size_t>(row);
+      corrections(t, b4, I, y + 4 * I);
       for (std::size_t r = 0; r < 4 && 4 * I + r < t.n; ++r)
-        out[t.permutation[4 * I + r]] = glm::vec3(row_acc[r][0], row_acc[r][1], row_acc[r][2]);
+        out[t.permutation[4 * I + r]] =
+            glm::vec3(y[4 * I + r][0], y[4 * I + r][1], y[4 * I + r][2]);
     }
   }
 }

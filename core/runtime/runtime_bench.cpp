@@ -97,7 +97,9 @@ RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 
   std::vector<glm::vec3> b(m.n);
   for (glm::vec3& v : b) v = glm::vec3(u(rng), u(rng), u(rng));
 
-  const CompressedTransport cpu(m, channel_of_rgb);
+  // The float32 loop is the reference of the rel diff column: equal to the
+  // decompressed matrix's product up to float32 summation order.
+  const CompressedTransport cpu(m, channel_of_rgb, BlockLoop::kFloat32);
   bench.corrections = cpu.tables().corrections();
   std::vector<glm::vec3> reference, out;
   cpu.multiply(b, reference);
@@ -117,23 +119,18 @@ RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 
   }
   bench.entries.push_back(cl_entry);
 
-  RuntimeBenchEntry cpu_entry;
-  cpu_entry.what = std::string("compressed, C++ (") + cpu.block_loop() + ")";
-  cpu_entry.bytes = cpu.bytes_per_product();
-  time_product([&cpu](const auto& x, auto& y) { cpu.multiply(x, y); }, b, bench.repeats, out,
-               cpu_entry);
-  cpu_entry.max_rel_diff = max_rel_diff(out, reference);
-  bench.entries.push_back(cpu_entry);
-
-  // The bfloat16 loop where the CPU has it: its rel diff column is its
-  // rounding against the float32 product.
-  if (m.format == DdsFormat::kBc1 && CompressedTransport::has_bf16_loop()) {
-    const CompressedTransport bf16(cpu.tables(), BlockLoop::kBf16);
+  // The default loop (what `bounce solve` runs: bfloat16 where the CPU has
+  // it, its rel diff is its rounding against float32), then the float32 one
+  // (`--float32`) when it is a different loop.
+  const CompressedTransport fastest(cpu.tables(), BlockLoop::kFastest);
+  const bool same_loop = std::string(fastest.block_loop()) == cpu.block_loop();
+  for (const CompressedTransport* t : {&fastest, &cpu}) {
+    if (t == &cpu && same_loop) break;
     RuntimeBenchEntry e;
-    e.what = std::string("compressed, C++ (") + bf16.block_loop() + ")";
-    e.bytes = bf16.bytes_per_product();
-    time_product([&bf16](const auto& x, auto& y) { bf16.multiply(x, y); }, b, bench.repeats, out,
-                 e);
+    e.what = std::string("compressed, C++ (") + t->block_loop() + ")";
+    e.default_loop = t == &fastest;
+    e.bytes = t->bytes_per_product();
+    time_product([t](const auto& x, auto& y) { t->multiply(x, y); }, b, bench.repeats, out, e);
     e.max_rel_diff = max_rel_diff(out, reference);
     bench.entries.push_back(e);
   }
@@ -190,6 +187,22 @@ std::string runtime_bench_table(const RuntimeBench& bench) {
   }
   s += text_format("  read bandwidth of this machine (sum over 512 MiB, best of 5): %.1f GB/s\n",
                    bench.stream_gb_per_s);
+  // The targets for the default C++ loop: >= 8x dense sgemv, and
+  // within 2x of the time its bytes take at the measured bandwidth.
+  for (const RuntimeBenchEntry& e : bench.entries) {
+    if (!e.available || !e.default_loop || e.best_ms <= 0.0) continue;
+    s += text_format("  %s, the default loop: %.3f ms", e.what.c_str(), e.best_ms);
+    if (dense_ms > 0.0)
+      s += text_format(", %.2fx dense sgemv (target >= 8x)", dense_ms / e.best_ms);
+    if (bench.stream_gb_per_s > 0.0) {
+      const double bound_ms = static_cast<double>(e.bytes) / (bench.stream_gb_per_s * 1e6);
+      s += text_format(
+          "; its %.1f MiB take %.3f ms at %.1f GB/s, it takes %.2fx that (target <= 2x)",
+          static_cast<double>(e.bytes) / (1024.0 * 1024.0), bound_ms, bench.stream_gb_per_s,
+          e.best_ms / bound_ms);
+    }
+    s += "\n";
+  }
   return s;
 }
 

@@ -17,16 +17,17 @@
 namespace bounce {
 
 struct RuntimeBenchEntry {
-  std::string what;       // "compressed, OpenCL (<device>)", "compressed, C++ (avx2)", ...
-  bool available = true;  // false: could not run, `error` says why
+  std::string what;           // "compressed, OpenCL (<device>)", "compressed, C++ (avx2)", ...
+  bool available = true;      // false: could not run, `error` says why
+  bool default_loop = false;  // the C++ loop `bounce solve` runs (BlockLoop::kFastest)
   std::string error;
   double best_ms = 0.0, median_ms = 0.0;  // per update
   std::size_t bytes = 0;                  // read per update
   double gb_per_s = 0.0;                  // bytes / best time
   // max_p,k |y - y_cpp| / max_p,k |y_cpp| against the compressed C++ path's
-  // result: float rounding for the OpenCL path; for the dense path, the
-  // error compression itself adds to the indirect light (the matrices given
-  // are the exact ones).
+  // float32 result: float rounding for the OpenCL path, bfloat16 rounding
+  // for the bfloat16 loop; for the dense path, the error compression itself
+  // adds to the indirect light (the matrices given are the exact ones).
   double max_rel_diff = 0.0;
 };
 

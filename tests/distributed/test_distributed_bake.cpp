@@ -1,8 +1,10 @@
 // `mpirun -np R bounce bake` against the single-process bake of the same
 // scene and settings (issue 9): form factors bit for bit, the transport
 // matrix within a tolerance derived from the floating-point error of the two
-// summation orders, the manifest's checks equal; and errors reported once by
-// rank 0 with nothing written.
+// summation orders, the manifest's checks equal; the compression (block rows
+// encoded by every rank) byte for byte; and errors reported once by rank 0
+// with nothing written.
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -65,6 +67,8 @@ class DistributedBake : public ::testing::Test {
     }
     return out;
   }
+  // The single-process bake of compressed_bake with `codec`.
+  static fs::path compressed_reference(const std::string& codec);
   static TempDir* dir_;
 };
 TempDir* DistributedBake::dir_ = nullptr;
@@ -186,6 +190,98 @@ TEST_F(DistributedBake, FourRanksEqualOneProcessWithInfiniteBounces) {
               d.frobenius, tolerance, d.max_relative);
 }
 
+// A bake whose compression the ranks share: K = 1, so T = M = diag(albedo) F
+// is computed without any product and is the same bytes in every bake (F is,
+// and no summation order differs); every file of the compressed bake must
+// then be too. --dump-matrices adds F.npy and T.npy, pictures are written.
+std::vector<std::string> compressed_bake(const fs::path& out, const std::string& codec) {
+  return {"bake",
+          scene("cornell-box"),
+          "--out",
+          out.string(),
+          "--voxel",
+          "4",
+          "--bounces",
+          "1",
+          "--codec",
+          codec,
+          "--dump-matrices",
+          "--quiet"};
+}
+
+fs::path DistributedBake::compressed_reference(const std::string& codec) {
+  if (!dir_) dir_ = new TempDir();
+  const fs::path out = dir_->path() / ("single-" + codec);
+  if (!fs::exists(out)) {
+    const RunResult r = run_in(*dir_, single(compressed_bake(out, codec)));
+    EXPECT_EQ(r.exit_code, 0) << r;
+  }
+  return out;
+}
+
+// Every file of the two bake folders byte for byte (the kept entries, the
+// permutation, T.dds's blocks, the pictures ...), and the manifest's
+// compression record equal apart from times and decisions; the ranks did
+// share the block encoding, and sent their compress stage's peak memory.
+void expect_same_compressed_bake(const fs::path& one, const fs::path& many, int ranks) {
+  const std::vector<std::string> files = entries(one);
+  ASSERT_EQ(files, entries(many));
+  for (const char* needed : {"T.dds", "permutation.npy", "T.npy", "F.npy"})
+    EXPECT_NE(std::find(files.begin(), files.end(), needed), files.end()) << needed;
+  for (const std::string& f : files)
+    if (f != "manifest.json") expect_same_bytes(one / f, many / f);
+  const json a = read_manifest(one), b = read_manifest(many);
+  for (const char* key : {"codec", "encoder", "error_budget", "errors", "format", "kept_fraction",
+                          "kept_fraction_trials", "ordering", "padded_size", "quantizers", "sizes",
+                          "stored_channels"})
+    EXPECT_EQ(a["compression"][key], b["compression"][key]) << key;
+  const std::string decisions = b["compression"]["decisions"].dump();
+  EXPECT_TRUE(contains(decisions, "block encoding")) << decisions;
+  EXPECT_TRUE(contains(decisions, "on " + std::to_string(ranks) + " MPI ranks")) << decisions;
+  bool compress_stage = false;
+  for (const json& s : b["stages"])
+    if (s["name"] == "compress") {
+      compress_stage = true;
+      EXPECT_GT(s.value("peak_rss_bytes_other_ranks", 0.0), 0.0) << s.dump();
+    }
+  EXPECT_TRUE(compress_stage);
+}
+
+TEST_F(DistributedBake, TwoRanksCompressLikeOneProcessWithOurCodec) {
+  TempDir work;
+  const fs::path out = work / "two";
+  const RunResult r = run_in(work, distributed(2, compressed_bake(out, "ours")));
+  ASSERT_EQ(r.exit_code, 0) << r;
+  expect_same_compressed_bake(compressed_reference("ours"), out, 2);
+  // The error budget tried several kept fractions, each one encoding shared
+  // by the ranks.
+  EXPECT_GE(read_manifest(out)["compression"]["kept_fraction_trials"].size(), 2u);
+}
+
+TEST_F(DistributedBake, FourRanksCompressLikeOneProcessWithOurCodec) {
+  TempDir work;
+  const fs::path out = work / "four";
+  const RunResult r = run_in(work, distributed(4, compressed_bake(out, "ours")));
+  ASSERT_EQ(r.exit_code, 0) << r;
+  expect_same_compressed_bake(compressed_reference("ours"), out, 4);
+}
+
+TEST_F(DistributedBake, TwoRanksCompressLikeOneProcessWithPaperCodec) {
+  TempDir work;
+  const fs::path out = work / "two";
+  const RunResult r = run_in(work, distributed(2, compressed_bake(out, "paper")));
+  ASSERT_EQ(r.exit_code, 0) << r;
+  expect_same_compressed_bake(compressed_reference("paper"), out, 2);
+}
+
+TEST_F(DistributedBake, FourRanksCompressLikeOneProcessWithPaperCodec) {
+  TempDir work;
+  const fs::path out = work / "four";
+  const RunResult r = run_in(work, distributed(4, compressed_bake(out, "paper")));
+  ASSERT_EQ(r.exit_code, 0) << r;
+  expect_same_compressed_bake(compressed_reference("paper"), out, 4);
+}
+
 // A stage's peak RSS in a manifest: this process's (rank 0's), or with
 // `other_ranks` the highest of the other ranks'.
 double stage_peak(const json& manifest, const std::string& stage, bool other_ranks) {
@@ -253,6 +349,25 @@ TEST(DistributedBakeErrors, BadSceneIsOneErrorOnRankZeroAndNothingWritten) {
   EXPECT_EQ(lines_starting_with(r.err, "bounce: error:").size(), 1u) << r;
   EXPECT_TRUE(contains(r.err, "missing.obj")) << r;
   EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(DistributedBakeErrors, RankFailingInCompressionIsOneErrorOnRankZeroAndNothingWritten) {
+  TempDir work;
+  const fs::path out = work / "failed";
+  RunOptions o;
+  o.cwd = work.path();
+  o.timeout = std::chrono::seconds(120);
+  o.env["OMP_NUM_THREADS"] = "1";
+  o.env["OPENBLAS_NUM_THREADS"] = "1";
+  // Rank 1 fails its share of the block encoding (mpi_compression.cpp).
+  o.env["BOUNCE_TEST_FAIL_BLOCK_ENCODING_ON_RANK"] = "1";
+  const RunResult r = run(distributed(2, compressed_bake(out, "ours")), o);
+  EXPECT_NE(r.exit_code, 0) << r;
+  const auto errors = lines_starting_with(r.err, "bounce: error:");
+  ASSERT_EQ(errors.size(), 1u) << r;
+  EXPECT_TRUE(contains(errors[0], "block encoding failed on rank 1 of 2")) << r;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_TRUE(hidden_leftovers(out).empty());
 }
 
 TEST(DistributedBakeErrors, BatchIsRefusedWithNothingWritten) {

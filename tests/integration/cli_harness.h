@@ -185,6 +185,9 @@ class Child {
 
   void send(int signal) { ::kill(pid_, signal); }
 
+  // What the process has written to stderr so far.
+  std::string err_so_far() const { return read_text(err_path_); }
+
   // Waits up to `timeout`; kills the process if it is still running then.
   RunResult wait(std::chrono::duration<double> timeout) {
     const auto deadline = Clock::now() + timeout;

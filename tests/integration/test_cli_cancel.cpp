@@ -17,7 +17,13 @@ TEST_P(BakeCancel, SignalMidBakeExits130AndLeavesNothing) {
   options.cwd = tmp.path();
   // The bunny at --voxel 14 bakes for well over ten seconds on two cores.
   Child child({"bake", scene("cornell-bunny"), "--voxel", "14", "--out", out.string()}, options);
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  // The signal goes once the bake says it started ("Baking ... into ..."),
+  // which it prints after installing its handlers: a fixed wait let the
+  // signal arrive before them on a loaded machine (default action, exit 143).
+  while (child.running() && child.seconds_since_start() < 60.0 &&
+         !contains(child.err_so_far(), "Baking "))
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
   ASSERT_TRUE(child.running()) << "the bake ended before it could be cancelled:\n"
                                << child.wait(std::chrono::seconds(1));
   const auto sent = Clock::now();

@@ -1,7 +1,7 @@
 // `bounce solve` on a real bake: the three ways of computing T b agree (the
-// compressed ones to float rounding, the dense one within the compression
-// error the bake measured), lights move, outputs are complete, bad input is
-// named.
+// compressed ones to float rounding, or bfloat16 rounding for the default C++
+// loop, the dense one within the compression error the bake measured),
+// lights move, outputs are complete, bad input is named.
 #include "cli_harness.h"
 
 namespace bounce::itest {
@@ -51,9 +51,11 @@ double indirect_difference(const NpyArray<float>& a, const NpyArray<float>& b,
 }
 
 TEST_F(Solve, OpenClCppAndDenseAgree) {
-  json s_cl, s_cpp, s_dense;
+  json s_cl, s_cpp, s_bf16, s_dense;
   const auto cl = solve("cl", {"--multiply", "opencl", "--no-images", "--no-mesh"}, &s_cl);
-  const auto cpp = solve("cpp", {"--multiply", "cpp", "--no-images", "--no-mesh"}, &s_cpp);
+  const auto cpp =
+      solve("cpp", {"--multiply", "cpp", "--float32", "--no-images", "--no-mesh"}, &s_cpp);
+  const auto bf16 = solve("bf16", {"--multiply", "cpp", "--no-images", "--no-mesh"}, &s_bf16);
   const auto dense = solve("dense", {"--multiply", "dense", "--no-images", "--no-mesh"}, &s_dense);
   EXPECT_TRUE(contains(s_cl["multiply"].get<std::string>(), "OpenCL")) << s_cl["multiply"];
   EXPECT_TRUE(contains(s_cpp["multiply"].get<std::string>(), "C++")) << s_cpp["multiply"];
@@ -66,6 +68,14 @@ TEST_F(Solve, OpenClCppAndDenseAgree) {
     for (std::size_t c = 0; c < 6; ++c) ASSERT_EQ(cl.data[k + c], dense.data[k + c]);
   // Same compressed matrix, other summation order: float rounding only.
   EXPECT_LT(indirect_difference(cl, cpp, patches), 1e-5);
+  // The default C++ loop: bfloat16 where the CPU has it, each row within
+  // 2^-8 of sum |T||b| (the unit tests' bound; T and b are non-negative
+  // here, so within 2^-8 relative), else the float32 loop itself.
+  const double rounding = indirect_difference(bf16, cpp, patches);
+  EXPECT_LT(rounding, std::ldexp(1.0, -8)) << s_bf16["multiply"];
+  if (contains(s_bf16["multiply"].get<std::string>(), "bf16")) {
+    EXPECT_GT(rounding, 0.0);
+  }
   // Against the exact matrix: the error compression adds. The bake measured
   // it per evaluation light (the scene's point light and the area light are
   // among them); the sum of two lights' errors is at most twice the worst.

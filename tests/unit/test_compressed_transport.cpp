@@ -213,7 +213,7 @@ TEST(CompressedTransport, MatchesTheDenseProductOfTheDecompressedMatrix) {
   const std::vector<glm::vec3> b = random_light(kN, 11);
   for (const Case& c : cases()) {
     const Reference r = dense_reference(c.m, c.channel_of_rgb, b);
-    for (BlockLoop loop : {BlockLoop::kFastest, BlockLoop::kAvx2, BlockLoop::kPortable}) {
+    for (BlockLoop loop : {BlockLoop::kFloat32, BlockLoop::kAvx2, BlockLoop::kPortable}) {
       const CompressedTransport t(c.m, c.channel_of_rgb, loop);
       std::vector<glm::vec3> y;
       t.multiply(b, y);
@@ -229,17 +229,18 @@ TEST(CompressedTransport, MatchesTheDenseProductOfTheDecompressedMatrix) {
 // The bfloat16 loop rounds each palette value and each b to 8-bit mantissas
 // (relative error <= 2^-9 each), so each product is off by at most
 // (2 * 2^-9 + 2^-18) |T||b| and a row by ~2^-8 of sum |T||b|, plus the
-// float32 sums above. A wrong index, palette or block pairing (the loop pairs
-// neighbouring blocks, kN gives 51 block columns: pairs, a pair of pairs and
-// an odd last block) is off by far more, as the float32 loops' tolerance
-// argument says.
+// float32 sums above. A wrong index, palette or block grouping (the loop
+// reads groups of 8 neighbouring blocks; kN gives 51 block columns: 6 full
+// groups and one of 3 blocks and 5 padding blocks) is off by far more, as
+// the float32 loops' tolerance argument says. BlockLoop::kFastest, the
+// default, is the bfloat16 loop where the CPU has it.
 TEST(CompressedTransport, Bf16LoopIsWithinItsRoundingBound) {
   if (!CompressedTransport::has_bf16_loop()) GTEST_SKIP() << "no AVX-512 BF16 + VBMI on this CPU";
   const double bound = std::ldexp(1.0, -8) + std::ldexp(1.0, -18) + kTolerance;
   const std::vector<glm::vec3> b = random_light(kN, 13);
   for (const Case& c : cases()) {
     const Reference r = dense_reference(c.m, c.channel_of_rgb, b);
-    const CompressedTransport t(c.m, c.channel_of_rgb, BlockLoop::kBf16);
+    const CompressedTransport t(c.m, c.channel_of_rgb, BlockLoop::kFastest);
     if (c.m.format != DdsFormat::kBc1) {
       EXPECT_STRNE(t.block_loop(), "avx512-bf16") << c.name << ": BC4 has no bfloat16 loop";
       continue;
@@ -257,11 +258,13 @@ TEST(CompressedTransport, Bf16LoopIsWithinItsRoundingBound) {
   }
 }
 
-// The AVX-512 loops run bands of 8 block rows over tiles of 128 block
-// pairs of b, reading the blocks in that order (compressed_transport.cpp).
+// The AVX-512 loops run bands of 8 block rows over tiles of 1024 stored
+// columns of b (128 block pairs in float32, 32 groups of 8 blocks in
+// bfloat16), reading the blocks in that order (compressed_transport.cpp).
 // kN fits one tile and a short last band; at n = 2049 (513 block rows and
 // columns) a row spans three tiles, the last holding only the odd last
-// block, and the last band has one block row. A record laid out in the wrong
+// block (float32: one pair, bfloat16: one group with 7 padding blocks), and
+// the last band has one block row. A record laid out in the wrong
 // place, a tile's b or a band's row mixed up, is a wrong block: off by far
 // more than either tolerance, as above.
 TEST(CompressedTransport, SeveralTilesAndBandsMatchTheDenseProduct) {
@@ -270,7 +273,7 @@ TEST(CompressedTransport, SeveralTilesAndBandsMatchTheDenseProduct) {
   const std::vector<glm::vec3> b = random_light(n, 32);
   const Reference r = dense_reference(m, {0, 1, 2}, b);
   const double bf16_bound = std::ldexp(1.0, -8) + std::ldexp(1.0, -18) + kTolerance;
-  for (BlockLoop loop : {BlockLoop::kFastest, BlockLoop::kBf16, BlockLoop::kAvx2}) {
+  for (BlockLoop loop : {BlockLoop::kFloat32, BlockLoop::kFastest, BlockLoop::kAvx2}) {
     const CompressedTransport t(m, {0, 1, 2}, loop);
     std::vector<glm::vec3> y;
     t.multiply(b, y);
