@@ -247,12 +247,21 @@ void expect_same_compressed_bake(const fs::path& one, const fs::path& many, int 
   EXPECT_TRUE(compress_stage);
 }
 
+// The compressed bake with `codec` on `ranks` ranks, in `work`, compared
+// with the single process's; returns its folder.
+fs::path bake_on_ranks_like_one_process(const TempDir& work, int ranks, const std::string& codec,
+                                        const fs::path& reference) {
+  const fs::path out = work / ("ranks-" + std::to_string(ranks));
+  const RunResult r = run_in(work, distributed(ranks, compressed_bake(out, codec)));
+  EXPECT_EQ(r.exit_code, 0) << r;
+  if (r.exit_code == 0) expect_same_compressed_bake(reference, out, ranks);
+  return out;
+}
+
 TEST_F(DistributedBake, TwoRanksCompressLikeOneProcessWithOurCodec) {
   TempDir work;
-  const fs::path out = work / "two";
-  const RunResult r = run_in(work, distributed(2, compressed_bake(out, "ours")));
-  ASSERT_EQ(r.exit_code, 0) << r;
-  expect_same_compressed_bake(compressed_reference("ours"), out, 2);
+  const fs::path out =
+      bake_on_ranks_like_one_process(work, 2, "ours", compressed_reference("ours"));
   // The error budget tried several kept fractions, each one encoding shared
   // by the ranks.
   EXPECT_GE(read_manifest(out)["compression"]["kept_fraction_trials"].size(), 2u);
@@ -260,26 +269,17 @@ TEST_F(DistributedBake, TwoRanksCompressLikeOneProcessWithOurCodec) {
 
 TEST_F(DistributedBake, FourRanksCompressLikeOneProcessWithOurCodec) {
   TempDir work;
-  const fs::path out = work / "four";
-  const RunResult r = run_in(work, distributed(4, compressed_bake(out, "ours")));
-  ASSERT_EQ(r.exit_code, 0) << r;
-  expect_same_compressed_bake(compressed_reference("ours"), out, 4);
+  bake_on_ranks_like_one_process(work, 4, "ours", compressed_reference("ours"));
 }
 
 TEST_F(DistributedBake, TwoRanksCompressLikeOneProcessWithPaperCodec) {
   TempDir work;
-  const fs::path out = work / "two";
-  const RunResult r = run_in(work, distributed(2, compressed_bake(out, "paper")));
-  ASSERT_EQ(r.exit_code, 0) << r;
-  expect_same_compressed_bake(compressed_reference("paper"), out, 2);
+  bake_on_ranks_like_one_process(work, 2, "paper", compressed_reference("paper"));
 }
 
 TEST_F(DistributedBake, FourRanksCompressLikeOneProcessWithPaperCodec) {
   TempDir work;
-  const fs::path out = work / "four";
-  const RunResult r = run_in(work, distributed(4, compressed_bake(out, "paper")));
-  ASSERT_EQ(r.exit_code, 0) << r;
-  expect_same_compressed_bake(compressed_reference("paper"), out, 4);
+  bake_on_ranks_like_one_process(work, 4, "paper", compressed_reference("paper"));
 }
 
 // A stage's peak RSS in a manifest: this process's (rank 0's), or with
