@@ -58,7 +58,7 @@ float from_bfloat16(std::uint16_t h);
 // (the DDS has 16). A block row with an odd block count ends with a pair
 // whose second block has zero indices and the first block's palettes. The
 // records are stored in the order the loops read them (bands of block rows,
-// tiles of b; compressed_transport.cpp), not row by row.
+// tiles of b; runtime/block_loops.h), not row by row.
 struct Bc1BlockPair {
   std::uint32_t indices[2];
   std::uint16_t palette[2][3];
@@ -71,7 +71,7 @@ static_assert(sizeof(Bc1BlockPair) == 20);
 // palette each). 80 bytes for 8 blocks, 10 per block as in Bc1BlockPair. A
 // block row is padded to a multiple of 8 blocks with blocks of zero indices
 // and the last block's palettes, whose b is zero. Stored in loop order as
-// the pairs are (compressed_transport.cpp).
+// the pairs are (runtime/block_loops.h).
 struct Bc1BlockGroup {
   std::uint32_t indices[8];
   std::uint16_t palette[3][8];

@@ -260,7 +260,7 @@ TEST(CompressedTransport, Bf16LoopIsWithinItsRoundingBound) {
 
 // The AVX-512 loops run bands of 8 block rows over tiles of 1024 stored
 // columns of b (128 block pairs in float32, 32 groups of 8 blocks in
-// bfloat16), reading the blocks in that order (compressed_transport.cpp).
+// bfloat16), reading the blocks in that order (runtime/block_loops.h).
 // kN fits one tile and a short last band; at n = 2049 (513 block rows and
 // columns) a row spans three tiles, the last holding only the odd last
 // block (float32: one pair, bfloat16: one group with 7 padding blocks), and

@@ -1,0 +1,308 @@
+#include "runtime/block_loops.h"
+
+#include <array>
+
+#ifdef BOUNCE_AVX2_BLOCK_LOOP
+#include <immintrin.h>
+#endif
+
+namespace bounce::block_loops {
+
+namespace {
+
+template <DdsFormat kFormat, int kSlots>
+void block_row_portable(const BlockRowInput& in, std::size_t I, float (*acc)[3]) {
+  const Tables& t = in.t;
+  const float* b = in.b;
+  constexpr int kLevels = kFormat == DdsFormat::kBc1 ? 4 : 8;
+  constexpr int kBits = kFormat == DdsFormat::kBc1 ? 2 : 3;
+  const std::size_t nb = t.block_rows, padded = t.padded;
+  const std::uint8_t* blocks = &t.blocks[I * nb * 8];
+  for (std::size_t J = 0; J < nb; ++J) {
+    // BC1: 2-bit indices in bytes 4..7; BC4: 3-bit indices in bytes 2..7.
+    const std::uint64_t indices =
+        kFormat == DdsFormat::kBc1 ? load_u32(blocks + 8 * J + 4) : load_u64(blocks + 8 * J) >> 16;
+    const float* palette[3];
+    for (std::size_t k = 0; k < 3; ++k)
+      palette[k] = t.palette(I, J, kSlots == 1 ? 0 : t.slot_of_colour[k]);
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) {
+        const auto e = static_cast<int>((indices >> (kBits * (4 * r + c))) & (kLevels - 1));
+        for (std::size_t k = 0; k < 3; ++k)
+          acc[r][k] += palette[k][e] * b[k * padded + 4 * J + static_cast<std::size_t>(c)];
+      }
+  }
+}
+
+#ifdef BOUNCE_AVX2_BLOCK_LOOP
+// One block: the index word, shifted by a different amount in each of 8
+// lanes, is the control of a permute of the palette, giving the values of
+// rows r and r + 1 (4 texels each) in one register; a permute uses only the
+// low 2 (BC1, in-lane vpermilps, palette in both lanes) or 3 (BC4, vpermps,
+// 8-entry palette) bits of each lane, so no masking is needed. b of the
+// block's 4 columns is broadcast to both lanes and multiplied in by FMA.
+// The accumulators are named, not an array: GCC keeps arrays of them in
+// memory and stores them every iteration.
+template <DdsFormat kFormat>
+__attribute__((target("avx2,fma"))) inline __m256 load_palette(const float* palette) {
+  if constexpr (kFormat == DdsFormat::kBc1)
+    return _mm256_broadcast_ps(reinterpret_cast<const __m128*>(palette));
+  else
+    return _mm256_loadu_ps(palette);
+}
+
+template <DdsFormat kFormat>
+__attribute__((target("avx2,fma"))) inline __m256 permute(__m256 palette, __m256i control) {
+  if constexpr (kFormat == DdsFormat::kBc1)
+    return _mm256_permutevar_ps(palette, control);
+  else
+    return _mm256_permutevar8x32_ps(palette, control);
+}
+
+__attribute__((target("avx2,fma"))) inline void add_lanes(__m256 rows01, __m256 rows23,
+                                                          float (*acc)[3], int k) {
+  alignas(32) float lanes[2][8];
+  _mm256_store_ps(lanes[0], rows01);
+  _mm256_store_ps(lanes[1], rows23);
+  for (int h = 0; h < 2; ++h)
+    for (int r = 0; r < 2; ++r)
+      acc[2 * h + r][k] +=
+          (lanes[h][4 * r] + lanes[h][4 * r + 1]) + (lanes[h][4 * r + 2] + lanes[h][4 * r + 3]);
+}
+
+// The palette-table offsets (floats into bc1_tables) of 8 consecutive BC1
+// blocks, per slot: bc1_palette_key of each block's endpoints, 8 at once.
+// Scalar, the key costs ~10 integer instructions per slot, as much as the
+// rest of the block; in vectors, ~2 per block for all three slots.
+__attribute__((target("avx2,fma"))) inline void bc1_offsets_x8(const Tables& t,
+                                                               const std::uint8_t* blocks,
+                                                               std::uint32_t (*offset)[8]) {
+  static_assert(Tables::bc1_field_shift == std::array<std::uint32_t, 3>{11, 5, 0} &&
+                Tables::bc1_field_bits == std::array<std::uint32_t, 3>{5, 6, 5});
+  // Endpoint words are the even dwords of the 8 blocks: the shuffle takes
+  // them in the order 0 1 4 5 | 2 3 6 7, the 64-bit permute restores 0..7.
+  const __m256 lo = _mm256_loadu_ps(reinterpret_cast<const float*>(blocks));
+  const __m256 hi = _mm256_loadu_ps(reinterpret_cast<const float*>(blocks + 32));
+  const __m256i endpoints = _mm256_permute4x64_epi64(
+      _mm256_castps_si256(_mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0))),
+      _MM_SHUFFLE(3, 1, 2, 0));
+  const __m256i c0 = _mm256_and_si256(endpoints, _mm256_set1_epi32(0xFFFF));
+  const __m256i c1 = _mm256_srli_epi32(endpoints, 16);
+  // 1 in the 3-colour mode (colour0 <= colour1): -1 + 1 when c0 > c1 is 0.
+  const __m256i mode = _mm256_add_epi32(_mm256_cmpgt_epi32(c0, c1), _mm256_set1_epi32(1));
+  const __m256i m5 = _mm256_set1_epi32(31), m6 = _mm256_set1_epi32(63);
+  const __m256i key_r = _mm256_or_si256(
+      _mm256_slli_epi32(mode, 10),
+      _mm256_or_si256(_mm256_slli_epi32(_mm256_srli_epi32(c0, 11), 5), _mm256_srli_epi32(c1, 11)));
+  const __m256i key_g = _mm256_or_si256(
+      _mm256_slli_epi32(mode, 12),
+      _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(_mm256_srli_epi32(c0, 5), m6), 6),
+                      _mm256_and_si256(_mm256_srli_epi32(c1, 5), m6)));
+  const __m256i key_b = _mm256_or_si256(
+      _mm256_slli_epi32(mode, 10),
+      _mm256_or_si256(_mm256_slli_epi32(_mm256_and_si256(c0, m5), 5), _mm256_and_si256(c1, m5)));
+  const __m256i keys[3] = {key_r, key_g, key_b};
+  for (int s = 0; s < t.slots; ++s)
+    _mm256_store_si256(
+        reinterpret_cast<__m256i*>(offset[s]),
+        _mm256_add_epi32(
+            _mm256_slli_epi32(keys[s], 2),
+            _mm256_set1_epi32(static_cast<int>(t.bc1_table_offset[static_cast<std::size_t>(s)]))));
+}
+
+// The offsets of the next `count` (1..8) blocks: 8 at once in vectors, or
+// one by one at the end of a block row.
+__attribute__((target("avx2,fma"))) inline void bc1_offsets(const Tables& t,
+                                                            const std::uint8_t* blocks,
+                                                            std::size_t count,
+                                                            std::uint32_t (*offset)[8]) {
+  if (count == 8) return bc1_offsets_x8(t, blocks, offset);
+  for (std::size_t j = 0; j < count; ++j)
+    for (std::size_t s = 0; s < static_cast<std::size_t>(t.slots); ++s)
+      offset[s][j] = static_cast<std::uint32_t>(
+          t.bc1_table_offset[s] +
+          4 * bc1_palette_key(load_u32(blocks + 8 * j), t.bc1_field_shift[s], t.bc1_field_bits[s]));
+}
+
+template <DdsFormat kFormat, int kSlots>
+__attribute__((target("avx2,fma"))) void block_row_avx2(const BlockRowInput& in, std::size_t I,
+                                                        float (*acc)[3]) {
+  const Tables& t = in.t;
+  const float* b = in.b;
+  constexpr bool kBc1 = kFormat == DdsFormat::kBc1;
+  constexpr std::size_t kLevels = kBc1 ? 4 : 8;
+  const std::size_t nb = t.block_rows, padded = t.padded;
+  const std::uint8_t* blocks = &t.blocks[I * nb * 8];
+  // BC4: the block's own palette; BC1: the slot tables at the offsets the
+  // endpoints give, 8 blocks at a time (colour k reads slot_of_colour[k]).
+  const float* bc4_palettes = kBc1 ? nullptr : &t.palettes[I * nb * kLevels];
+  const float* tables = t.bc1_tables.data();
+  alignas(32) std::uint32_t offset[3][8] = {};
+  const std::size_t slot_r = kSlots == 1 ? 0 : static_cast<std::size_t>(t.slot_of_colour[0]);
+  const std::size_t slot_g = kSlots == 1 ? 0 : static_cast<std::size_t>(t.slot_of_colour[1]);
+  const std::size_t slot_b = kSlots == 1 ? 0 : static_cast<std::size_t>(t.slot_of_colour[2]);
+  const __m256i shift_lo = kBc1 ? _mm256_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14)
+                                : _mm256_setr_epi32(0, 3, 6, 9, 12, 15, 18, 21);
+  const __m256i shift_hi = kBc1 ? _mm256_setr_epi32(16, 18, 20, 22, 24, 26, 28, 30) : shift_lo;
+  const float *b_r = b, *b_g = b + padded, *b_b = b + 2 * padded;
+  // Rows 0 and 1 (resp. 2 and 3) x columns 0..3, per colour.
+  __m256 r01 = _mm256_setzero_ps(), g01 = r01, b01 = r01, r23 = r01, g23 = r01, b23 = r01;
+  for (std::size_t J = 0; J < nb; ++J) {
+    const std::uint8_t* block = blocks + 8 * J;
+    const std::size_t lane = J % 8;
+    if constexpr (kBc1) {
+      if (lane == 0) {
+        bc1_offsets(t, block, std::min<std::size_t>(8, nb - J), offset);
+      }
+    }
+    __m256i control01, control23;
+    if constexpr (kBc1) {
+      const __m256i word = _mm256_set1_epi32(static_cast<int>(load_u32(block + 4)));
+      control01 = _mm256_srlv_epi32(word, shift_lo);
+      control23 = _mm256_srlv_epi32(word, shift_hi);
+    } else {
+      const std::uint64_t field = load_u64(block) >> 16;  // 48 bits, 12 per row
+      control01 =
+          _mm256_srlv_epi32(_mm256_set1_epi32(static_cast<int>(field & 0xFFFFFF)), shift_lo);
+      control23 = _mm256_srlv_epi32(_mm256_set1_epi32(static_cast<int>(field >> 24)), shift_lo);
+    }
+    const __m256 br = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(b_r + 4 * J));
+    const __m256 bg = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(b_g + 4 * J));
+    const __m256 bb = _mm256_broadcast_ps(reinterpret_cast<const __m128*>(b_b + 4 * J));
+    if constexpr (kSlots == 1) {
+      const __m256 p =
+          load_palette<kFormat>(kBc1 ? tables + offset[0][lane] : bc4_palettes + J * kLevels);
+      const __m256 v01 = permute<kFormat>(p, control01), v23 = permute<kFormat>(p, control23);
+      r01 = _mm256_fmadd_ps(v01, br, r01);
+      g01 = _mm256_fmadd_ps(v01, bg, g01);
+      b01 = _mm256_fmadd_ps(v01, bb, b01);
+      r23 = _mm256_fmadd_ps(v23, br, r23);
+      g23 = _mm256_fmadd_ps(v23, bg, g23);
+      b23 = _mm256_fmadd_ps(v23, bb, b23);
+    } else {
+      const __m256 pr = load_palette<kFormat>(tables + offset[slot_r][lane]);
+      const __m256 pg = load_palette<kFormat>(tables + offset[slot_g][lane]);
+      const __m256 pb = load_palette<kFormat>(tables + offset[slot_b][lane]);
+      r01 = _mm256_fmadd_ps(permute<kFormat>(pr, control01), br, r01);
+      g01 = _mm256_fmadd_ps(permute<kFormat>(pg, control01), bg, g01);
+      b01 = _mm256_fmadd_ps(permute<kFormat>(pb, control01), bb, b01);
+      r23 = _mm256_fmadd_ps(permute<kFormat>(pr, control23), br, r23);
+      g23 = _mm256_fmadd_ps(permute<kFormat>(pg, control23), bg, g23);
+      b23 = _mm256_fmadd_ps(permute<kFormat>(pb, control23), bb, b23);
+    }
+  }
+  add_lanes(r01, r23, acc, 0);
+  add_lanes(g01, g23, acc, 1);
+  add_lanes(b01, b23, acc, 2);
+}
+
+// The values of one kept position as R, G, B, x. With 3 values per entry
+// the 16-byte load reads the next entry's R (or the table's trailing 0) as
+// x, which the 0 in b's fourth lane cancels.
+template <int kWidth>
+__attribute__((target("avx2,fma"))) inline __m128 load_value(const float* v) {
+  if constexpr (kWidth == 3)
+    return _mm_loadu_ps(v);
+  else
+    return _mm_broadcast_ss(v);
+}
+
+// The kept entries of block row I, row by row, one position per 4-float
+// FMA, two positions per step on independent sums (the FMA latency would
+// otherwise bound the loop).
+template <int kWidth>
+__attribute__((target("avx2,fma"))) void corrections_avx2(const Tables& t, const float* b4,
+                                                          std::size_t I, float (*acc)[3]) {
+  const std::uint32_t* index = t.correction_index.data();
+  const float* value = t.correction_value.data();
+  for (std::size_t r = 0; r < 4; ++r) {
+    std::size_t e = t.correction_ptr[4 * I + r];
+    const std::size_t end = t.correction_ptr[4 * I + r + 1];
+    if (e == end) continue;
+    __m128 s0 = _mm_setzero_ps(), s1 = s0;
+    for (; e + 1 < end; e += 2) {
+      const std::size_t j0 = index[e] & kCorrectionColumnMask;
+      const std::size_t j1 = index[e + 1] & kCorrectionColumnMask;
+      s0 = _mm_fmadd_ps(load_value<kWidth>(value + kWidth * e), _mm_loadu_ps(b4 + 4 * j0), s0);
+      s1 =
+          _mm_fmadd_ps(load_value<kWidth>(value + kWidth * (e + 1)), _mm_loadu_ps(b4 + 4 * j1), s1);
+    }
+    if (e < end)
+      s0 = _mm_fmadd_ps(load_value<kWidth>(value + kWidth * e),
+                        _mm_loadu_ps(b4 + 4 * (index[e] & kCorrectionColumnMask)), s0);
+    alignas(16) float sum[4];
+    _mm_store_ps(sum, _mm_add_ps(s0, s1));
+    for (int k = 0; k < 3; ++k) acc[r][k] += sum[k];
+  }
+}
+
+#endif
+
+// A band of the loops that take one block row at a time.
+template <BlockRowFn kRow>
+void rows_one_by_one(const BlockRowInput& in, std::size_t I0, std::size_t rows, float (*acc)[3]) {
+  for (std::size_t i = 0; i < rows; ++i) kRow(in, I0 + i, acc + 4 * i);
+}
+
+}  // namespace
+
+BlockBandFn block_band_function(const Tables& t, bool avx2, bool avx512, bool bf16) {
+  const bool bc1 = t.format == DdsFormat::kBc1;
+#ifdef BOUNCE_AVX2_BLOCK_LOOP
+  if (bf16 && bc1) return block_band_bf16;
+  if (avx512 && bc1) return block_band_avx512;
+  if (avx2) {
+    if (!bc1) return rows_one_by_one<block_row_avx2<DdsFormat::kBc4, 1>>;
+    return t.slots == 3 ? rows_one_by_one<block_row_avx2<DdsFormat::kBc1, 3>>
+                        : rows_one_by_one<block_row_avx2<DdsFormat::kBc1, 1>>;
+  }
+#else
+  (void)avx2;
+  (void)avx512;
+  (void)bf16;
+#endif
+  if (!bc1) return rows_one_by_one<block_row_portable<DdsFormat::kBc4, 1>>;
+  return t.slots == 3 ? rows_one_by_one<block_row_portable<DdsFormat::kBc1, 3>>
+                      : rows_one_by_one<block_row_portable<DdsFormat::kBc1, 1>>;
+}
+
+namespace {
+
+// The kept entries of block row I, into the same accumulators as its blocks.
+template <int kWidth>
+void corrections_portable(const Tables& t, const float* b4, std::size_t I, float (*acc)[3]) {
+  for (std::size_t r = 0; r < 4; ++r)
+    for (std::uint32_t e = t.correction_ptr[4 * I + r]; e < t.correction_ptr[4 * I + r + 1]; ++e) {
+      const float* v = &t.correction_value[kWidth * e];
+      const float* x = b4 + 4 * (t.correction_index[e] & kCorrectionColumnMask);
+      for (int k = 0; k < 3; ++k) acc[r][k] += v[kWidth == 3 ? k : 0] * x[k];
+    }
+}
+
+}  // namespace
+
+CorrectionsFn corrections_function(const Tables& t, bool avx2) {
+#ifdef BOUNCE_AVX2_BLOCK_LOOP
+  if (avx2) return t.correction_width == 3 ? corrections_avx2<3> : corrections_avx2<1>;
+#else
+  (void)avx2;
+#endif
+  return t.correction_width == 3 ? corrections_portable<3> : corrections_portable<1>;
+}
+
+#ifdef BOUNCE_AVX2_BLOCK_LOOP
+bool cpu_has_avx2() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
+bool cpu_has_avx512() { return __builtin_cpu_supports("avx512f") && cpu_has_avx2(); }
+bool cpu_has_avx512_bf16() {
+  return cpu_has_avx512() && __builtin_cpu_supports("avx512bw") &&
+         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512vbmi") &&
+         __builtin_cpu_supports("avx512bf16");
+}
+
+#else
+bool cpu_has_avx2() { return false; }
+bool cpu_has_avx512() { return false; }
+bool cpu_has_avx512_bf16() { return false; }
+#endif
+
+}  // namespace bounce::block_loops
