@@ -219,6 +219,9 @@ void register_report(CLI::App& app) {
                   "Reference paths per pixel and per vertex (default 512; --quick: 128)");
   cmd->add_option("--width", opt->sweep.width, "Picture width (default 160; --quick: 64)");
   cmd->add_option("--height", opt->sweep.height, "Picture height (default 120; --quick: 48)");
+  cmd->add_option("--seed", opt->sweep.seed,
+                  "Sampling seed of every bake (default 1, as bounce bake); run a few to see how "
+                  "much one row depends on where the samples fell");
   cmd->add_option("--cache", opt->cache,
                   "Reference cache folder (default $XDG_CACHE_HOME/bounce/reference)");
   cmd->add_flag("--no-cache", opt->no_cache, "Always render the reference, store nothing");

@@ -41,6 +41,7 @@ BakeSettings report_row_settings(const ReportRow& row) {
             : row.codec_name == "dense" ? CodecChoice::Dense
                                         : CodecChoice::Auto;
   s.kept_fraction = row.kept_fraction;
+  s.seed = row.seed;
   return s;
 }
 
@@ -108,6 +109,7 @@ ordered_json report_to_json(const ReportData& report) {
          {"codec", row.codec},
          {"codec_name", row.codec_name},
          {"kept_fraction", row.kept_fraction ? ordered_json(*row.kept_fraction) : ordered_json()},
+         {"seed", row.seed},
          {"bake_seconds", row.bake_seconds},
          {"update_ms", row.update_ms()},
          {"direct_ms", row.direct_ms},
@@ -160,6 +162,7 @@ ReportData report_from_json(const json& j, const std::string& where) {
       row.codec_name = jr.value("codec_name", codec_name_of(row.codec));
       if (jr.contains("kept_fraction") && !jr.at("kept_fraction").is_null())
         row.kept_fraction = jr.at("kept_fraction").get<double>();
+      row.seed = jr.value("seed", std::uint64_t{1});  // reports before --seed used 1
       row.bake_seconds = jr.at("bake_seconds").get<double>();
       row.direct_ms = jr.at("direct_ms").get<double>();
       row.multiply_ms = jr.at("multiply_ms").get<double>();

@@ -5,6 +5,7 @@
 // report.json here, so the CLI's table, the plots (views/report_charts.h)
 // and the studio's report view all work from the same rows.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -25,6 +26,7 @@ struct ReportRow {
   std::string bounces;                  // 1, 2, 3, auto, inf
   std::string codec_name;               // dense, paper, ours
   std::optional<double> kept_fraction;  // set when the sweep fixed it
+  std::uint64_t seed = 1;               // sampling seed of the row's bake
   std::string codec;                    // label: "dense", "ours (budget)", "ours 2%"
   double bake_seconds = 0.0;
   double direct_ms = 0.0, multiply_ms = 0.0;

@@ -185,6 +185,7 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
       bs.patch_mode = mode == "virtual" ? PatchMode::Virtual : PatchMode::Voxel;
       bs.codec = CodecChoice::Dense;
       bs.pictures = false;
+      bs.seed = opt.seed;
       // OpenBLAS: no OpenCL kernel compile inside a timing sweep.
       bs.transport.backend = TransportSettings::Backend::OpenBLAS;
       bs.transport.bounces = bounces.front();
@@ -233,6 +234,7 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
           row.bounces = opt.bounces[bi];
           row.codec_name = codec.name;
           row.kept_fraction = codec.kept_fraction;
+          row.seed = opt.seed;
           row.codec = codec.label();
           row.matrix_bytes = storage.stored_bytes;
           row.bake_seconds = shared + transport_seconds + store_seconds +

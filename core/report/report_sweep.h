@@ -9,6 +9,7 @@
 // on those form factors and store_transport per codec on that matrix. A
 // row's bake time is what a standalone bake of that row would have spent:
 // the shared stages plus its own transport and storage stages.
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <string>
@@ -39,6 +40,7 @@ struct ReportSweepSettings {
   int reference_samples = 0;
   int width = 0, height = 0;  // camera pictures
   int eval_grid = 0;          // evaluation mesh: the scene refined on this many cells
+  std::uint64_t seed = 1;     // sampling seed of every bake (BakeSettings::seed)
 
   // The defaults of `bounce report`, or its --quick ones (seconds, for tests
   // and the studio): fills what is empty or zero.

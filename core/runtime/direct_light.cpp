@@ -12,6 +12,31 @@ namespace bounce {
 
 namespace {
 
+// A spot light's cones, for the smoothstep between them (1 for other lights).
+struct SpotCone {
+  explicit SpotCone(const Light& light)
+      : spot(light.type == Light::Type::Spot),
+        axis(glm::normalize(light.direction)),
+        cos_inner(std::cos(glm::radians(light.spot_inner_deg))),
+        cos_outer(std::cos(glm::radians(light.spot_outer_deg))) {}
+  // For the unit direction from the light towards the receiver.
+  float factor(const glm::vec3& from_light_dir) const {
+    if (!spot) return 1.0f;
+    const float c = glm::dot(from_light_dir, axis);
+    const float t =
+        std::clamp((c - cos_outer) / std::max(1e-6f, cos_inner - cos_outer), 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+  }
+  bool spot;
+  glm::vec3 axis;
+  float cos_inner, cos_outer;
+};
+
+// Whether the segment from `origin` to a point or spot light is free.
+bool sees_light(const RayTracer& tracer, const glm::vec3& origin, const Light& light) {
+  return !tracer.occluded(origin, light.position - origin, 0.0f, 1.0f - 1e-4f);
+}
+
 // Irradiance at point p (normal n) from one light, visibility included.
 glm::vec3 from_light(const RayTracer& tracer, const glm::vec3& p, const glm::vec3& n,
                      const Light& light, float eps) {
@@ -30,17 +55,136 @@ glm::vec3 from_light(const RayTracer& tracer, const glm::vec3& p, const glm::vec
   const glm::vec3 dir = d / std::sqrt(r2);
   const float cos_n = glm::dot(n, dir);
   if (cos_n <= 0.0f) return glm::vec3(0.0f);
-  float spot = 1.0f;
-  if (light.type == Light::Type::Spot) {
-    const float c = glm::dot(-dir, glm::normalize(light.direction));
-    const float inner = std::cos(glm::radians(light.spot_inner_deg));
-    const float outer = std::cos(glm::radians(light.spot_outer_deg));
-    const float t = std::clamp((c - outer) / std::max(1e-6f, inner - outer), 0.0f, 1.0f);
-    spot = t * t * (3.0f - 2.0f * t);  // smoothstep between the cones
-    if (spot <= 0.0f) return glm::vec3(0.0f);
-  }
-  if (tracer.occluded(origin, d, 0.0f, 1.0f - 1e-4f)) return glm::vec3(0.0f);
+  const float spot = light.type == Light::Type::Spot ? SpotCone(light).factor(-dir) : 1.0f;
+  if (spot <= 0.0f) return glm::vec3(0.0f);
+  if (!sees_light(tracer, origin, light)) return glm::vec3(0.0f);
   return light.color * light.intensity * spot * cos_n / r2;
+}
+
+// Solid angle of the triangle (a, b, c) seen from the origin, signed by its
+// winding (Van Oosterom & Strackee 1983). The triple product is taken over
+// the edge vectors, which does not cancel for small, far triangles.
+double signed_solid_angle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
+  const double num = glm::dot(a, glm::cross(b - a, c - a));
+  const double den = la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la;
+  return 2.0 * std::atan2(num, den);
+}
+
+// A polygon that subtends more than this from a point light gets its own
+// shadow rays (one per triangle of a fan about its centroid); a smaller one
+// shares its sample's single ray. A misjudged smaller polygon moves at most
+// 0.01 / 4 pi = 0.08% of the light's power, and at most 4 pi / 0.01 ~ 1300
+// polygons facing a light (a few times that counting occluded and two-sided
+// ones) can be larger, so the extra rays stay near the light, where the
+// received power is concentrated and a shadow edge across one polygon matters.
+constexpr float kOwnRaysSolidAngle = 0.01f;
+
+// A polygon whose vertices all lie within this fraction of its distance from
+// the light (measured from its centroid) takes the midpoint rule, area x cos /
+// r^2 at its centroid, instead of the exact solid angle: the rule's relative
+// error is of order (radius / distance)^2 (times a few at grazing angles),
+// < 1e-3 here. Finely meshed surfaces carry ~10 such polygons per sample
+// (cornell-bunny), where the exact fan's three square roots and an atan2 per
+// triangle cost as much as the shadow ray.
+constexpr float kMidpointRadius = 0.02f;
+
+// The plane, area and centroid of a carried polygon, in float relative to its
+// first vertex (the polygons are small; absolute coordinates would cancel).
+struct PolygonFrame {
+  glm::vec3 normal;    // unit, the side the sample stands on
+  glm::vec3 centroid;  // area centroid
+  float area = 0.0f;
+  float radius2 = 0.0f;  // largest squared distance of a vertex from the centroid
+};
+
+bool polygon_frame(const glm::vec3* poly, std::uint32_t count, const glm::vec3& side,
+                   PolygonFrame& f) {
+  if (count < 3) return false;
+  const glm::vec3 v0 = poly[0];
+  glm::vec3 twice_area(0.0f);
+  for (std::uint32_t k = 1; k + 1 < count; ++k)
+    twice_area += glm::cross(poly[k] - v0, poly[k + 1] - v0);
+  const float twice = glm::length(twice_area);
+  if (!(twice > 0.0f)) return false;
+  f.normal = twice_area / twice;
+  f.area = 0.5f * twice;
+  glm::vec3 moment(0.0f);  // sum of fan triangles' (signed) areas x centroids
+  for (std::uint32_t k = 1; k + 1 < count; ++k) {
+    const glm::vec3 a = poly[k] - v0, b = poly[k + 1] - v0;
+    moment += glm::dot(glm::cross(a, b), f.normal) * (a + b);
+  }
+  f.centroid = v0 + moment / (3.0f * twice);
+  f.radius2 = 0.0f;
+  for (std::uint32_t k = 0; k < count; ++k) {
+    const glm::vec3 d = poly[k] - f.centroid;
+    f.radius2 = std::max(f.radius2, glm::dot(d, d));
+  }
+  // Oriented to the side the sample stands on (a part carried whole by a
+  // sample of another triangle faces the sample's way, samples.cpp).
+  if (glm::dot(f.normal, side) < 0.0f) f.normal = -f.normal;
+  return true;
+}
+
+// Power (irradiance x area, per colour) that sample `si` receives from a
+// point or spot light, integrated over the polygons it carries: for a planar
+// polygon facing the light, cos / r^2 integrates to the solid angle it
+// subtends, so it receives intensity x solid angle, exactly, whatever its
+// distance (a point evaluation at the sample turns 1/r^2 at a sample close to
+// the light into a large share of the scene's light, seed-dependent:
+// docs/benchmarks.md). Visibility: see kOwnRaysSolidAngle.
+glm::vec3 point_light_power(const RayTracer& tracer, const SampleSet& set, std::uint32_t si,
+                            const Light& light, const SpotCone& cone, float eps) {
+  const Sample& s = set.samples[si];
+  const glm::vec3 flux = light.color * light.intensity;
+  int sample_sees = -1;  // the sample's own shadow ray, traced on first use
+  auto sample_visibility = [&] {
+    if (sample_sees < 0) sample_sees = sees_light(tracer, s.position + eps * s.normal, light);
+    return static_cast<float>(sample_sees);
+  };
+  glm::vec3 power(0.0f);
+  for (std::uint32_t c = set.carried_first[si]; c < set.carried_first[si + 1]; ++c) {
+    const CarriedArea& piece = set.carried[c];
+    const glm::vec3* poly = &set.carried_vertices[piece.first_vertex];
+    const std::uint32_t count = piece.vertex_count;
+    PolygonFrame f;
+    if (!polygon_frame(poly, count, s.normal, f)) continue;
+    const glm::vec3 to_light = light.position - f.centroid;
+    // A planar polygon lies wholly in front of the light or wholly behind.
+    const float facing = glm::dot(f.normal, to_light);
+    if (!(facing > 0.0f)) continue;
+    const float r2 = glm::dot(to_light, to_light);
+    // Carried areas are the polygons' areas rescaled to add up to their
+    // triangle part's (rounding); keep that total.
+    const float scale = piece.area / f.area;
+    float omega;
+    if (f.radius2 < kMidpointRadius * kMidpointRadius * r2) {
+      omega = f.area * facing / (r2 * std::sqrt(r2));
+    } else {
+      const glm::dvec3 l(light.position), a0 = glm::dvec3(poly[0]) - l;
+      double sum = 0.0;
+      for (std::uint32_t k = 1; k + 1 < count; ++k)
+        sum += signed_solid_angle(a0, glm::dvec3(poly[k]) - l, glm::dvec3(poly[k + 1]) - l);
+      omega = static_cast<float>(std::abs(sum));
+    }
+    if (omega < kOwnRaysSolidAngle) {
+      const float spot = cone.spot ? cone.factor(-to_light / std::sqrt(r2)) : 1.0f;
+      if (spot > 0.0f) power += flux * (omega * spot * scale * sample_visibility());
+      continue;
+    }
+    const glm::dvec3 l(light.position), m = glm::dvec3(f.centroid) - l;
+    const glm::vec3 offset = eps * f.normal;
+    for (std::uint32_t k = 0; k < count; ++k) {
+      const glm::vec3& b = poly[k];
+      const glm::vec3& e = poly[(k + 1) % count];
+      const double part = std::abs(signed_solid_angle(m, glm::dvec3(b) - l, glm::dvec3(e) - l));
+      const glm::vec3 at = (f.centroid + b + e) / 3.0f;
+      const float spot = cone.spot ? cone.factor(glm::normalize(at - light.position)) : 1.0f;
+      if (spot > 0.0f && sees_light(tracer, at + offset, light))
+        power += flux * (static_cast<float>(part) * spot * scale);
+    }
+  }
+  return power;
 }
 
 }  // namespace
@@ -62,22 +206,33 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const 
     throw Error("direct light", "the output has " + std::to_string(e.size()) + " entries for " +
                                     std::to_string(patches.size()) + " patches");
   const float eps = 10.0f * tracer.epsilon();
+  // Samples without their polygons (a bake folder that does not store them,
+  // bake_reader.cpp): point and spot lights are then evaluated at the sample.
+  const bool polygons = samples.carried_first.size() == samples.samples.size() + 1;
+  std::vector<SpotCone> cones;
+  for (const Light& light : lights) cones.emplace_back(light);
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(patches.size()); ++pi) {
     const auto p = static_cast<std::size_t>(pi);
-    glm::vec3 sum(0.0f);
+    glm::vec3 power(0.0f);
     float area = 0.0f;
     for (std::uint32_t k = patches.member_first[p]; k < patches.member_first[p + 1]; ++k) {
-      const Sample& s = samples.samples[patches.member_samples[k]];
-      glm::vec3 es(0.0f);
-      for (const Light& light : lights) es += from_light(tracer, s.position, s.normal, light, eps);
+      const std::uint32_t si = patches.member_samples[k];
+      const Sample& s = samples.samples[si];
+      glm::vec3 es(0.0f);  // irradiance at the sample, for what is evaluated there
+      for (std::size_t li = 0; li < lights.size(); ++li) {
+        const Light& light = lights[li];
+        if (polygons && light.type != Light::Type::Directional)
+          power += point_light_power(tracer, samples, si, light, cones[li], eps);
+        else
+          es += from_light(tracer, s.position, s.normal, light, eps);
+      }
       for (const AreaLight& light : area_lights)
-        es += area_light_irradiance(tracer, s.position, s.normal, light, area_strata,
-                                    patches.member_samples[k]);
-      sum += s.area * es;
+        es += area_light_irradiance(tracer, s.position, s.normal, light, area_strata, si);
+      power += s.area * es;
       area += s.area;
     }
-    e[p] = area > 0.0f ? sum / area : glm::vec3(0.0f);
+    e[p] = area > 0.0f ? power / area : glm::vec3(0.0f);
   }
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 // Direct irradiance on patches from the scene's point, spot and directional
 // lights, with Embree shadow rays from every member sample of a patch
-// (area-weighted), so a patch half in shadow gets half the light.
+// (area-weighted), so a patch half in shadow gets half the light. Point and
+// spot lights are integrated over the polygons each sample carries (the
+// solid angle they subtend), not evaluated at the sample's point.
 // b_c = albedo_c * E_c is the light leaving each patch after the first hit,
 // the vector the multi-bounce matrix multiplies.
 #include <span>
@@ -30,9 +32,9 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const 
                        int area_strata, std::span<glm::vec3> irradiance);
 
 // Irradiance (per colour channel) at one surface point p with unit normal n
-// (the side that receives), shadow rays included: what every patch sample
-// gets, for callers that shade other points (camera pixels). `seed` makes the
-// area lights' jitter reproducible per point.
+// (the side that receives), shadow rays included, for callers that shade
+// other points (camera pixels). `seed` makes the area lights' jitter
+// reproducible per point.
 glm::vec3 irradiance_at(const RayTracer& tracer, const glm::vec3& p, const glm::vec3& n,
                         const std::vector<Light>& lights, const std::vector<AreaLight>& area = {},
                         int area_strata = 4, std::uint64_t seed = 0);

@@ -62,12 +62,14 @@ TEST(ReportData, PatchModesArePairedAtTheSameTargetDenseAndAuto) {
 TEST(ReportData, RowSettingsRebuildTheRowsBake) {
   ReportRow r = row("voxel", 300, 0.1, 1, "inf", "ours");
   r.kept_fraction = 0.02;
+  r.seed = 7;
   const BakeSettings s = report_row_settings(r);
   EXPECT_EQ(s.patches_total, 300);
   EXPECT_EQ(s.patch_mode, PatchMode::Voxel);
   EXPECT_EQ(s.transport.bounces, TransportSettings::kInfiniteBounces);
   EXPECT_EQ(s.codec, CodecChoice::Ours);
   EXPECT_EQ(s.kept_fraction, 0.02);
+  EXPECT_EQ(s.seed, 7u);
   EXPECT_EQ(report_row_settings(row("virtual", 60, 0.1, 1, "3")).transport.bounces, 3);
 }
 
@@ -80,6 +82,7 @@ TEST(ReportData, JsonRoundTripAndErrorsNameTheFile) {
   d.rows[1].kept_fraction = 0.08;
   d.rows[1].multiply_ms = 0.25;
   d.rows[1].matrix_bytes = 1234;
+  d.rows[1].seed = 5;
   mark_pareto(d.rows);
   const ReportData back = report_from_json(report_to_json(d), "test");
   EXPECT_EQ(back.scene_name, "box");
@@ -93,6 +96,8 @@ TEST(ReportData, JsonRoundTripAndErrorsNameTheFile) {
   EXPECT_FALSE(back.rows[0].kept_fraction);
   EXPECT_DOUBLE_EQ(back.rows[1].update_ms(), 0.75);
   EXPECT_EQ(back.rows[1].matrix_bytes, 1234u);
+  EXPECT_EQ(back.rows[1].seed, 5u);
+  EXPECT_EQ(back.rows[0].seed, 1u);
   EXPECT_EQ(back.rows[0].pareto, d.rows[0].pareto);
 
   const test::ScratchDir dir("bounce-report-data");
