@@ -1,6 +1,8 @@
 #include "bake/bake_reader.h"
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include "bake/bake_writer.h"
@@ -25,6 +27,54 @@ void require_shape(const fs::path& file, const std::vector<std::size_t>& shape,
     return t + ")";
   };
   throw ReadError(file.string(), "has shape " + text(shape) + ", expected " + text(expected));
+}
+
+// The polygons each sample carries (carried_*.npy), when the bake has them
+// (bakes before session 8 do not: their point lights are then evaluated at
+// the samples). Only what the direct light reads comes back: the polygons and
+// their areas, not the triangle parts they came from.
+void read_carried_polygons(const fs::path& dir, SampleSet& samples) {
+  const fs::path pf = dir / "carried_polygons.npy", af = dir / "carried_area.npy",
+                 vf = dir / "carried_vertices.npy";
+  if (!fs::exists(pf) && !fs::exists(af) && !fs::exists(vf)) return;
+  const NpyArray<std::uint32_t> p = read_npy_u32(pf);
+  if (p.shape.size() != 2 || p.shape[1] != 3) throw ReadError(pf.string(), "must have 3 columns");
+  const std::size_t count = p.shape[0];
+  const NpyArray<float> a = read_npy_f32(af);
+  require_shape(af, a.shape, {count});
+  const NpyArray<float> v = read_npy_f32(vf);
+  if (v.shape.size() != 2 || v.shape[1] != 3) throw ReadError(vf.string(), "must have 3 columns");
+  const std::size_t vertices = v.shape[0], sample_count = samples.samples.size();
+  samples.carried_vertices.resize(vertices);
+  for (std::size_t k = 0; k < vertices; ++k) {
+    const glm::vec3 x(v.data[3 * k], v.data[3 * k + 1], v.data[3 * k + 2]);
+    if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
+      throw ReadError(vf.string(), "vertex " + std::to_string(k) + " is not finite");
+    samples.carried_vertices[k] = x;
+  }
+  samples.carried.resize(count);
+  samples.carried_first.assign(sample_count + 1, 0);
+  std::uint32_t previous = 0;
+  for (std::size_t c = 0; c < count; ++c) {
+    const std::uint32_t sample = p.data[3 * c], first = p.data[3 * c + 1],
+                        corners = p.data[3 * c + 2];
+    const std::string polygon = "polygon " + std::to_string(c);
+    if (sample >= sample_count || sample < previous)
+      throw ReadError(pf.string(), polygon + " names sample " + std::to_string(sample) +
+                                       " (samples: " + std::to_string(sample_count) +
+                                       ", in order)");
+    if (corners < 3 || first > vertices || corners > vertices - first)
+      throw ReadError(pf.string(), polygon + " has vertices " + std::to_string(first) + " + " +
+                                       std::to_string(corners) + " of " + std::to_string(vertices));
+    if (!(a.data[c] >= 0.0f) || !std::isfinite(a.data[c]))
+      throw ReadError(af.string(), polygon + " has area " + std::to_string(a.data[c]));
+    previous = sample;
+    samples.carried[c] = CarriedArea{
+        std::numeric_limits<std::uint32_t>::max(), false, a.data[c], first, corners, false};
+    ++samples.carried_first[sample + 1];
+  }
+  for (std::size_t k = 0; k < sample_count; ++k)
+    samples.carried_first[k + 1] += samples.carried_first[k];
 }
 
 json read_manifest(const fs::path& dir) {
@@ -166,6 +216,7 @@ LoadedBake BakeReader::read_checked(const fs::path& dir, bool with_dense) {
   b.manifest = read_manifest(dir);
   const auto n = b.manifest.at("counts").at("patches").get<std::size_t>();
   read_patches(dir, n, b);
+  read_carried_polygons(dir, b.samples);
   const json& t = b.manifest.at("transport");
   b.channel_of_rgb = t.at("channel_of_rgb").get<std::array<int, 3>>();
   b.stored_channels = static_cast<int>(t.at("channels").size());

@@ -65,6 +65,32 @@ std::vector<float> sample_rows(const BakeResult& r) {
   return rows;
 }
 
+// The polygons of surface each sample carries (SampleSet::carried), so that
+// a bake read back integrates point lights over them as the bake did
+// (runtime/direct_light.cpp) instead of evaluating them at the samples.
+void write_carried_polygons(const fs::path& dir, const SampleSet& samples) {
+  std::vector<std::uint32_t> polygons;
+  std::vector<float> areas, vertices;
+  polygons.reserve(3 * samples.carried.size());
+  areas.reserve(samples.carried.size());
+  vertices.reserve(3 * samples.carried_vertices.size());
+  for (const glm::vec3& v : samples.carried_vertices)
+    vertices.insert(vertices.end(), {v.x, v.y, v.z});
+  if (samples.carried_first.size() == samples.samples.size() + 1)
+    for (std::size_t k = 0; k < samples.samples.size(); ++k)
+      for (std::uint32_t c = samples.carried_first[k]; c < samples.carried_first[k + 1]; ++c) {
+        const CarriedArea& piece = samples.carried[c];
+        polygons.insert(polygons.end(),
+                        {static_cast<std::uint32_t>(k), piece.first_vertex, piece.vertex_count});
+        areas.push_back(piece.area);
+      }
+  write_npy(dir / "carried_polygons.npy", std::span<const std::uint32_t>(polygons),
+            {areas.size(), 3});
+  write_npy(dir / "carried_area.npy", std::span<const float>(areas), {areas.size()});
+  write_npy(dir / "carried_vertices.npy", std::span<const float>(vertices),
+            {samples.carried_vertices.size(), 3});
+}
+
 std::string rgb_label(const std::vector<int>& rgb) {
   std::string s;
   for (int c : rgb) s += "RGB"[c];
@@ -325,6 +351,12 @@ json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const Bake
   record("samples.npy",
          "float32 [samples x 13]: position xyz, normal xyz, area, albedo rgb, "
          "voxel index, patch index (-1 = left out), triangle index");
+  write_carried_polygons(dir.path(), r.samples);
+  record("carried_polygons.npy",
+         "uint32 [polygons x 3]: sample index, first vertex, vertex count of each planar "
+         "polygon of surface a sample stands for, in sample order");
+  record("carried_area.npy", "float32 [polygons]: the area each polygon stands for");
+  record("carried_vertices.npy", "float32 [vertices x 3]: the polygons' vertices xyz");
   if (r.settings.dump_matrices) {
     write_npy(dir.path() / "F.npy", r.form_factors.values, {n, n});
     record("F.npy", "float32 [patches x patches]: form factors, row = source");
