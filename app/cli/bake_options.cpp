@@ -27,12 +27,14 @@ void BakeOptions::add_to(CLI::App& cmd, bool with_output) {
       "patches (default: the scene's own, else 16)");
   patches_total_option =
       cmd.add_option("--patches-total", patches_total,
-                     "Aim for about this many patches; picks the voxel resolution for you")
+                     "This many patches: picks the voxel resolution for you, then (virtual "
+                     "patches) spends the budget where merging costs most, so curved or unevenly "
+                     "lit voxels keep more patches than flat walls")
           ->excludes(voxel_option);
   patches_per_voxel_option = cmd.add_option(
       "--patches-per-voxel", patches_per_voxel,
       "Virtual patches kept per voxel after clustering (default: the scene's, else 3: a box "
-      "corner holds three orientations)");
+      "corner holds three orientations); with --patches-total, the average used to pick the grid");
   cmd.add_option("--patches", patch_mode,
                  "virtual: cluster samples into virtual patches (paper 001, default); voxel: one "
                  "patch per voxel and normal direction (the baseline)")

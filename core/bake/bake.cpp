@@ -166,6 +166,10 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
     if (r.settings.patch_mode == PatchMode::Virtual) {
       ClusteringSettings c;
       c.patches_per_voxel = *r.settings.patches_per_voxel;
+      // A total patch count is a total: the grid was chosen for it at
+      // patches_per_voxel, the merges then go where they cost least.
+      if (r.settings.patches_total)
+        c.total_patches = static_cast<std::size_t>(*r.settings.patches_total);
       if (distribution_) c.sharing = distribution_->sample_row_sharing();
       r.patches = cluster_virtual_patches(*tracer, r.voxels, r.samples, c, r.clustering, &progress);
       if (r.clustering.voxels_above_target > 0)

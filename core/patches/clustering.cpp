@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <queue>
 #include <unordered_map>
 
 #include "formfactor/kernel.h"
@@ -169,6 +170,15 @@ PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vo
 
   if (progress) progress->begin_stage("cluster: merge samples", nv);
   std::vector<std::vector<std::vector<std::uint32_t>>> clusters_of_voxel(nv);
+  // With a total budget every voxel merges down as far as it can and records
+  // its merges (cost, kept cluster, absorbed cluster) in order; the budget
+  // then takes the cheapest next merge over all voxels (below).
+  struct Merge {
+    float cost;
+    std::uint32_t into, from;
+  };
+  const bool budget = settings.total_patches > 0;
+  std::vector<std::vector<Merge>> merges_of_voxel(nv);
 #pragma omp parallel for schedule(dynamic, 4)
   for (std::int64_t vi = 0; vi < static_cast<std::int64_t>(nv); ++vi) {
     if (progress && progress->should_stop()) continue;
@@ -200,7 +210,7 @@ PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vo
     for (std::size_t a = 0; a < n; ++a)
       for (std::size_t b = a + 1; b < n; ++b) update(a, b);
     std::size_t remaining = n;
-    while (remaining > keep) {
+    while (remaining > (budget ? 1 : keep)) {
       float best = kNever;
       std::size_t ba = 0, bb = 0;
       for (std::size_t a = 0; a < n; ++a) {
@@ -213,6 +223,9 @@ PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vo
           }
       }
       if (best == kNever) break;  // only opposite-facing clusters left
+      if (budget)
+        merges_of_voxel[v].push_back(
+            {best, static_cast<std::uint32_t>(ba), static_cast<std::uint32_t>(bb)});
       Cluster& A = cl[ba];
       Cluster& B = cl[bb];
       const float area = A.area + B.area;
@@ -227,15 +240,44 @@ PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vo
       for (std::size_t c = 0; c < n; ++c)
         if (alive[c] && c != ba) update(ba, c);
     }
-    for (std::size_t c = 0; c < n; ++c)
-      if (alive[c]) clusters_of_voxel[v].push_back(std::move(cl[c].members));
+    if (!budget)
+      for (std::size_t c = 0; c < n; ++c)
+        if (alive[c]) clusters_of_voxel[v].push_back(std::move(cl[c].members));
     if (progress) progress->advance();
   }
   if (progress) progress->check();
+  if (budget) {
+    // Merges per voxel, cheapest next merge first, until the budget is met.
+    std::size_t count = set.samples.size();
+    std::vector<std::size_t> taken(nv, 0);
+    using Next = std::pair<float, std::size_t>;
+    std::priority_queue<Next, std::vector<Next>, std::greater<>> next;
+    for (std::size_t v = 0; v < nv; ++v)
+      if (!merges_of_voxel[v].empty()) next.push({merges_of_voxel[v][0].cost, v});
+    while (count > settings.total_patches && !next.empty()) {
+      const std::size_t v = next.top().second;
+      next.pop();
+      --count;
+      if (++taken[v] < merges_of_voxel[v].size()) next.push({merges_of_voxel[v][taken[v]].cost, v});
+    }
+    for (std::size_t v = 0; v < nv; ++v) {
+      std::vector<std::vector<std::uint32_t>> members;
+      for (std::uint32_t s = set.first[v]; s < set.first[v + 1]; ++s) members.push_back({s});
+      std::vector<bool> alive(members.size(), true);
+      for (std::size_t k = 0; k < taken[v]; ++k) {
+        const Merge& mg = merges_of_voxel[v][k];
+        auto& into = members[mg.into];
+        into.insert(into.end(), members[mg.from].begin(), members[mg.from].end());
+        alive[mg.from] = false;
+      }
+      for (std::size_t c = 0; c < members.size(); ++c)
+        if (alive[c]) clusters_of_voxel[v].push_back(std::move(members[c]));
+    }
+  }
 
   PatchSet patches;
   for (std::size_t v = 0; v < nv; ++v) {
-    if (clusters_of_voxel[v].size() > keep) stats.voxels_above_target++;
+    if (!budget && clusters_of_voxel[v].size() > keep) stats.voxels_above_target++;
     for (const auto& members : clusters_of_voxel[v]) patches.add_patch(set.samples, members);
   }
   if (progress) progress->end_stage();

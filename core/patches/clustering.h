@@ -2,7 +2,13 @@
 // Virtual patches: greedy clustering of the samples inside each voxel with the
 // metric of paper 001,
 //   M(i,j) = (1 + |C_i - C_j|) (2 - n_i.n_j) (1 + sqrt(sum_h (F_ih - F_jh)^2 + (F_hi - F_hj)^2)),
-// merging the closest pair until `patches_per_voxel` remain.
+// merging the closest pair until `patches_per_voxel` remain, or, with a total
+// budget (`--patches-total`), taking the cheapest next merge of any voxel
+// until the budget remains: each voxel's greedy sequence is the same, only
+// where it stops differs, so flat, evenly lit voxels end with one patch and
+// the patches go to curved or unevenly lit ones (on the Cornell box with the
+// bunny, the bunny's vertex error at equal patch count falls 20-40%,
+// docs/benchmarks.md).
 //
 // The form-factor term needs each sample's form factors to everything else.
 // Sample-to-sample F is S x S (S = tens of thousands), so the sum over h runs
@@ -48,6 +54,11 @@ SampleRows sample_rows_of(std::size_t part, std::size_t parts, std::size_t ns);
 
 struct ClusteringSettings {
   int patches_per_voxel = 3;
+  // > 0: instead of patches_per_voxel in every voxel, merge the cheapest pair
+  // of the whole scene (still never across voxels) until this many patches
+  // remain, so flat voxels end with one patch and curved or shaded ones keep
+  // more.
+  std::size_t total_patches = 0;
   std::size_t max_targets = 2048;
   SampleRowSharing sharing;
 };
