@@ -89,43 +89,6 @@ constexpr float kOwnRaysSolidAngle = 0.01f;
 // triangle cost as much as the shadow ray.
 constexpr float kMidpointRadius = 0.02f;
 
-// The plane, area and centroid of a carried polygon, in float relative to its
-// first vertex (the polygons are small; absolute coordinates would cancel).
-struct PolygonFrame {
-  glm::vec3 normal;    // unit, the side the sample stands on
-  glm::vec3 centroid;  // area centroid
-  float area = 0.0f;
-  float radius2 = 0.0f;  // largest squared distance of a vertex from the centroid
-};
-
-bool polygon_frame(const glm::vec3* poly, std::uint32_t count, const glm::vec3& side,
-                   PolygonFrame& f) {
-  if (count < 3) return false;
-  const glm::vec3 v0 = poly[0];
-  glm::vec3 twice_area(0.0f);
-  for (std::uint32_t k = 1; k + 1 < count; ++k)
-    twice_area += glm::cross(poly[k] - v0, poly[k + 1] - v0);
-  const float twice = glm::length(twice_area);
-  if (!(twice > 0.0f)) return false;
-  f.normal = twice_area / twice;
-  f.area = 0.5f * twice;
-  glm::vec3 moment(0.0f);  // sum of fan triangles' (signed) areas x centroids
-  for (std::uint32_t k = 1; k + 1 < count; ++k) {
-    const glm::vec3 a = poly[k] - v0, b = poly[k + 1] - v0;
-    moment += glm::dot(glm::cross(a, b), f.normal) * (a + b);
-  }
-  f.centroid = v0 + moment / (3.0f * twice);
-  f.radius2 = 0.0f;
-  for (std::uint32_t k = 0; k < count; ++k) {
-    const glm::vec3 d = poly[k] - f.centroid;
-    f.radius2 = std::max(f.radius2, glm::dot(d, d));
-  }
-  // Oriented to the side the sample stands on (a part carried whole by a
-  // sample of another triangle faces the sample's way, samples.cpp).
-  if (glm::dot(f.normal, side) < 0.0f) f.normal = -f.normal;
-  return true;
-}
-
 // Power (irradiance x area, per colour) that sample `si` receives from a
 // point or spot light, integrated over the polygons it carries: for a planar
 // polygon facing the light, cos / r^2 integrates to the solid angle it
@@ -133,7 +96,8 @@ bool polygon_frame(const glm::vec3* poly, std::uint32_t count, const glm::vec3& 
 // distance (a point evaluation at the sample turns 1/r^2 at a sample close to
 // the light into a large share of the scene's light, seed-dependent:
 // docs/benchmarks.md). Visibility: see kOwnRaysSolidAngle.
-glm::vec3 point_light_power(const RayTracer& tracer, const SampleSet& set, std::uint32_t si,
+glm::vec3 point_light_power(const RayTracer& tracer, const SampleSet& set,
+                            std::span<const CarriedPolygonFrame> frames, std::uint32_t si,
                             const Light& light, const SpotCone& cone, float eps) {
   const Sample& s = set.samples[si];
   const glm::vec3 flux = light.color * light.intensity;
@@ -147,8 +111,8 @@ glm::vec3 point_light_power(const RayTracer& tracer, const SampleSet& set, std::
     const CarriedArea& piece = set.carried[c];
     const glm::vec3* poly = &set.carried_vertices[piece.first_vertex];
     const std::uint32_t count = piece.vertex_count;
-    PolygonFrame f;
-    if (!polygon_frame(poly, count, s.normal, f)) continue;
+    const CarriedPolygonFrame& f = frames[c];
+    if (!(f.area > 0.0f)) continue;
     const glm::vec3 to_light = light.position - f.centroid;
     // A planar polygon lies wholly in front of the light or wholly behind.
     const float facing = glm::dot(f.normal, to_light);
@@ -202,6 +166,19 @@ std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSe
 void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const PatchSet& patches,
                        const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights,
                        int area_strata, std::span<glm::vec3> e) {
+  // Frames only where a point or spot light will use them.
+  const bool point_lights = std::any_of(lights.begin(), lights.end(), [](const Light& l) {
+    return l.type != Light::Type::Directional;
+  });
+  const std::vector<CarriedPolygonFrame> frames =
+      point_lights ? carried_polygon_frames(samples) : std::vector<CarriedPolygonFrame>{};
+  direct_irradiance(tracer, samples, frames, patches, lights, area_lights, area_strata, e);
+}
+
+void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
+                       std::span<const CarriedPolygonFrame> frames, const PatchSet& patches,
+                       const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights,
+                       int area_strata, std::span<glm::vec3> e) {
   if (e.size() != patches.size())
     throw Error("direct light", "the output has " + std::to_string(e.size()) + " entries for " +
                                     std::to_string(patches.size()) + " patches");
@@ -209,6 +186,13 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const 
   // Samples without their polygons (a bake folder that does not store them,
   // bake_reader.cpp): point and spot lights are then evaluated at the sample.
   const bool polygons = samples.carried_first.size() == samples.samples.size() + 1;
+  const bool point_lights = std::any_of(lights.begin(), lights.end(), [](const Light& l) {
+    return l.type != Light::Type::Directional;
+  });
+  if (polygons && point_lights && frames.size() != samples.carried.size())
+    throw Error("direct light", "the polygon frames have " + std::to_string(frames.size()) +
+                                    " entries for " + std::to_string(samples.carried.size()) +
+                                    " carried polygons");
   std::vector<SpotCone> cones;
   for (const Light& light : lights) cones.emplace_back(light);
 #pragma omp parallel for schedule(dynamic, 16)
@@ -223,7 +207,7 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const 
       for (std::size_t li = 0; li < lights.size(); ++li) {
         const Light& light = lights[li];
         if (polygons && light.type != Light::Type::Directional)
-          power += point_light_power(tracer, samples, si, light, cones[li], eps);
+          power += point_light_power(tracer, samples, frames, si, light, cones[li], eps);
         else
           es += from_light(tracer, s.position, s.normal, light, eps);
       }

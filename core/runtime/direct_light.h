@@ -14,6 +14,7 @@
 #include "patches/patch_set.h"
 #include "raytrace/ray_tracer.h"
 #include "runtime/area_lights.h"
+#include "runtime/carried_polygon_frames.h"
 #include "scene/scene.h"
 
 namespace bounce {
@@ -28,6 +29,14 @@ std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSe
 // The same into caller-owned memory (e.g. a frame graph's arena), one entry
 // per patch (throws bounce::Error otherwise).
 void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const PatchSet& patches,
+                       const std::vector<Light>& lights, const std::vector<AreaLight>& area,
+                       int area_strata, std::span<glm::vec3> irradiance);
+// The same with the carried polygons' frames computed beforehand
+// (carried_polygon_frames(samples), one per entry of samples.carried), for
+// callers that light the same samples every frame. Throws bounce::Error when
+// the counts differ and a point or spot light needs them.
+void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
+                       std::span<const CarriedPolygonFrame> frames, const PatchSet& patches,
                        const std::vector<Light>& lights, const std::vector<AreaLight>& area,
                        int area_strata, std::span<glm::vec3> irradiance);
 

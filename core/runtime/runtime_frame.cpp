@@ -49,7 +49,8 @@ RuntimeFrame::RuntimeFrame(const RayTracer& tracer, const SampleSet& samples,
       patches_(patches),
       multiply_(std::move(multiply)),
       settings_(settings),
-      n_(patches.size()) {
+      n_(patches.size()),
+      frames_(carried_polygon_frames(samples)) {
   if (!multiply_) throw Error("runtime frame", "no indirect multiply given");
   if (n_ > 0 && patches_.member_first.size() != n_ + 1)
     throw Error("runtime frame", "the patch set has " + std::to_string(n_) + " patches but " +
@@ -92,7 +93,7 @@ void RuntimeFrame::build() {
   };
 
   add_timed_pass("direct light", {lights}, {e}, [this, e, span](const FrameGraph::Context& c) {
-    direct_irradiance(tracer_, samples_, patches_, *lights_, *area_, settings_.area_strata,
+    direct_irradiance(tracer_, samples_, frames_, patches_, *lights_, *area_, settings_.area_strata,
                       span(c, e));
   });
   add_timed_pass("first hit", {e}, {b}, [this, e, b, span](const FrameGraph::Context& c) {

@@ -35,6 +35,7 @@
 #include "patches/patch_set.h"
 #include "raytrace/ray_tracer.h"
 #include "runtime/area_lights.h"
+#include "runtime/carried_polygon_frames.h"
 #include "runtime/patch_lighting.h"
 #include "scene/scene.h"
 
@@ -106,6 +107,9 @@ class RuntimeFrame {
   IndirectMultiplySpan multiply_;
   RuntimeFrameSettings settings_;
   std::size_t n_ = 0;
+  // The samples' polygon frames, computed once: they depend on the geometry
+  // only, and were most of a point light's cost when computed every frame.
+  std::vector<CarriedPolygonFrame> frames_;
   // The current frame's lights, set by solve() for the direct-light pass.
   const std::vector<Light>* lights_ = nullptr;
   const std::vector<AreaLight>* area_ = nullptr;

@@ -212,4 +212,64 @@ TEST(DirectLightPolygons, SquareFacingAwayFromThePointLightGetsNothing) {
   EXPECT_EQ(r.exact_sum, 0.0);
 }
 
+TEST(DirectLightPolygons, PolygonFramesMatchTheirGeometry) {
+  // One sample carrying an L-shaped hexagon in the plane z = 2, wound
+  // clockwise seen from +z (its fan normal is -z), the sample facing +z: the
+  // frame must face the sample's side, and its area, centroid and radius are
+  // those of the L (a 2 x 2 square less its 1 x 1 top-right quarter: area 3,
+  // centroid (5/6, 5/6), farthest vertex (2, 0) or (0, 2)). A two-vertex
+  // polygon is degenerate (area 0).
+  SampleSet set;
+  Sample s{};
+  s.normal = glm::vec3(0.0f, 0.0f, 1.0f);
+  set.samples = {s};
+  const std::vector<glm::vec3> l_shape = {{0, 0, 2}, {0, 2, 2}, {1, 2, 2},
+                                          {1, 1, 2}, {2, 1, 2}, {2, 0, 2}};
+  set.carried_vertices = l_shape;
+  set.carried_vertices.push_back({5, 5, 5});
+  set.carried_vertices.push_back({6, 5, 5});
+  set.carried.push_back(CarriedArea{0, false, 3.0f, 0, 6, false});
+  set.carried.push_back(CarriedArea{0, false, 0.0f, 6, 2, false});
+  set.carried_first = {0, 2};
+  const std::vector<CarriedPolygonFrame> frames = carried_polygon_frames(set);
+  ASSERT_EQ(frames.size(), 2u);
+  const CarriedPolygonFrame& f = frames[0];
+  EXPECT_NEAR(f.area, 3.0f, 1e-6f);
+  EXPECT_NEAR(f.normal.z, 1.0f, 1e-6f);
+  EXPECT_NEAR(f.centroid.x, 5.0f / 6.0f, 1e-6f);
+  EXPECT_NEAR(f.centroid.y, 5.0f / 6.0f, 1e-6f);
+  EXPECT_NEAR(f.centroid.z, 2.0f, 1e-6f);
+  const float far = (2.0f - 5.0f / 6.0f) * (2.0f - 5.0f / 6.0f) + (5.0f / 6.0f) * (5.0f / 6.0f);
+  EXPECT_NEAR(f.radius2, far, 1e-5f);
+  EXPECT_EQ(frames[1].area, 0.0f);
+  // Samples without polygons (an older bake folder) have no frames.
+  set.carried_first.clear();
+  EXPECT_TRUE(carried_polygon_frames(set).empty());
+}
+
+TEST(DirectLightPolygons, FramesComputedOnceGiveTheSameLight) {
+  // The runtime computes the frames once per sample set and passes them in;
+  // the result must be the per-call computation's, bit for bit (the same
+  // sums in the same order), and a frame table of the wrong size an error.
+  const SceneBake& b = perpendicular_squares();
+  const RayTracer tracer(b.scene);
+  const std::vector<Light> lights = {point_light(glm::vec3(0.3f, 0.4f, 0.6f), 2.0f)};
+  const std::vector<glm::vec3> per_call =
+      direct_irradiance(tracer, b.bake.samples, b.bake.patches, lights);
+  const std::vector<CarriedPolygonFrame> frames = carried_polygon_frames(b.bake.samples);
+  ASSERT_EQ(frames.size(), b.bake.samples.carried.size());
+  std::vector<glm::vec3> once(b.bake.patches.size());
+  direct_irradiance(tracer, b.bake.samples, frames, b.bake.patches, lights, {}, 4, once);
+  float total = 0.0f;
+  for (std::size_t p = 0; p < once.size(); ++p) {
+    EXPECT_EQ(once[p], per_call[p]) << "patch " << p;
+    total += once[p].r;
+  }
+  EXPECT_GT(total, 0.0f);
+  const std::span<const CarriedPolygonFrame> short_table(frames.data(), frames.size() - 1);
+  EXPECT_THROW(
+      direct_irradiance(tracer, b.bake.samples, short_table, b.bake.patches, lights, {}, 4, once),
+      Error);
+}
+
 }  // namespace bounce
