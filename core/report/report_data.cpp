@@ -53,7 +53,8 @@ std::vector<PatchModeComparison> compare_patch_modes(const ReportData& report,
     for (const ReportRow& x : report.rows)
       if (x.mode == "voxel" && x.codec_name == "dense" && x.bounces == bounces &&
           x.patches_target == v.patches_target) {
-        out.push_back({v.patches_target, v.patches, x.patches, v.indirect_error, x.indirect_error});
+        out.push_back({v.patches_target, v.patches, x.patches, v.indirect_error, x.indirect_error,
+                       v.layout_indirect_error, x.layout_indirect_error});
         break;
       }
   }
@@ -120,6 +121,8 @@ ordered_json report_to_json(const ReportData& report) {
          {"image_indirect", errors_json(row.indirect)},
          {"image_indirect_noise_corrected_relative_rmse", row.indirect_error},
          {"vertex_indirect_noise_corrected_relative_rmse", row.vertex_error},
+         {"layout_image_indirect_noise_corrected_relative_rmse", row.layout_indirect_error},
+         {"layout_vertex_indirect_noise_corrected_relative_rmse", row.layout_vertex_error},
          {"vertex_indirect",
           {{"relative_rmse", row.vertex.relative_rmse},
            {"mean_relative", row.vertex.mean_relative},
@@ -172,6 +175,11 @@ ReportData report_from_json(const json& j, const std::string& where) {
       row.indirect = errors_from(jr.at("image_indirect"));
       row.indirect_error = jr.at("image_indirect_noise_corrected_relative_rmse").get<double>();
       row.vertex_error = jr.at("vertex_indirect_noise_corrected_relative_rmse").get<double>();
+      // Reports from before the layout errors have none (0).
+      row.layout_indirect_error =
+          jr.value("layout_image_indirect_noise_corrected_relative_rmse", 0.0);
+      row.layout_vertex_error =
+          jr.value("layout_vertex_indirect_noise_corrected_relative_rmse", 0.0);
       const json& v = jr.at("vertex_indirect");
       row.vertex.relative_rmse = v.at("relative_rmse").get<double>();
       row.vertex.mean_relative = v.at("mean_relative").get<double>();

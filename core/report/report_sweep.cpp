@@ -15,6 +15,7 @@
 #include "raytrace/ray_tracer.h"
 #include "reference/reference_cache.h"
 #include "report/baked_multiply.h"
+#include "report/exact_patch_light.h"
 #include "runtime/camera_image.h"
 #include "runtime/mesh_transfer.h"
 #include "runtime/patch_lighting.h"
@@ -201,6 +202,37 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
           shared += s.seconds;
       }
       const TransferGrid grid = TransferGrid::from(bake.voxels.grid);
+      // Patch values to errors against the reference: gathered to the
+      // camera's pixels and the evaluation mesh's vertices.
+      struct Measured {
+        ImageErrors full, indirect;
+        VertexErrors vertex;
+        double indirect_error = 0.0, vertex_error = 0.0;
+      };
+      const auto measure = [&](const std::vector<glm::vec3>& patch_indirect) {
+        Measured m;
+        const PatchGather gather(bake.patches.patches, patch_indirect, grid, &tracer,
+                                 GatherSettings{});
+        CameraImageSettings camera;
+        camera.width = opt.width;
+        camera.height = opt.height;
+        camera.samples_per_side = 2;  // the reference jitters over the pixel too
+        const CameraImages images = render_camera(tracer, gather, camera, &progress);
+        m.full = image_errors(images.full, ref.full, mask);
+        m.indirect = image_errors(images.indirect, ref.indirect, mask);
+        LitMesh lit = eval_mesh;
+        relight(lit, gather, &progress);
+        m.vertex = vertex_errors(lit.radiosity, ref_vertex_indirect);
+        m.indirect_error = noise_corrected_relative_rmse(images.indirect, ref.indirect,
+                                                         ref.indirect_variance, mask);
+        m.vertex_error =
+            noise_corrected_relative_rmse(lit.radiosity, ref_vertex_indirect, ref_vertex_variance);
+        return m;
+      };
+      // The layout's own error: the same gather of exact patch values.
+      if (log) log(mode + " patches, target " + std::to_string(target) + ": exact patch values");
+      const Measured layout =
+          measure(exact_patch_indirect(pt, bake.samples, bake.patches, cache, &progress).indirect);
       std::vector<glm::vec3> albedo;
       for (const Patch& p : bake.patches.patches) albedo.push_back(p.albedo);
       for (std::size_t bi = 0; bi < bounces.size(); ++bi) {
@@ -252,22 +284,14 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
           for (std::size_t p = 0; p < light.indirect.size(); ++p)
             row.indirect_power += bake.patches.patches[p].area *
                                   (light.indirect[p].r + light.indirect[p].g + light.indirect[p].b);
-          const PatchGather gather(bake.patches.patches, light.indirect, grid, &tracer,
-                                   GatherSettings{});
-          CameraImageSettings camera;
-          camera.width = opt.width;
-          camera.height = opt.height;
-          camera.samples_per_side = 2;  // the reference jitters over the pixel too
-          const CameraImages images = render_camera(tracer, gather, camera, &progress);
-          row.full = image_errors(images.full, ref.full, mask);
-          row.indirect = image_errors(images.indirect, ref.indirect, mask);
-          LitMesh lit = eval_mesh;
-          relight(lit, gather, &progress);
-          row.vertex = vertex_errors(lit.radiosity, ref_vertex_indirect);
-          row.indirect_error = noise_corrected_relative_rmse(images.indirect, ref.indirect,
-                                                             ref.indirect_variance, mask);
-          row.vertex_error = noise_corrected_relative_rmse(lit.radiosity, ref_vertex_indirect,
-                                                           ref_vertex_variance);
+          const Measured m = measure(light.indirect);
+          row.full = m.full;
+          row.indirect = m.indirect;
+          row.vertex = m.vertex;
+          row.indirect_error = m.indirect_error;
+          row.vertex_error = m.vertex_error;
+          row.layout_indirect_error = layout.indirect_error;
+          row.layout_vertex_error = layout.vertex_error;
           report.rows.push_back(row);
         }
       }

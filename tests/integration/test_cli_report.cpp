@@ -36,6 +36,7 @@ TEST(CliReport, QuickSweepOnTheCornellBox) {
 
   std::map<std::string, std::map<std::string, double>> power;  // setting -> bounces -> T b power
   bool any_pareto = false;
+  std::map<std::string, std::map<std::string, double>> layout;  // bake -> key -> error
   for (const json& row : report.at("rows")) {
     for (const char* key : {"image_indirect_noise_corrected_relative_rmse",
                             "vertex_indirect_noise_corrected_relative_rmse"}) {
@@ -49,6 +50,22 @@ TEST(CliReport, QuickSweepOnTheCornellBox) {
       EXPECT_GT(m.at("mse").get<double>(), 0.0);
       EXPECT_LE(m.at("ssim").get<double>(), 1.0);
     }
+    // The layout errors (exact patch values through the same gather): one
+    // pair per bake, whatever the row's bounces and codec, and below the
+    // 1-bounce row's error, which misses the light of every later bounce.
+    const std::string bake_key =
+        row.at("mode").get<std::string>() + std::to_string(row.at("patches").get<int>());
+    for (const char* key : {"layout_image_indirect_noise_corrected_relative_rmse",
+                            "layout_vertex_indirect_noise_corrected_relative_rmse"}) {
+      const double e = row.at(key).get<double>();
+      EXPECT_TRUE(std::isfinite(e) && e > 0.0) << key << " = " << e << " in " << row.dump();
+      const auto [it, first] = layout[bake_key].emplace(key, e);
+      EXPECT_EQ(it->second, e) << key << " differs between rows of bake " << bake_key;
+    }
+    if (row.at("bounces") == "1")
+      EXPECT_GT(row.at("image_indirect_noise_corrected_relative_rmse").get<double>(),
+                row.at("layout_image_indirect_noise_corrected_relative_rmse").get<double>())
+          << row.dump();
     EXPECT_GT(row.at("bake_seconds").get<double>(), 0.0);
     EXPECT_GT(row.at("update_ms").get<double>(), 0.0);
     EXPECT_GT(row.at("matrix_bytes").get<std::size_t>(), 0u);

@@ -50,12 +50,18 @@ TEST(ReportData, PatchModesArePairedAtTheSameTargetDenseAndAuto) {
             row("virtual", 300, 0.1, 1),
             row("voxel", 300, 0.25, 1),
             row("virtual", 600, 0.1, 1)};
+  d.rows[0].layout_indirect_error = 0.11;
+  d.rows[3].layout_indirect_error = 0.13;
   const std::vector<PatchModeComparison> pairs = compare_patch_modes(d);
   ASSERT_EQ(pairs.size(), 2u);  // 600 has no voxel row
   EXPECT_EQ(pairs[0].patches_target, 150);
+  EXPECT_EQ(pairs[0].virtual_layout_error, 0.11);
+  EXPECT_EQ(pairs[0].voxel_layout_error, 0.13);
   EXPECT_DOUBLE_EQ(pairs[0].ratio(), 0.12 / 0.16);
   EXPECT_EQ(pairs[1].patches_target, 300);
   EXPECT_DOUBLE_EQ(pairs[1].ratio(), 0.1 / 0.25);
+  // The paper's measure: the ratio of MSE, 0.63 on its Cornell box = 0.80 in RMSE.
+  EXPECT_DOUBLE_EQ(pairs[1].mse_ratio(), (0.1 / 0.25) * (0.1 / 0.25));
   EXPECT_EQ(compare_patch_modes(d, "1").size(), 0u);
 }
 
@@ -83,6 +89,8 @@ TEST(ReportData, JsonRoundTripAndErrorsNameTheFile) {
   d.rows[1].multiply_ms = 0.25;
   d.rows[1].matrix_bytes = 1234;
   d.rows[1].seed = 5;
+  d.rows[1].layout_indirect_error = 0.125;
+  d.rows[1].layout_vertex_error = 0.25;
   mark_pareto(d.rows);
   const ReportData back = report_from_json(report_to_json(d), "test");
   EXPECT_EQ(back.scene_name, "box");
@@ -98,6 +106,9 @@ TEST(ReportData, JsonRoundTripAndErrorsNameTheFile) {
   EXPECT_EQ(back.rows[1].matrix_bytes, 1234u);
   EXPECT_EQ(back.rows[1].seed, 5u);
   EXPECT_EQ(back.rows[0].seed, 1u);
+  EXPECT_EQ(back.rows[1].layout_indirect_error, 0.125);
+  EXPECT_EQ(back.rows[1].layout_vertex_error, 0.25);
+  EXPECT_EQ(back.rows[0].layout_indirect_error, 0.0);
   EXPECT_EQ(back.rows[0].pareto, d.rows[0].pareto);
 
   const test::ScratchDir dir("bounce-report-data");
