@@ -131,6 +131,7 @@ struct Cluster {
   glm::vec3 color{0.0f};       // area-weighted mean albedo
   glm::vec3 normal_sum{0.0f};  // area-weighted
   std::vector<float> f;        // F to each target, as a source (area-weighted mean)
+  bool emissive = false;
   glm::vec3 normal() const {
     const float len = glm::length(normal_sum);
     return len > 0.0f ? normal_sum / len : glm::vec3(0.0f);
@@ -191,20 +192,26 @@ PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vo
       c.area = x.area;
       c.color = x.albedo;
       c.normal_sum = x.area * x.normal;
+      c.emissive = x.emission.r > 0.0f || x.emission.g > 0.0f || x.emission.b > 0.0f;
       c.f.assign(f.begin() + static_cast<std::ptrdiff_t>(s * nt),
                  f.begin() + static_cast<std::ptrdiff_t>((s + 1) * nt));
       cl.push_back(std::move(c));
     }
     const std::size_t n = cl.size();
     // Pairwise metric, kept up to date as clusters merge. Pairs facing more
-    // than 90 degrees apart are never merged (infinite distance).
+    // than 90 degrees apart are never merged (infinite distance), nor emitting
+    // with non-emitting surface: a lamp just under a ceiling is their
+    // cheapest merge by normal, colour and position, and the merged patch
+    // would send the lamp's light out as if from the shaded ceiling behind it
+    // too (docs/method.md section 4).
     constexpr float kNever = std::numeric_limits<float>::infinity();
     std::vector<float> m(n * n, kNever);
     std::vector<bool> alive(n, true);
     auto update = [&](std::size_t a, std::size_t b) {
-      const float d = glm::dot(cl[a].normal(), cl[b].normal()) < 0.0f
-                          ? kNever
-                          : metric(cl[a], cl[b], targets.area);
+      const float d =
+          glm::dot(cl[a].normal(), cl[b].normal()) < 0.0f || cl[a].emissive != cl[b].emissive
+              ? kNever
+              : metric(cl[a], cl[b], targets.area);
       m[a * n + b] = m[b * n + a] = d;
     };
     for (std::size_t a = 0; a < n; ++a)
