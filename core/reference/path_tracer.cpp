@@ -80,18 +80,32 @@ ReferencePathTracer::ReferencePathTracer(const RayTracer& tracer, ReferenceSetti
     emitter_cdf_.push_back(total);
   }
   for (float& c : emitter_cdf_) c /= total;
+  triangle_pick_.assign(scene.triangle_count(), 0.0f);
+  for (std::size_t k = 0; k < emitters_.size(); ++k)
+    triangle_pick_[emitters_[k].triangle] =
+        (emitter_cdf_[k] - (k > 0 ? emitter_cdf_[k - 1] : 0.0f)) / emitters_[k].area;
+}
+
+float ReferencePathTracer::light_pdf(std::uint32_t triangle, float r2, float cos_y) const {
+  const float pick = triangle_pick_[triangle];
+  if (!(pick > 0.0f) || !(cos_y > 0.0f)) return 0.0f;
+  return pick * r2 / cos_y;
 }
 
 glm::vec3 ReferencePathTracer::direct(const glm::vec3& x, const glm::vec3& n, Sampler& rng) const {
   const glm::vec3 origin = x + eps_ * n;
+  // Shadow rays ignore blockers within eps_ of the origin: a point on an edge
+  // lies in the plane of the neighbouring wall, which would block every ray at
+  // t = 0 (no blocker can really sit closer than the offset itself).
+  const auto blocked = [&](const glm::vec3& d, float t_far) {
+    return tracer_.occluded(origin, d, eps_ / glm::length(d), t_far);
+  };
   glm::vec3 e(0.0f);
   for (const Light& light : tracer_.scene().lights) {
     if (light.type == Light::Type::Directional) {
       const glm::vec3 to_light = -glm::normalize(light.direction);
       const float cos_x = glm::dot(n, to_light);
-      if (cos_x <= 0.0f ||
-          tracer_.occluded(origin, to_light, 0.0f, std::numeric_limits<float>::infinity()))
-        continue;
+      if (cos_x <= 0.0f || blocked(to_light, std::numeric_limits<float>::infinity())) continue;
       e += light.color * light.intensity * cos_x;
       continue;
     }
@@ -111,7 +125,7 @@ glm::vec3 ReferencePathTracer::direct(const glm::vec3& x, const glm::vec3& n, Sa
       cone = s * s * (3.0f - 2.0f * s);
       if (cone <= 0.0f) continue;
     }
-    if (tracer_.occluded(origin, d, 0.0f, 1.0f - 1e-4f)) continue;
+    if (blocked(d, 1.0f - 1e-4f)) continue;
     e += light.color * light.intensity * cone * cos_x / r2;
   }
   if (emitters_.empty()) return e;
@@ -137,13 +151,18 @@ glm::vec3 ReferencePathTracer::direct(const glm::vec3& x, const glm::vec3& n, Sa
   float cos_y = -glm::dot(em.normal, dir);
   if (em.two_sided) cos_y = std::abs(cos_y);
   if (cos_x <= 0.0f || cos_y <= 0.0f) return e;
-  if (tracer_.occluded(origin, d, 0.0f, 1.0f - 1e-4f)) return e;
-  return e + em.exitance * (cos_x * cos_y * em.area / (kPi * r2 * pick));
+  if (blocked(d, 1.0f - 1e-4f)) return e;
+  // MIS, power heuristic: (L cos_x / p_l) * p_l^2 / (p_l^2 + p_b^2) with the
+  // solid-angle pdfs p_l of this sample and p_b = cos_x / pi of the bounce
+  // ray. Bounded by M / 2 however close the emitter is.
+  const float p_l = pick / em.area * r2 / cos_y, p_b = cos_x / kPi;
+  return e + em.exitance * (cos_x / kPi * p_l / (p_l * p_l + p_b * p_b));
 }
 
-glm::vec3 ReferencePathTracer::indirect(const glm::vec3& x, const glm::vec3& n,
-                                        Sampler& rng) const {
+glm::vec3 ReferencePathTracer::path(const glm::vec3& x, const glm::vec3& n, Sampler& rng,
+                                    glm::vec3& direct_out) const {
   const Scene& scene = tracer_.scene();
+  direct_out = direct(x, n, rng);
   glm::vec3 e(0.0f), throughput(1.0f), pos = x, normal = n;
   for (int bounce = 1; bounce <= settings_.max_bounces; ++bounce) {
     // Cosine-weighted direction: pdf cos / pi, so pi * L_in estimates E.
@@ -153,24 +172,51 @@ glm::vec3 ReferencePathTracer::indirect(const glm::vec3& x, const glm::vec3& n,
     basis(normal, t, b);
     const glm::vec3 dir = glm::normalize(r * std::cos(phi) * t + r * std::sin(phi) * b +
                                          std::sqrt(std::max(0.0f, 1.0f - u1)) * normal);
-    const glm::vec3 origin = pos + eps_ * normal;
-    const Hit hit = tracer_.intersect(origin, dir);
+    glm::vec3 origin = pos + eps_ * normal;
+    Hit hit = tracer_.intersect(origin, dir);
+    // A ray that starts on the back of a wall within the offset (a point on an
+    // edge or corner lies in its neighbours' planes) is not blocked by it: move
+    // off that plane to its front, where the ray goes, and cast again. A front
+    // face at t ~ 0 stays a hit: it is the neighbouring wall, seen at the edge.
+    for (int retry = 0;
+         retry < 3 && hit.hit && hit.t <= eps_ && glm::dot(hit.geometric_normal, dir) > 0.0f &&
+         !scene.two_sided(hit.triangle);
+         ++retry) {
+      origin += eps_ * hit.geometric_normal;
+      hit = tracer_.intersect(origin, dir);
+    }
     if (!hit.hit) break;
     glm::vec3 ng = hit.geometric_normal;
     if (glm::dot(ng, dir) > 0.0f) {
       if (!scene.two_sided(hit.triangle)) break;  // the back of a one-sided wall sends nothing
       ng = -ng;
     }
-    throughput *= scene.material_of(hit.triangle).albedo;
+    const Material& m = scene.material_of(hit.triangle);
+    // The emission this ray finds is the other MIS half of E_direct at the
+    // vertex it left: weight p_b^2 / (p_b^2 + p_l^2); pi * L / p_b = M.
+    if (m.is_emissive()) {
+      const float p_b = glm::dot(normal, dir) / kPi;
+      const float p_l = light_pdf(hit.triangle, hit.t * hit.t, -glm::dot(ng, dir));
+      // p_l = 0 where NEE cannot sample (a wall seen edge-on): all to this ray.
+      const float w = p_l > 0.0f ? p_b * p_b / (p_b * p_b + p_l * p_l) : 1.0f;
+      const glm::vec3 found = m.emission * w;
+      if (bounce == 1)
+        direct_out += found;
+      else
+        e += throughput * found;
+    }
+    throughput *= m.albedo;
     if (max_component(throughput) <= 0.0f) break;
-    pos = origin + hit.t * dir;
-    normal = ng;
-    e += throughput * direct(pos, normal, rng);
-    if (bounce >= settings_.min_bounces) {
+    // Roulette before the vertex's E_direct, not after: both MIS halves (NEE
+    // here, the emission the next ray finds) must survive or die together.
+    if (bounce > settings_.min_bounces) {
       const float survive = std::min(1.0f, max_component(throughput));
       if (rng.uniform() >= survive) break;
       throughput /= survive;
     }
+    pos = origin + hit.t * dir;
+    normal = ng;
+    e += throughput * direct(pos, normal, rng);
   }
   return e;
 }
@@ -178,13 +224,16 @@ glm::vec3 ReferencePathTracer::indirect(const glm::vec3& x, const glm::vec3& n,
 glm::vec3 ReferencePathTracer::sample_direct(const glm::vec3& x, const glm::vec3& n,
                                              std::uint64_t stream, std::uint64_t sample) const {
   Sampler rng(settings_.seed, stream, sample);
-  return direct(x, n, rng);
+  glm::vec3 d;
+  (void)path(x, n, rng, d);
+  return d;
 }
 
 glm::vec3 ReferencePathTracer::sample_indirect(const glm::vec3& x, const glm::vec3& n,
                                                std::uint64_t stream, std::uint64_t sample) const {
   Sampler rng(settings_.seed, stream, sample);
-  return indirect(x, n, rng);
+  glm::vec3 d;
+  return path(x, n, rng, d);
 }
 
 PointReference ReferencePathTracer::estimate_points(const std::vector<ReferencePoint>& points,
@@ -207,8 +256,9 @@ PointReference ReferencePathTracer::estimate_points(const std::vector<ReferenceP
     glm::dvec3 dsum(0.0), isum(0.0), isq(0.0), bsum(0.0), bsq(0.0);
     for (int s = 0; s < settings_.samples; ++s) {
       Sampler rng(settings_.seed, i, static_cast<std::uint64_t>(s));
-      const glm::dvec3 d(direct(p.position, p.normal, rng));
-      const glm::dvec3 ind(indirect(p.position, p.normal, rng));
+      glm::vec3 direct_x;
+      const glm::dvec3 ind(path(p.position, p.normal, rng, direct_x));
+      const glm::dvec3 d(direct_x);
       const glm::dvec3 b = glm::dvec3(p.albedo) * (d + ind) + glm::dvec3(p.emission);
       dsum += d;
       isum += ind;
@@ -274,8 +324,9 @@ void ReferenceRenderer::add_samples(int samples, Progress* progress) {
         }
         const Material& m = scene.material_of(hit.triangle);
         const glm::vec3 p = eye + hit.t * dir;
-        const glm::dvec3 d(pt_.direct(p, ng, rng));
-        const glm::dvec3 ind(pt_.indirect(p, ng, rng));
+        glm::vec3 direct_p;
+        const glm::dvec3 ind(pt_.path(p, ng, rng, direct_p));
+        const glm::dvec3 d(direct_p);
         const glm::dvec3 indirect_b = glm::dvec3(m.albedo) * ind;
         const glm::dvec3 full_b = glm::dvec3(m.albedo) * d + indirect_b + glm::dvec3(m.emission);
         full_sum_[i] += full_b;

@@ -80,7 +80,11 @@ void hash_scene(ContentHash& h, const Scene& scene) {
 }
 
 void hash_settings(ContentHash& h, const ReferenceSettings& s) {
-  // Not the thread count: results do not depend on it.
+  // Not the thread count: results do not depend on it. The estimator's
+  // version is: a changed estimator must not reuse answers cached by an older
+  // one (2: MIS between NEE and bounce-ray emission, edge-point origins).
+  constexpr std::uint64_t kEstimatorVersion = 2;
+  h.integer(kEstimatorVersion);
   h.integer(static_cast<std::uint64_t>(s.samples))
       .integer(static_cast<std::uint64_t>(s.min_bounces))
       .integer(static_cast<std::uint64_t>(s.max_bounces))
