@@ -155,7 +155,7 @@ glm::vec3 ReferencePathTracer::direct(const glm::vec3& x, const glm::vec3& n, Sa
   // MIS, power heuristic: (L cos_x / p_l) * p_l^2 / (p_l^2 + p_b^2) with the
   // solid-angle pdfs p_l of this sample and p_b = cos_x / pi of the bounce
   // ray. Bounded by M / 2 however close the emitter is.
-  const float p_l = pick / em.area * r2 / cos_y, p_b = cos_x / kPi;
+  const float p_l = light_pdf(em.triangle, r2, cos_y), p_b = cos_x / kPi;
   return e + em.exitance * (cos_x / kPi * p_l / (p_l * p_l + p_b * p_b));
 }
 
@@ -219,21 +219,6 @@ glm::vec3 ReferencePathTracer::path(const glm::vec3& x, const glm::vec3& n, Samp
     e += throughput * direct(pos, normal, rng);
   }
   return e;
-}
-
-glm::vec3 ReferencePathTracer::sample_direct(const glm::vec3& x, const glm::vec3& n,
-                                             std::uint64_t stream, std::uint64_t sample) const {
-  Sampler rng(settings_.seed, stream, sample);
-  glm::vec3 d;
-  (void)path(x, n, rng, d);
-  return d;
-}
-
-glm::vec3 ReferencePathTracer::sample_indirect(const glm::vec3& x, const glm::vec3& n,
-                                               std::uint64_t stream, std::uint64_t sample) const {
-  Sampler rng(settings_.seed, stream, sample);
-  glm::vec3 d;
-  return path(x, n, rng, d);
 }
 
 PointReference ReferencePathTracer::estimate_points(const std::vector<ReferencePoint>& points,

@@ -100,13 +100,6 @@ class ReferencePathTracer {
   const ReferenceSettings& settings() const { return settings_; }
   const RayTracer& tracer() const { return tracer_; }
 
-  // One sample of the direct irradiance at x (point/spot/directional lights
-  // and emissive triangles) and, from the same path, of the indirect.
-  glm::vec3 sample_direct(const glm::vec3& x, const glm::vec3& n, std::uint64_t stream,
-                          std::uint64_t sample) const;
-  glm::vec3 sample_indirect(const glm::vec3& x, const glm::vec3& n, std::uint64_t stream,
-                            std::uint64_t sample) const;
-
  private:
   friend class ReferenceRenderer;
   struct Emitter {

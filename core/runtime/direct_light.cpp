@@ -61,6 +61,13 @@ glm::vec3 from_light(const RayTracer& tracer, const glm::vec3& p, const glm::vec
   return light.color * light.intensity * spot * cos_n / r2;
 }
 
+// Whether any light is one that direct light integrates over the carried
+// polygons (point and spot lights, not directional ones).
+bool has_point_or_spot_light(const std::vector<Light>& lights) {
+  return std::any_of(lights.begin(), lights.end(),
+                     [](const Light& l) { return l.type != Light::Type::Directional; });
+}
+
 // Solid angle of the triangle (a, b, c) seen from the origin, signed by its
 // winding (Van Oosterom & Strackee 1983). The triple product is taken over
 // the edge vectors, which does not cancel for small, far triangles.
@@ -167,9 +174,7 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const 
                        const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights,
                        int area_strata, std::span<glm::vec3> e) {
   // Frames only where a point or spot light will use them.
-  const bool point_lights = std::any_of(lights.begin(), lights.end(), [](const Light& l) {
-    return l.type != Light::Type::Directional;
-  });
+  const bool point_lights = has_point_or_spot_light(lights);
   const std::vector<CarriedPolygonFrame> frames =
       point_lights ? carried_polygon_frames(samples) : std::vector<CarriedPolygonFrame>{};
   direct_irradiance(tracer, samples, frames, patches, lights, area_lights, area_strata, e);
@@ -186,9 +191,7 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
   // Samples without their polygons (a bake folder that does not store them,
   // bake_reader.cpp): point and spot lights are then evaluated at the sample.
   const bool polygons = samples.carried_first.size() == samples.samples.size() + 1;
-  const bool point_lights = std::any_of(lights.begin(), lights.end(), [](const Light& l) {
-    return l.type != Light::Type::Directional;
-  });
+  const bool point_lights = has_point_or_spot_light(lights);
   if (polygons && point_lights && frames.size() != samples.carried.size())
     throw Error("direct light", "the polygon frames have " + std::to_string(frames.size()) +
                                     " entries for " + std::to_string(samples.carried.size()) +
