@@ -1,5 +1,7 @@
 #include "bake_view_data.h"
 
+#include <cmath>
+
 #include "base/diagnostics.h"
 #include "io/npy.h"
 #include "scene/scene_loader.h"
@@ -48,6 +50,25 @@ std::shared_ptr<const BakeViewData> load_bake_view_data(const fs::path& dir,
       throw Error(f_file.string(), "expected " + std::to_string(n) + " x " + std::to_string(n) +
                                        " form factors, one row per patch");
     data->form_factors = std::move(f.data);
+  }
+
+  const fs::path closure_file = dir / "closure.npy";
+  if (fs::exists(closure_file)) {
+    const NpyArray<float> c = read_npy_f32(closure_file);
+    require_shape(closure_file, c.shape, 2);
+    if (c.shape[0] != data->patch_count())
+      throw Error(closure_file.string(), "expected one row per patch (" +
+                                             std::to_string(data->patch_count()) + "), found " +
+                                             std::to_string(c.shape[0]));
+    for (std::size_t p = 0; p < c.shape[0]; ++p) {
+      const float closure = c.data[2 * p], scale = c.data[2 * p + 1];
+      if (!(closure >= 0.0f && closure <= 1.0f) || !(scale >= 0.0f) || !std::isfinite(scale))
+        throw Error(closure_file.string(), "row " + std::to_string(p) +
+                                               ": closure must lie in [0, 1] and the row "
+                                               "scale be finite and >= 0");
+      data->closure.push_back(closure);
+      data->row_scale.push_back(scale);
+    }
   }
 
   if (!scene) {

@@ -29,6 +29,11 @@ struct BakeViewData {
   std::vector<VoxelRow> voxels;        // voxels.npy
   float cell_size = 0.0f;              // manifest grid.cell_size
   std::vector<float> form_factors;     // F.npy (n x n, row = source), empty when absent
+  // closure.npy: per patch, the share of its light that lands on sampled
+  // surface, and the scale the balancing applied to its form-factor row;
+  // empty for bakes without balancing.
+  std::vector<float> closure;
+  std::vector<float> row_scale;
 
   std::size_t patch_count() const { return bake.size(); }
 };

@@ -65,13 +65,16 @@ PatchView::PatchView(QWidget* parent)
       sample_poly_(vtkSmartPointer<vtkPolyData>::New()),
       sample_actor_(vtkSmartPointer<vtkActor>::New()),
       picker_(vtkSmartPointer<vtkCellPicker>::New()) {
-  colour_box_->addItems(
-      {tr("Albedo"), tr("Patch id"), tr("Radiosity (first light)"), tr("Form-factor row")});
+  colour_box_->addItems({tr("Albedo"), tr("Patch id"), tr("Radiosity (first light)"),
+                         tr("Form-factor row"), tr("Closure"), tr("Balancing scale")});
   colour_box_->setToolTip(
       tr("Albedo: the patch colour. Patch id: one colour per patch. Radiosity: light leaving "
          "each patch under the scene's first light, direct plus indirect through T. "
          "Form-factor row: how much of the picked patch's light reaches each patch (log "
-         "scale); click a patch first"));
+         "scale); click a patch first. Closure: the share of each patch's light that lands on "
+         "sampled surface (1 in a closed room; dark where light escapes). Balancing scale: how "
+         "much the patch's form-factor row was scaled to reach its closure (white: 1, blue: "
+         "scaled down, red: scaled up; strong colours show where the quadrature struggled)"));
   // The controls never force a minimum width on the view: at small sizes
   // (screenshots) they are cut off instead.
   auto* bar = new QWidget(this);
@@ -201,6 +204,8 @@ void PatchView::recolour() {
   auto by = static_cast<ColourBy>(colour_box_->currentIndex());
   if (by == ColourBy::FormFactorRow && (selected_ < 0 || !data_ || data_->form_factors.empty()))
     by = ColourBy::Albedo;
+  if ((by == ColourBy::Closure || by == ColourBy::RowScale) && (!data_ || data_->closure.empty()))
+    by = ColourBy::Albedo;
   QString what;
   if (by == ColourBy::Albedo) {
     for (std::size_t p = 0; p < n; ++p) colours_[p] = srgb(data_->bake.patches.patches[p].albedo);
@@ -230,6 +235,30 @@ void PatchView::recolour() {
                              ? std::string("the first evaluation light")
                              : b.manifest.at("scene").at("lights")[0].value("name", "light 1")))
                : tr("no exact T in this bake: emission only");
+  } else if (by == ColourBy::Closure) {
+    float lo = 1.0f;
+    for (std::size_t p = 0; p < n; ++p) {
+      std::uint8_t c[3];
+      colormap(static_cast<double>(data_->closure[p]), c);
+      colours_[p] = {c[0], c[1], c[2]};
+      lo = std::min(lo, data_->closure[p]);
+    }
+    what = tr("closure (0 .. 1; lowest %1)").arg(static_cast<double>(lo), 0, 'f', 3);
+  } else if (by == ColourBy::RowScale) {
+    // Diverging about 1 on a log scale: +-25% is full colour.
+    float lo = 1.0f, hi = 1.0f;
+    for (std::size_t p = 0; p < n; ++p) {
+      const float s = data_->row_scale[p];
+      lo = std::min(lo, s);
+      hi = std::max(hi, s);
+      const double t = std::clamp(std::log(std::max(s, 1e-6f)) / std::log(1.25), -1.0, 1.0);
+      const auto fade = static_cast<unsigned char>(255.0 * (1.0 - std::abs(t)));
+      colours_[p] = t >= 0 ? std::array<unsigned char, 3>{255, fade, fade}
+                           : std::array<unsigned char, 3>{fade, fade, 255};
+    }
+    what = tr("form-factor row scale %1 .. %2 (white 1, full colour 25%)")
+               .arg(static_cast<double>(lo), 0, 'f', 3)
+               .arg(static_cast<double>(hi), 0, 'f', 3);
   } else {
     // F[selected][q]: the share of the picked patch's light that reaches q.
     const float* row = &data_->form_factors[static_cast<std::size_t>(selected_) * n];

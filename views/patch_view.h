@@ -2,7 +2,9 @@
 // View 2: the virtual patches as oriented discs (centroid, normal, radius of
 // a disc of the patch's area), coloured by albedo, patch id, radiosity under
 // the scene's first light, or - once a patch is picked - by that patch's
-// form-factor row (who it sees). Clicking a disc picks its patch and shows
+// form-factor row (who it sees), by its closure (the share of its light that
+// lands on sampled surface) or by the scale the form-factor balancing applied
+// to its row (where the quadrature struggled). Clicking a disc picks its patch and shows
 // its member samples as points.
 #include <memory>
 
@@ -25,7 +27,7 @@ namespace bounce::views {
 class PatchView : public QWidget {
   Q_OBJECT
  public:
-  enum class ColourBy { Albedo, PatchId, Radiosity, FormFactorRow };
+  enum class ColourBy { Albedo, PatchId, Radiosity, FormFactorRow, Closure, RowScale };
 
   // Colour of the picked patch's member samples.
   static constexpr unsigned char kSampleColour[3] = {255, 0, 255};
@@ -34,7 +36,8 @@ class PatchView : public QWidget {
   ~PatchView() override;
 
   void set_data(std::shared_ptr<const BakeViewData> bake);
-  // FormFactorRow needs F.npy and a picked patch; otherwise it falls back to albedo.
+  // FormFactorRow needs F.npy and a picked patch, Closure and RowScale
+  // closure.npy; otherwise they fall back to albedo.
   void set_colour_by(ColourBy by);
   // Picks patch `p` (-1: none).
   void select_patch(int p);

@@ -46,6 +46,11 @@ void BakeOptions::add_to(CLI::App& cmd, bool with_output) {
   cmd.add_option("--visibility-rays", visibility_rays,
                  "Shadow rays per patch pair for form-factor visibility")
       ->capture_default_str();
+  cmd.add_option("--closure-rays", closure_rays,
+                 "Rays per patch measuring the share of its light that lands on sampled surface "
+                 "(its closure, 1 in a closed room); the form factors are then balanced so each "
+                 "row sums to it and reciprocity is exact. 0: keep the raw quadrature")
+      ->capture_default_str();
   cmd.add_option("--seed", seed, "Seed of every random stream (results are reproducible)")
       ->capture_default_str();
   cmd.add_option("--bounces", bounces,
@@ -111,6 +116,7 @@ BakeSettings BakeOptions::settings() const {
   s.patch_mode = patch_mode == "voxel" ? PatchMode::Voxel : PatchMode::Virtual;
   if (samples_per_face_option->count() > 0) s.samples_per_face = samples_per_face;
   s.visibility_rays = visibility_rays;
+  s.closure_rays = closure_rays;
   s.seed = seed;
   s.dump_matrices = dump_matrices;
   s.pictures = !no_pictures;

@@ -25,6 +25,7 @@ struct BakeOptions {
   std::string patch_mode = "virtual";
   int samples_per_face = 4;
   int visibility_rays = 8;
+  int closure_rays = BakeSettings{}.closure_rays;
   std::uint64_t seed = 1;
   bool dump_matrices = false;
   std::string bounces = "auto";

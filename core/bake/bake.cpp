@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -42,6 +43,40 @@ std::string fmt(double v, int digits = 3) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*g", digits, v);
   return buf;
+}
+
+// Rows the balancing had to scale by more than 25% are where the form-factor
+// quadrature (or the visibility rays) struggled: name their meshes, the
+// worst first, so an artist sees where.
+void warn_far_scaled_rows(const Scene& scene, const PatchSet& patches, const BalanceStats& balance,
+                          Diagnostics& diagnostics) {
+  constexpr double kFar = 1.25;
+  std::map<std::uint32_t, std::size_t> per_mesh;
+  std::size_t count = 0;
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    const double s = balance.row_scale[p];
+    if (s <= kFar && s >= 1.0 / kFar) continue;
+    ++per_mesh[patches.patches[p].mesh];
+    ++count;
+  }
+  if (count == 0) return;
+  std::vector<std::pair<std::size_t, std::uint32_t>> worst;
+  for (const auto& [mesh, k] : per_mesh) worst.emplace_back(k, mesh);
+  std::sort(worst.rbegin(), worst.rend());
+  std::string names;
+  for (std::size_t i = 0; i < std::min<std::size_t>(worst.size(), 4); ++i) {
+    const std::uint32_t mesh = worst[i].second;
+    names += (i ? ", '" : "'") +
+             (mesh < scene.meshes.size() ? scene.meshes[mesh].name : std::to_string(mesh)) + "' (" +
+             std::to_string(worst[i].first) + ")";
+  }
+  if (worst.size() > 4) names += " and " + std::to_string(worst.size() - 4) + " more meshes";
+  diagnostics.warn("form factors",
+                   std::to_string(count) + " of " + std::to_string(patches.size()) +
+                       " patches needed their form-factor row scaled by more than 25% to reach "
+                       "their closure (range " +
+                       fmt(balance.row_scale_min, 3) + " .. " + fmt(balance.row_scale_max, 3) +
+                       "), on " + names);
 }
 
 }  // namespace
@@ -96,7 +131,8 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
       };
       reused({"voxelize", "ray tracer (BVH build)", "sample", "patches"}, BakeStage::Geometry);
       if (!plan.runs(BakeStage::FormFactors))
-        reused({"form factors", "checks", "evaluation lights"}, BakeStage::FormFactors);
+        reused({"form factors", "checks", "closure", "balance", "evaluation lights"},
+               BakeStage::FormFactors);
       if (!plan.runs(BakeStage::Transport)) reused({"transport"}, BakeStage::Transport);
       if (!plan.runs(BakeStage::Compress)) reused({"compress"}, BakeStage::Compress);
     }
@@ -258,17 +294,52 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
         r.patch_of_sample[r.patches.member_samples[k]] = static_cast<std::int32_t>(p);
     if (out_of_core)
       r.form_factors.values = spill_to_file(std::move(r.form_factors.values), *out_of_core);
-    r.checks = check_form_factors(r.form_factors, r.patches);
+    r.checks_raw = check_form_factors(r.form_factors, r.patches);
+    r.checks = r.checks_raw;
     if (r.checks.non_finite > 0)
       throw Error("form factors", std::to_string(r.checks.non_finite) + " NaN/Inf entries");
-    // Rows a little above 1 are the quadrature error of the near field
-    // (~1%); say so only beyond that.
-    if (r.checks.row_sum_max > 1.02)
-      diagnostics_.warn("form factors", std::to_string(r.checks.rows_above_one) +
-                                            " patches have row sums above 1 (max " +
-                                            fmt(r.checks.row_sum_max, 4) + ")");
     r.stages.push_back(timer.finish());
   }
+
+  if (plan.runs(BakeStage::FormFactors) && r.settings.closure_rays > 0) {
+    StageTimer timer("closure");
+    ClosureSettings cs;
+    cs.rays_per_patch = r.settings.closure_rays;
+    cs.seed = r.settings.seed;
+    const SurfacePatchLookup lookup(r.voxels, r.samples, r.patch_of_sample);
+    r.closure =
+        measure_closure(scene_, *tracer, r.voxels, r.samples, r.patches, lookup, cs, &progress);
+    r.stages.push_back(timer.finish());
+  }
+  if (plan.runs(BakeStage::FormFactors) && r.settings.closure_rays > 0) {
+    StageTimer timer("balance");
+    std::vector<float> area;
+    area.reserve(r.patches.size());
+    for (const Patch& p : r.patches.patches) area.push_back(p.area);
+    r.balance = balance_form_factors(r.form_factors, area, r.closure.closure, {}, &progress);
+    // A patch whose closure rays all missed what its quadrature saw kept its
+    // raw row sum as target: that is its closure now.
+    for (const std::size_t p : r.balance.raw_target_patches) {
+      double row = 0.0;
+      for (std::size_t q = 0; q < r.patches.size(); ++q) row += r.form_factors(p, q);
+      r.closure.closure[p] = static_cast<float>(row);
+    }
+    r.checks = check_form_factors(r.form_factors, r.patches, &r.closure.closure);
+    if (!r.balance.converged)
+      diagnostics_.warn(
+          "form factors",
+          "balancing to the closure stopped after " + std::to_string(r.balance.iterations) +
+              " iterations with rows within " + fmt(r.balance.residual, 3) +
+              " of their closure (asked: " + fmt(BalanceSettings{}.tolerance, 3) + ")");
+    warn_far_scaled_rows(scene_, r.patches, r.balance, diagnostics_);
+    r.stages.push_back(timer.finish());
+  }
+  if (plan.runs(BakeStage::FormFactors) && r.checks.row_sum_max > 1.02)
+    // Rows a little above 1 are the quadrature error of the near field
+    // (~1%); say so only beyond that.
+    diagnostics_.warn("form factors", std::to_string(r.checks.rows_above_one) +
+                                          " patches have row sums above 1 (max " +
+                                          fmt(r.checks.row_sum_max, 4) + ")");
 
   if (plan.runs(BakeStage::FormFactors)) {
     StageTimer timer("evaluation lights");

@@ -14,6 +14,8 @@
 #include "base/diagnostics.h"
 #include "base/progress.h"
 #include "base/stage_stats.h"
+#include "formfactor/balance.h"
+#include "formfactor/closure.h"
 #include "formfactor/form_factors.h"
 #include "patches/clustering.h"
 #include "patches/patch_set.h"
@@ -30,8 +32,11 @@ struct BakeResult {
   PatchSet patches;
   // Patch index of each sample (-1 when its patch was left out).
   std::vector<std::int32_t> patch_of_sample;
-  FormFactorMatrix form_factors;
-  FormFactorChecks checks;
+  FormFactorMatrix form_factors;  // balanced to the closure unless closure_rays is 0
+  FormFactorChecks checks;        // of form_factors as stored
+  FormFactorChecks checks_raw;    // of the quadrature, before balancing
+  PatchClosure closure;           // empty when closure_rays is 0
+  BalanceStats balance;
   ClusteringStats clustering;
   std::size_t patches_before_pruning = 0;
   TransportResult transport;  // multi-bounce matrices, exact

@@ -37,6 +37,8 @@ void BakeSettings::validate() const {
             "must be between 1 and 64, got " + std::to_string(*samples_per_face));
   require(visibility_rays >= 1 && visibility_rays <= 1024, "--visibility-rays",
           "must be between 1 and 1024, got " + std::to_string(visibility_rays));
+  require(closure_rays >= 0 && closure_rays <= 65536, "--closure-rays",
+          "must be between 0 (no balancing) and 65536, got " + std::to_string(closure_rays));
   require(transport.bounces >= TransportSettings::kInfiniteBounces &&
               transport.bounces <= TransportSettings::kMaxBounces,
           "--bounces",

@@ -42,6 +42,10 @@ struct BakeSettings {
   PatchMode patch_mode = PatchMode::Virtual;
   std::optional<int> samples_per_face;
   int visibility_rays = 8;  // rays per patch pair
+  // Rays per patch measuring its closure (formfactor/closure.h), to which the
+  // form-factor rows are then balanced (formfactor/balance.h); 0: neither,
+  // the raw quadrature is kept.
+  int closure_rays = 512;
   std::uint64_t seed = 1;
   bool dump_matrices = false;
 

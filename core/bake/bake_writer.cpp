@@ -222,6 +222,7 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                    {"patch_mode", to_string(s.patch_mode)},
                    {"samples_per_face", s.samples_per_face.value_or(0)},
                    {"visibility_rays", s.visibility_rays},
+                   {"closure_rays", s.closure_rays},
                    {"seed", s.seed},
                    {"dump_matrices", s.dump_matrices},
                    {"out_of_core", to_string(s.out_of_core)}};
@@ -265,17 +266,45 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                  {"dense_footprint_bytes", r.out_of_core.dense_footprint_bytes},
                  {"physical_memory_bytes", r.out_of_core.physical_memory_bytes}};
   if (r.out_of_core.on) m["memory"]["matrix_dir"] = r.out_of_core.dir.string();
-  const FormFactorChecks& c = r.checks;
-  m["checks"]["form_factors"] = {{"precision", "float32 storage, float32 kernel sums per pair"},
-                                 {"row_sum_max", c.row_sum_max},
-                                 {"row_sum_mean", c.row_sum_mean},
-                                 {"rows_above_one", c.rows_above_one},
-                                 {"value_max", c.value_max},
-                                 {"clamped_to_one", c.clamped_to_one},
-                                 {"reciprocity_error_max", c.reciprocity_error_max},
-                                 {"reciprocity_error_rel", c.reciprocity_error_rel},
-                                 {"non_finite", c.non_finite},
-                                 {"patches_seeing_nothing", c.patches_seeing_nothing}};
+  const auto checks_json = [](const FormFactorChecks& c) {
+    return json{{"row_sum_max", c.row_sum_max},
+                {"row_sum_mean", c.row_sum_mean},
+                {"rows_above_one", c.rows_above_one},
+                {"value_max", c.value_max},
+                {"clamped_to_one", c.clamped_to_one},
+                {"reciprocity_error_max", c.reciprocity_error_max},
+                {"reciprocity_error_rel", c.reciprocity_error_rel},
+                {"non_finite", c.non_finite},
+                {"patches_seeing_nothing", c.patches_seeing_nothing}};
+  };
+  // The stored (balanced) F's checks at the top level; the quadrature's as
+  // it came out under "raw".
+  json& ff = m["checks"]["form_factors"];
+  ff = checks_json(r.checks);
+  ff["raw"] = checks_json(r.checks_raw);
+  if (r.settings.closure_rays > 0) {
+    ff["precision"] =
+        "float32 storage; kernel sums per pair in float32; balancing in float64 on the "
+        "symmetric exchange matrix stored in float32";
+    ff["rows_above_closure"] = r.checks.rows_above_closure;
+    ff["closure_excess_max"] = r.checks.closure_excess_max;
+    ff["closure"] = {{"rays_per_patch", r.closure.rays_per_patch},
+                     {"mean_area_weighted", r.closure.mean},
+                     {"min", r.closure.min},
+                     {"max", r.closure.max},
+                     {"open_patches", r.closure.open_patches},
+                     {"standard_error_max", r.closure.standard_error_max}};
+    ff["balance"] = {{"method", "symmetric Sinkhorn-Knopp scaling of (A F + (A F)^T) / 2"},
+                     {"iterations", r.balance.iterations},
+                     {"converged", r.balance.converged},
+                     {"tolerance", BalanceSettings{}.tolerance},
+                     {"residual", r.balance.residual},
+                     {"row_scale_min", r.balance.row_scale_min},
+                     {"row_scale_max", r.balance.row_scale_max},
+                     {"kept_raw_targets", r.balance.kept_raw_targets}};
+  } else {
+    ff["precision"] = "float32 storage, float32 kernel sums per pair (not balanced)";
+  }
   m["transport"] = transport_json(r.transport);
   m["transport"]["channel_of_rgb"] = r.probe.channel_of_rgb;
   m["compression"] = storage_json(r.storage, r.probe_lights_total);
@@ -357,6 +386,17 @@ json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const Bake
          "polygon of surface a sample stands for, in sample order");
   record("carried_area.npy", "float32 [polygons]: the area each polygon stands for");
   record("carried_vertices.npy", "float32 [vertices x 3]: the polygons' vertices xyz");
+  if (r.closure.closure.size() == n && r.balance.row_scale.size() == n) {
+    std::vector<float> rows;
+    rows.reserve(2 * n);
+    for (std::size_t p = 0; p < n; ++p)
+      rows.insert(rows.end(), {r.closure.closure[p], r.balance.row_scale[p]});
+    write_npy(dir.path() / "closure.npy", rows, {n, 2});
+    record("closure.npy",
+           "float32 [patches x 2]: closure (share of the patch's light that lands on sampled "
+           "surface, the row sum F is balanced to), row scale the balancing applied (balanced / "
+           "raw row sum)");
+  }
   if (r.settings.dump_matrices) {
     write_npy(dir.path() / "F.npy", r.form_factors.values, {n, n});
     record("F.npy", "float32 [patches x patches]: form factors, row = source");

@@ -99,6 +99,11 @@ RebakePlan plan_rebake(const Scene& scene, const BakeSettings& previous, const B
   changed(previous.visibility_rays != s.visibility_rays, BakeStage::Geometry,
           text_format("visibility rays: %d -> %d", previous.visibility_rays, s.visibility_rays));
 
+  // The closure and the balancing to it change F; its rays need the tracer,
+  // which only a run from geometry builds (see BakeStage).
+  changed(previous.closure_rays != s.closure_rays, BakeStage::Geometry,
+          text_format("closure rays: %d -> %d", previous.closure_rays, s.closure_rays));
+
   const TransportSettings &a = previous.transport, &b = s.transport;
   changed(a.bounces != b.bounces, BakeStage::Transport,
           "bounces: " + bounces_text(a.bounces) + " -> " + bounces_text(b.bounces));

@@ -501,7 +501,8 @@ FormFactorRows compute_form_factor_rows(const Scene& scene, const RayTracer& tra
   return r;
 }
 
-FormFactorChecks check_form_factors(const FormFactorMatrix& f, const PatchSet& patches) {
+FormFactorChecks check_form_factors(const FormFactorMatrix& f, const PatchSet& patches,
+                                    const std::vector<float>* closure) {
   FormFactorChecks c;
   const std::size_t n = f.n;
   std::vector<double> row_sum(n, 0.0), row_asym(n, 0.0);
@@ -533,6 +534,11 @@ FormFactorChecks check_form_factors(const FormFactorMatrix& f, const PatchSet& p
     sum_of_sums += row_sum[i];
     c.row_sum_max = std::max(c.row_sum_max, row_sum[i]);
     if (row_sum[i] > 1.0 + 1e-3) c.rows_above_one++;
+    if (closure && i < closure->size()) {
+      const double excess = row_sum[i] - (*closure)[i];
+      c.closure_excess_max = std::max(c.closure_excess_max, excess);
+      if (excess > 1e-5) c.rows_above_closure++;
+    }
     if (row_sum[i] <= 0.0) {
       c.patches_seeing_nothing++;
       continue;

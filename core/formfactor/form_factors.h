@@ -100,9 +100,14 @@ struct FormFactorChecks {
   std::size_t clamped_to_one = 0;      // FormFactorMatrix::clamped_to_one
   std::size_t patches_seeing_nothing = 0;
   double value_max = 0.0;
+  // With the patches' closures (closure.h): rows above their closure by
+  // more than float rounding (1e-5), and the largest excess.
+  std::size_t rows_above_closure = 0;
+  double closure_excess_max = 0.0;
 };
 
-FormFactorChecks check_form_factors(const FormFactorMatrix& f, const PatchSet& patches);
+FormFactorChecks check_form_factors(const FormFactorMatrix& f, const PatchSet& patches,
+                                    const std::vector<float>* closure = nullptr);
 
 // Drops the rows and columns of the patches with keep[p] == false.
 FormFactorMatrix remove_patches(const FormFactorMatrix& f, const std::vector<bool>& keep);

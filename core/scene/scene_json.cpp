@@ -113,7 +113,7 @@ MaterialSpec read_material(const JsonReader& r, const Json& value, const std::st
     r.warn_unknown_keys(value, path, {"albedo", "emission"});
   MaterialSpec spec;
   spec.key_path = path;
-  // Albedo outside [0, 0.999] is clamped later, with a warning, like albedo
+  // Albedo outside [0, 0.9999] is clamped later, with a warning, like albedo
   // from mesh files; only its type is checked here.
   if (const Json* a = find(value, "albedo")) spec.albedo = r.vec3_f(*a, join_key(path, "albedo"));
   if (const Json* e = find(value, "emission"))

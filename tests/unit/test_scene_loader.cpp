@@ -638,7 +638,7 @@ TEST_F(SceneLoaderInput, AlbedoOutsideRangeIsClampedWithAWarning) {
   write("c.obj", "mtllib c.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl bright\nf 1 2 3\n");
   Scene s = load(dir / "c.obj");
   ASSERT_EQ(s.materials.size(), 1u);
-  EXPECT_EQ(s.materials[0].albedo, glm::vec3(0.999f, 0.5f, 0.999f));
+  EXPECT_EQ(s.materials[0].albedo, glm::vec3(0.9999f, 0.5f, 0.9999f));
   EXPECT_EQ(count_warnings(diagnostics, {"material 'bright'", "clamped", "diverge"}), 1u)
       << all_warnings(diagnostics);
 
@@ -646,7 +646,7 @@ TEST_F(SceneLoaderInput, AlbedoOutsideRangeIsClampedWithAWarning) {
       "materials": {"bright": {"albedo": [-0.5, 0.2, 3]}}})");
   Diagnostics d2;
   s = SceneLoader(d2).load(json);
-  EXPECT_EQ(s.materials[0].albedo, glm::vec3(0.0f, 0.2f, 0.999f));
+  EXPECT_EQ(s.materials[0].albedo, glm::vec3(0.0f, 0.2f, 0.9999f));
   EXPECT_EQ(s.materials[0].emission, glm::vec3(1.0f));  // kept from the MTL
   ASSERT_EQ(count_warnings(d2, {"clamped"}), 1u) << all_warnings(d2);
   EXPECT_EQ(d2.warnings()[0].where, json.string());

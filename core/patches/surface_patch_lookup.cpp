@@ -1,0 +1,67 @@
+#include "patches/surface_patch_lookup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace bounce {
+
+SurfacePatchLookup::SurfacePatchLookup(const Voxelization& vox, const SampleSet& samples,
+                                       const std::vector<std::int32_t>& patch_of_sample)
+    : grid_(vox.grid), samples_(samples), patch_of_sample_(patch_of_sample) {
+  std::vector<std::uint32_t> voxel_of_part(vox.parts.size(), 0);
+  for (std::size_t v = 0; v < vox.voxels.size(); ++v)
+    for (std::uint32_t k = 0; k < vox.voxels[v].part_count; ++k)
+      voxel_of_part[vox.voxels[v].first_part + k] = static_cast<std::uint32_t>(v);
+  for (std::size_t s = 0; s < samples.samples.size(); ++s) {
+    if (s >= patch_of_sample.size() || patch_of_sample[s] < 0) continue;
+    for (std::uint32_t c = samples.carried_first[s]; c < samples.carried_first[s + 1]; ++c) {
+      const CarriedArea& piece = samples.carried[c];
+      entries_.push_back({2ull * vox.parts[piece.part].triangle + (piece.back ? 1 : 0),
+                          vox.voxels[voxel_of_part[piece.part]].cell,
+                          static_cast<std::uint32_t>(s)});
+    }
+  }
+  std::sort(entries_.begin(), entries_.end());
+  entries_.erase(std::unique(entries_.begin(), entries_.end(),
+                             [](const Entry& a, const Entry& b) {
+                               return a.side == b.side && a.cell == b.cell && a.sample == b.sample;
+                             }),
+                 entries_.end());
+}
+
+std::int32_t SurfacePatchLookup::patch_at(std::uint32_t triangle, bool back,
+                                          const glm::vec3& x) const {
+  const std::uint64_t side = 2ull * triangle + (back ? 1 : 0);
+  const float hair = 1e-4f * grid_.cell_size();
+  for (int k = 0; k < 7; ++k) {
+    glm::vec3 y = x;
+    if (k > 0) y[(k - 1) / 2] += (k % 2 ? hair : -hair);
+    const std::uint64_t cell = grid_.linear_index(grid_.cell_of(y));
+    const Entry lo{side, cell, 0};
+    const Entry hi{side, cell, std::numeric_limits<std::uint32_t>::max()};
+    auto first = std::lower_bound(entries_.begin(), entries_.end(), lo);
+    const auto last = std::upper_bound(first, entries_.end(), hi);
+    if (first == last) continue;
+    std::uint32_t best = first->sample;
+    float best_d = std::numeric_limits<float>::infinity();
+    for (; first != last; ++first) {
+      const glm::vec3 d = samples_.samples[first->sample].position - x;
+      const float d2 = glm::dot(d, d);
+      if (d2 < best_d) {
+        best_d = d2;
+        best = first->sample;
+      }
+    }
+    // A part no ray hit went whole to the nearest sample of its voxel facing
+    // the same way, which may stand on another surface (the floor under a
+    // slab, given to a sample on the slab's top): that sample's light is not
+    // this point's. Such a part stands for nothing here.
+    const Sample& s = samples_.samples[best];
+    if (std::abs(glm::dot(s.position - x, s.normal)) > kOffSurface * grid_.cell_size()) return -1;
+    return patch_of_sample_[best];
+  }
+  return -1;
+}
+
+}  // namespace bounce

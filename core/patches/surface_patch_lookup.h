@@ -1,0 +1,54 @@
+#pragma once
+// Which patch stands for a point on the scene's surface: the point's triangle
+// side and voxel cell name the triangle part; each sample carries the
+// Voronoi cell of its position within the parts it stands for (samples.h), so
+// the nearest sample carrying that part is the one whose piece holds the
+// point, and its patch stands for it. Used where light is followed by rays:
+// a ray's first hit tells which patch it lands on.
+//
+// A part no sample carries (unsampled surface, or a pruned patch's), or one
+// carried by a sample on another surface, has no patch: light landing there
+// is not represented by the bake.
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "patches/samples.h"
+#include "voxel/voxelization.h"
+
+namespace bounce {
+
+class SurfacePatchLookup {
+ public:
+  // `patch_of_sample[s]`: the patch sample s belongs to, or -1 (left out).
+  SurfacePatchLookup(const Voxelization& vox, const SampleSet& samples,
+                     const std::vector<std::int32_t>& patch_of_sample);
+
+  // The patch standing for point x on side `back` of triangle `triangle`, or
+  // -1. A point on a cell face may round into the neighbouring cell: the
+  // cells a hair away along each axis are tried as well.
+  std::int32_t patch_at(std::uint32_t triangle, bool back, const glm::vec3& x) const;
+
+  // A carrying sample farther than this (voxel sizes) from the point's
+  // plane stands on another surface: no patch. A curved surface's own
+  // samples lie within its sagitta over one voxel, far less.
+  static constexpr float kOffSurface = 0.25f;
+
+ private:
+  struct Entry {
+    std::uint64_t side;  // 2 * triangle + back
+    std::uint64_t cell;
+    std::uint32_t sample;
+    bool operator<(const Entry& o) const {
+      return side != o.side ? side < o.side : (cell != o.cell ? cell < o.cell : sample < o.sample);
+    }
+  };
+  const VoxelGrid& grid_;
+  const SampleSet& samples_;
+  const std::vector<std::int32_t>& patch_of_sample_;
+  std::vector<Entry> entries_;  // sorted
+};
+
+}  // namespace bounce
