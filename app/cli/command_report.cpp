@@ -56,8 +56,8 @@ std::string table(const std::vector<ReportRow>& rows) {
   std::ostringstream t;
   t << "| mode | patches | bounces | codec | bake s | update ms (direct + T b) | matrix KiB | "
        "indirect rel. RMSE | full rel. RMSE | full PSNR dB | full SSIM | vertex rel. RMSE | "
-       "layout error (picture / vertex) | Pareto |\n";
-  t << "|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
+       "layout error (picture / vertex) | mean level (picture / vertex) | Pareto |\n";
+  t << "|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
   for (const ReportRow& r : rows) {
     t << "| " << r.mode << " | " << r.patches << " | " << r.bounces << " | " << r.codec << " | "
       << fixed(r.bake_seconds, 2) << " | " << fixed(r.update_ms(), 2) << " ("
@@ -66,7 +66,8 @@ std::string table(const std::vector<ReportRow>& rows) {
       << fixed(r.indirect_error, 4) << " | " << fixed(r.full.relative_rmse, 4) << " | "
       << fixed(r.full.psnr, 2) << " | " << fixed(r.full.ssim, 4) << " | "
       << fixed(r.vertex_error, 4) << " | " << fixed(r.layout_indirect_error, 4) << " / "
-      << fixed(r.layout_vertex_error, 4) << " | " << (r.pareto ? "*" : "") << " |\n";
+      << fixed(r.layout_vertex_error, 4) << " | " << fixed(r.indirect_level, 3) << " / "
+      << fixed(r.vertex_level, 3) << " | " << (r.pareto ? "*" : "") << " |\n";
   }
   return t.str();
 }
@@ -226,6 +227,11 @@ void register_report(CLI::App& app) {
                   "Reference paths per pixel and per vertex (default 512; --quick: 128)");
   cmd->add_option("--width", opt->sweep.width, "Picture width (default 160; --quick: 64)");
   cmd->add_option("--height", opt->sweep.height, "Picture height (default 120; --quick: 48)");
+  cmd->add_option("--transfer", opt->sweep.transfer,
+                  "How patch light reaches pixels and vertices: final-gather (each point gathers "
+                  "from the patches it sees through ray-traced form factors; default) or nearest "
+                  "(a weighted mean of the patches around it)")
+      ->check(CLI::IsMember({"final-gather", "nearest"}));
   cmd->add_option("--seed", opt->sweep.seed,
                   "Sampling seed of every bake (default 1, as bounce bake); run a few to see how "
                   "much one row depends on where the samples fell");

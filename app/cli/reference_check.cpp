@@ -7,6 +7,7 @@
 #include "raytrace/ray_tracer.h"
 #include "reference/reference_cache.h"
 #include "runtime/camera_image.h"
+#include "runtime/final_gather.h"
 
 namespace bounce::cli {
 
@@ -31,32 +32,50 @@ nlohmann::json check_bake_against_reference(const Scene& scene, const BakeResult
   const PatchLighting light =
       light_patches(tracer, bake.samples, bake.patches, scene.lights, area_lights(scene), multiply);
   const double update_ms = 1e3 * (light.seconds_direct + light.seconds_indirect);
-  const PatchGather gather(bake.patches.patches, light.indirect,
-                           TransferGrid::from(bake.voxels.grid), &tracer, GatherSettings{});
+  // Each pixel's indirect light by the final gather from the patches it sees
+  // (runtime/final_gather.h), as bounce solve shows it.
   CameraImageSettings cs;
   cs.width = kWidth;
   cs.height = kHeight;
   cs.samples_per_side = 2;
-  const CameraImages images = render_camera(tracer, gather, cs, &progress);
+  std::vector<CameraHit> hits;
+  CameraImages images = render_camera_direct(tracer, cs, hits, &progress);
+  std::vector<glm::vec3> positions, normals, reflected(bake.patches.size()), irradiance;
+  for (const CameraHit& h : hits) {
+    positions.push_back(h.position);
+    normals.push_back(h.normal);
+  }
+  for (std::size_t p = 0; p < reflected.size(); ++p)
+    reflected[p] = light.first_hit[p] + light.indirect[p];
+  const SurfacePatchLookup lookup(bake.voxels, bake.samples, bake.patch_of_sample);
+  build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid, positions, normals, {},
+                     &progress)
+      .irradiance(reflected, irradiance);
+  add_indirect(images, hits, irradiance);
   const double error =
       noise_corrected_relative_rmse(images.indirect, ref.indirect, ref.indirect_variance, mask);
-  double var = 0.0, sq = 0.0;
+  double var = 0.0, sq = 0.0, mean = 0.0, ref_mean = 0.0;
   for (std::size_t i = 0; i < mask.size(); ++i)
     if (mask[i])
       for (int c = 0; c < 3; ++c) {
         var += ref.indirect_variance.pixels[i][c];
         sq += static_cast<double>(ref.indirect.pixels[i][c]) * ref.indirect.pixels[i][c];
+        mean += images.indirect.pixels[i][c];
+        ref_mean += ref.indirect.pixels[i][c];
       }
   const double noise = sq > 0.0 ? std::sqrt(var / sq) : 0.0;
+  const double level = ref_mean > 0.0 ? mean / ref_mean : 0.0;
   char text[512];
   std::snprintf(text, sizeof text,
                 "Against the path-traced reference (%dx%d, %d paths per pixel%s): indirect light "
-                "relative RMSE %.3f (noise-corrected; the reference's own noise %.3f), bake "
-                "%.2f s, one light update %.2f ms",
-                kWidth, kHeight, ref.samples, cached ? ", cached" : "", error, noise,
+                "relative RMSE %.3f (noise-corrected; the reference's own noise %.3f), mean "
+                "level %.3f of the reference's, bake %.2f s, one light update %.2f ms",
+                kWidth, kHeight, ref.samples, cached ? ", cached" : "", error, noise, level,
                 bake.total_seconds, update_ms);
   line = text;
   return {{"indirect_relative_rmse", error},
+          {"indirect_mean_level", level},
+          {"transfer", "final gather"},
           {"reference_noise", noise},
           {"reference_samples", ref.samples},
           {"reference_cached", cached},

@@ -24,6 +24,10 @@ namespace bounce {
 // other reference points (by the points and the path tracer's settings).
 struct ExactPatchLight {
   std::vector<glm::vec3> indirect;
+  // The light leaving each patch after at least one reflection, direct
+  // included (albedo x (direct + indirect irradiance)): what a final gather
+  // (runtime/final_gather.h) sums.
+  std::vector<glm::vec3> reflected;
   // Of each value, from the reference's variance at the samples (the
   // samples' estimates are independent): sum (a_s rho_s)^2 var_s / (sum a_s)^2.
   std::vector<glm::vec3> variance;

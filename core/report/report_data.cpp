@@ -123,6 +123,9 @@ ordered_json report_to_json(const ReportData& report) {
          {"vertex_indirect_noise_corrected_relative_rmse", row.vertex_error},
          {"layout_image_indirect_noise_corrected_relative_rmse", row.layout_indirect_error},
          {"layout_vertex_indirect_noise_corrected_relative_rmse", row.layout_vertex_error},
+         {"transfer", row.transfer},
+         {"image_indirect_level", row.indirect_level},
+         {"vertex_indirect_level", row.vertex_level},
          {"vertex_indirect",
           {{"relative_rmse", row.vertex.relative_rmse},
            {"mean_relative", row.vertex.mean_relative},
@@ -180,6 +183,10 @@ ReportData report_from_json(const json& j, const std::string& where) {
           jr.value("layout_image_indirect_noise_corrected_relative_rmse", 0.0);
       row.layout_vertex_error =
           jr.value("layout_vertex_indirect_noise_corrected_relative_rmse", 0.0);
+      // Reports from before the final gather used the nearest patches.
+      row.transfer = jr.value("transfer", std::string("nearest patches"));
+      row.indirect_level = jr.value("image_indirect_level", 0.0);
+      row.vertex_level = jr.value("vertex_indirect_level", 0.0);
       const json& v = jr.at("vertex_indirect");
       row.vertex.relative_rmse = v.at("relative_rmse").get<double>();
       row.vertex.mean_relative = v.at("mean_relative").get<double>();

@@ -41,6 +41,12 @@ struct ReportRow {
   // the patch layout's share, which no transport accuracy goes below; the
   // rest of the row's error is the transport's. 0 in reports from before.
   double layout_indirect_error = 0.0, layout_vertex_error = 0.0;
+  // How patch light reached pixels and vertices: "final gather"
+  // (runtime/final_gather.h) or "nearest patches" (runtime/patch_gather.h).
+  std::string transfer = "nearest patches";
+  // Mean indirect light against the reference's mean (1 = the right level):
+  // over the picture's covered pixels (R+G+B) and over the vertices.
+  double indirect_level = 0.0, vertex_level = 0.0;
   bool pareto = false;
   double update_ms() const { return direct_ms + multiply_ms; }
 };

@@ -17,6 +17,7 @@
 #include "report/baked_multiply.h"
 #include "report/exact_patch_light.h"
 #include "runtime/camera_image.h"
+#include "runtime/final_gather.h"
 #include "runtime/mesh_transfer.h"
 #include "runtime/patch_lighting.h"
 
@@ -103,6 +104,7 @@ void ReportSweepSettings::fill_defaults(bool quick) {
   if (width == 0) width = quick ? 64 : 160;
   if (height == 0) height = quick ? 48 : 120;
   if (eval_grid == 0) eval_grid = quick ? 8 : 16;
+  if (transfer.empty()) transfer = "final-gather";
 }
 
 void ReportSweepSettings::validate() const {
@@ -115,6 +117,8 @@ void ReportSweepSettings::validate() const {
     throw Error("--width/--height", "must be between 16 and 4096 (SSIM needs 11 x 11 windows)");
   if (reference_samples < 1) throw Error("--reference-samples", "must be at least 1");
   if (eval_grid < 1 || eval_grid > 1024) throw Error("evaluation grid", "must be in 1..1024");
+  if (transfer != "final-gather" && transfer != "nearest")
+    throw Error("--transfer", "must be final-gather or nearest, got '" + transfer + "'");
   for (const std::string& b : bounces) parse_bounces(b);
   for (const std::string& c : codecs) ReportCodec::parse(c);
 }
@@ -179,6 +183,37 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
   rr.noise_floor_full = noise_floor(ref.full, ref.full_variance, mask);
   rr.noise_floor_indirect = noise_floor(ref.indirect, ref.indirect_variance, mask);
 
+  // The pictures' settings, and for the final gather the points it gathers
+  // at: the camera's primary hits (with the direct image, the same for every
+  // row) and the evaluation vertices, moved off edges into their faces.
+  const bool final_gather = opt.transfer == "final-gather";
+  CameraImageSettings camera;
+  camera.width = opt.width;
+  camera.height = opt.height;
+  camera.samples_per_side = 2;  // the reference jitters over the pixel too
+  std::vector<CameraHit> camera_hits;
+  CameraImages direct_images;
+  std::vector<glm::vec3> hit_positions, hit_normals, vertex_points, vertex_albedo;
+  if (final_gather) {
+    direct_images = render_camera_direct(tracer, camera, camera_hits, &progress);
+    for (const CameraHit& h : camera_hits) {
+      hit_positions.push_back(h.position);
+      hit_normals.push_back(h.normal);
+    }
+    vertex_points = gather_points_of_vertices(eval_mesh.positions, eval_mesh.triangles);
+    for (const ReferencePoint& p : points) vertex_albedo.push_back(p.albedo);
+  }
+  const auto mean_ratio = [](const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b,
+                             const std::vector<std::uint8_t>* covered) {
+    double sa = 0.0, sb = 0.0;
+    for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
+      if (covered && !(*covered)[i]) continue;
+      sa += a[i].r + a[i].g + a[i].b;
+      sb += b[i].r + b[i].g + b[i].b;
+    }
+    return sb > 0.0 ? sa / sb : 0.0;
+  };
+
   for (const std::string& mode : opt.modes)
     for (int target : opt.patches) {
       BakeSettings bs;
@@ -202,37 +237,64 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
           shared += s.seconds;
       }
       const TransferGrid grid = TransferGrid::from(bake.voxels.grid);
+      // The final gather's form factors from the picture's and the
+      // vertices' points to this bake's patches.
+      FinalGather pixel_gather, vertex_gather;
+      if (final_gather) {
+        const SurfacePatchLookup lookup(bake.voxels, bake.samples, bake.patch_of_sample);
+        FinalGatherSettings fg;
+        fg.seed = opt.seed;
+        pixel_gather = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
+                                          hit_positions, hit_normals, fg, &progress);
+        vertex_gather = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
+                                           vertex_points, eval_mesh.normals, fg, &progress);
+      }
       // Patch values to errors against the reference: gathered to the
-      // camera's pixels and the evaluation mesh's vertices.
+      // camera's pixels and the evaluation mesh's vertices. `indirect` is
+      // each patch's T b (the nearest-patches transfer spreads it),
+      // `reflected` its b + T b (what a final gather sums).
       struct Measured {
         ImageErrors full, indirect;
         VertexErrors vertex;
         double indirect_error = 0.0, vertex_error = 0.0;
+        double indirect_level = 0.0, vertex_level = 0.0;
       };
-      const auto measure = [&](const std::vector<glm::vec3>& patch_indirect) {
+      const auto measure = [&](const std::vector<glm::vec3>& patch_indirect,
+                               const std::vector<glm::vec3>& patch_reflected) {
         Measured m;
-        const PatchGather gather(bake.patches.patches, patch_indirect, grid, &tracer,
-                                 GatherSettings{});
-        CameraImageSettings camera;
-        camera.width = opt.width;
-        camera.height = opt.height;
-        camera.samples_per_side = 2;  // the reference jitters over the pixel too
-        const CameraImages images = render_camera(tracer, gather, camera, &progress);
+        CameraImages images;
+        std::vector<glm::vec3> vertex_light;
+        if (final_gather) {
+          images = direct_images;
+          std::vector<glm::vec3> e;
+          pixel_gather.irradiance(patch_reflected, e);
+          add_indirect(images, camera_hits, e);
+          vertex_gather.irradiance(patch_reflected, vertex_light);
+          for (std::size_t v = 0; v < vertex_light.size(); ++v) vertex_light[v] *= vertex_albedo[v];
+        } else {
+          const PatchGather gather(bake.patches.patches, patch_indirect, grid, &tracer,
+                                   GatherSettings{});
+          images = render_camera(tracer, gather, camera, &progress);
+          LitMesh lit = eval_mesh;
+          relight(lit, gather, &progress);
+          vertex_light = std::move(lit.radiosity);
+        }
         m.full = image_errors(images.full, ref.full, mask);
         m.indirect = image_errors(images.indirect, ref.indirect, mask);
-        LitMesh lit = eval_mesh;
-        relight(lit, gather, &progress);
-        m.vertex = vertex_errors(lit.radiosity, ref_vertex_indirect);
+        m.vertex = vertex_errors(vertex_light, ref_vertex_indirect);
         m.indirect_error = noise_corrected_relative_rmse(images.indirect, ref.indirect,
                                                          ref.indirect_variance, mask);
         m.vertex_error =
-            noise_corrected_relative_rmse(lit.radiosity, ref_vertex_indirect, ref_vertex_variance);
+            noise_corrected_relative_rmse(vertex_light, ref_vertex_indirect, ref_vertex_variance);
+        m.indirect_level = mean_ratio(images.indirect.pixels, ref.indirect.pixels, &mask);
+        m.vertex_level = mean_ratio(vertex_light, ref_vertex_indirect, nullptr);
         return m;
       };
       // The layout's own error: the same gather of exact patch values.
       if (log) log(mode + " patches, target " + std::to_string(target) + ": exact patch values");
-      const Measured layout =
-          measure(exact_patch_indirect(pt, bake.samples, bake.patches, cache, &progress).indirect);
+      const ExactPatchLight exact =
+          exact_patch_indirect(pt, bake.samples, bake.patches, cache, &progress);
+      const Measured layout = measure(exact.indirect, exact.reflected);
       std::vector<glm::vec3> albedo;
       for (const Patch& p : bake.patches.patches) albedo.push_back(p.albedo);
       for (std::size_t bi = 0; bi < bounces.size(); ++bi) {
@@ -284,7 +346,10 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
           for (std::size_t p = 0; p < light.indirect.size(); ++p)
             row.indirect_power += bake.patches.patches[p].area *
                                   (light.indirect[p].r + light.indirect[p].g + light.indirect[p].b);
-          const Measured m = measure(light.indirect);
+          std::vector<glm::vec3> reflected(light.indirect.size());
+          for (std::size_t p = 0; p < reflected.size(); ++p)
+            reflected[p] = light.first_hit[p] + light.indirect[p];
+          const Measured m = measure(light.indirect, reflected);
           row.full = m.full;
           row.indirect = m.indirect;
           row.vertex = m.vertex;
@@ -292,6 +357,9 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
           row.vertex_error = m.vertex_error;
           row.layout_indirect_error = layout.indirect_error;
           row.layout_vertex_error = layout.vertex_error;
+          row.transfer = final_gather ? "final gather" : "nearest patches";
+          row.indirect_level = m.indirect_level;
+          row.vertex_level = m.vertex_level;
           report.rows.push_back(row);
         }
       }

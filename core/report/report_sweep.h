@@ -41,6 +41,7 @@ struct ReportSweepSettings {
   int width = 0, height = 0;  // camera pictures
   int eval_grid = 0;          // evaluation mesh: the scene refined on this many cells
   std::uint64_t seed = 1;     // sampling seed of every bake (BakeSettings::seed)
+  std::string transfer;       // final-gather (default) or nearest
 
   // The defaults of `bounce report`, or its --quick ones (seconds, for tests
   // and the studio): fills what is empty or zero.

@@ -46,8 +46,14 @@ glm::vec3 camera_ray_direction(const Camera& camera, int width, int height, floa
   return direction(frame_of(camera, width, height), width, height, x, y);
 }
 
-CameraImages render_camera(const RayTracer& tracer, const PatchGather& indirect,
-                           const CameraImageSettings& settings, Progress* progress) {
+namespace {
+
+// Traces the camera's primary rays and fills the direct image, the coverage
+// and the counts; at every hit that receives light, gather(p, normal, albedo,
+// pixel) returns the indirect light there (a negative red channel: none found).
+template <class Gather>
+CameraImages trace_camera(const RayTracer& tracer, const CameraImageSettings& settings,
+                          Progress* progress, Gather&& gather) {
   constexpr int kMaxSize = 16384;
   if (settings.width < 1 || settings.height < 1 || settings.width > kMaxSize ||
       settings.height > kMaxSize)
@@ -106,9 +112,11 @@ CameraImages render_camera(const RayTracer& tracer, const PatchGather& indirect,
                                              pixel * static_cast<std::uint64_t>(n * n) +
                                                  static_cast<std::uint64_t>(sy * n + sx));
           if (settings.show_emission) direct += m.emission;
-          const GatherResult g = indirect.gather(p, normal);
-          if (g.weight <= 0.0f) ++dark;
-          gathered += g.light;
+          const glm::vec3 g = gather(p, normal, m.albedo, pixel);
+          if (g.r < 0.0f)
+            ++dark;
+          else
+            gathered += g;
         }
       if (hits == 0) continue;  // background stays exactly zero
       ++hit_pixels;
@@ -127,6 +135,45 @@ CameraImages render_camera(const RayTracer& tracer, const PatchGather& indirect,
   out.dark_hits = dark;
   out.back_hits = back;
   return out;
+}
+
+}  // namespace
+
+CameraImages render_camera(const RayTracer& tracer, const PatchGather& indirect,
+                           const CameraImageSettings& settings, Progress* progress) {
+  return trace_camera(tracer, settings, progress,
+                      [&](const glm::vec3& p, const glm::vec3& n, const glm::vec3&, std::size_t) {
+                        const GatherResult g = indirect.gather(p, n);
+                        return g.weight > 0.0f ? g.light : glm::vec3(-1.0f);
+                      });
+}
+
+CameraImages render_camera_direct(const RayTracer& tracer, const CameraImageSettings& settings,
+                                  std::vector<CameraHit>& hits, Progress* progress) {
+  const int spp = settings.samples_per_side * settings.samples_per_side;
+  std::vector<std::vector<CameraHit>> per_row(static_cast<std::size_t>(settings.height));
+  CameraImages images = trace_camera(
+      tracer, settings, progress,
+      [&](const glm::vec3& p, const glm::vec3& n, const glm::vec3& albedo, std::size_t pixel) {
+        const auto row = pixel / static_cast<std::size_t>(settings.width);
+        per_row[row].push_back(
+            {p, n, albedo / static_cast<float>(spp), static_cast<std::uint32_t>(pixel)});
+        return glm::vec3(0.0f);
+      });
+  hits.clear();
+  for (const auto& row : per_row) hits.insert(hits.end(), row.begin(), row.end());
+  return images;
+}
+
+void add_indirect(CameraImages& images, const std::vector<CameraHit>& hits,
+                  const std::vector<glm::vec3>& irradiance) {
+  if (irradiance.size() != hits.size())
+    throw Error("camera image", "one irradiance per camera hit expected");
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    const glm::vec3 light = hits[i].weight * irradiance[i];
+    images.indirect.pixels[hits[i].pixel] += light;
+    images.full.pixels[hits[i].pixel] += light;
+  }
 }
 
 float write_camera_images(const CameraImages& images, const std::filesystem::path& dir,

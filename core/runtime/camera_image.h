@@ -58,6 +58,27 @@ glm::vec3 camera_ray_direction(const Camera& camera, int width, int height, floa
 CameraImages render_camera(const RayTracer& tracer, const PatchGather& indirect,
                            const CameraImageSettings& settings, Progress* progress = nullptr);
 
+// Where the camera sees surface that receives light: a primary ray's hit,
+// its receiving side's normal, and its pixel with the weight its light
+// takes there (albedo / rays per pixel).
+struct CameraHit {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec3 weight;
+  std::uint32_t pixel;
+};
+
+// The direct image, coverage and counts of render_camera, with an indirect
+// image of zeros; `hits` gets every primary hit (in pixel order), for an
+// indirect light computed at those points and added by add_indirect.
+CameraImages render_camera_direct(const RayTracer& tracer, const CameraImageSettings& settings,
+                                  std::vector<CameraHit>& hits, Progress* progress = nullptr);
+
+// Adds weight x irradiance[i] at each hit's pixel to the indirect and full
+// images (runtime/final_gather.h gives the irradiance).
+void add_indirect(CameraImages& images, const std::vector<CameraHit>& hits,
+                  const std::vector<glm::vec3>& irradiance);
+
 // Writes <stem>_direct, <stem>_indirect, <stem>_full as .exr (linear float)
 // and .png (io/tone_map.h: one exposure for all three, from the full image's
 // hit pixels, so the three pictures add up as the light does). Returns the

@@ -26,10 +26,12 @@
 #include "io/ply_writer.h"
 #include "io/png_writer.h"
 #include "io/tone_map.h"
+#include "patches/surface_patch_lookup.h"
 #include "raytrace/ray_tracer.h"
 #include "runtime/area_lights.h"
 #include "runtime/camera_image.h"
 #include "runtime/direct_light.h"
+#include "runtime/final_gather.h"
 #include "runtime/mesh_transfer.h"
 #include "runtime/patch_gather.h"
 #include "scene/scene_loader.h"
@@ -254,6 +256,35 @@ TEST(MeshTransfer, NoLightLeaksThroughAWallThinnerThanAVoxel) {
               blind.bottom_max, blind.floor_max);
   EXPECT_LT(blind.bottom_max, 0.01 * blind.top_mean);
   EXPECT_GT(blind.floor_max, 0.1 * blind.top_mean);
+}
+
+TEST(MeshTransfer, FinalGatherSeesNoLightThroughAWallThinnerThanAVoxel) {
+  // The final gather's rays see what each vertex sees: the slab's far side
+  // and the floor under it see nothing of its lit top, exactly.
+  const SlabScene& s = slab_scene();
+  const RayTracer tracer(s.scene);
+  const TransferGrid grid = TransferGrid::from(s.bake.voxels.grid);
+  LitMesh m = build_transfer_mesh(s.scene, grid, TransferSettings{});
+  const SurfacePatchLookup lookup(s.bake.voxels, s.bake.samples, s.bake.patch_of_sample);
+  const FinalGather g =
+      build_final_gather(tracer, lookup, s.bake.patches.patches, s.bake.voxels.grid,
+                         gather_points_of_vertices(m.positions, m.triangles), m.normals, {});
+  g.validate("slab gather");
+  g.irradiance(s.light, m.radiosity);
+  const SlabLevels l = slab_levels(m);
+  std::printf(
+      "final gather, thin slab: far side max %.2e over %zu, floor under it max %.2e over "
+      "%zu; lit side mean %.4f\n",
+      l.bottom_max, l.bottom, l.floor_max, l.floor, l.top_mean);
+  // The walls and ceiling do see the lit top.
+  double lit = 0.0;
+  for (const glm::vec3& e : m.radiosity) lit = std::max(lit, static_cast<double>(e.r));
+  std::printf("final gather: brightest vertex %.4f\n", lit);
+  EXPECT_GT(lit, 0.01);
+  ASSERT_GT(l.bottom, 10u);
+  ASSERT_GT(l.floor, 10u);
+  EXPECT_EQ(l.bottom_max, 0.0);
+  EXPECT_EQ(l.floor_max, 0.0);
 }
 
 TEST(MeshTransfer, NonManifoldFacesGetTheirOwnVerticesAndTwoSidedFacesABackCopy) {

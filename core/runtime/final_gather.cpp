@@ -1,0 +1,242 @@
+#include "runtime/final_gather.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <tuple>
+
+#include "base/error.h"
+#include "base/random.h"
+
+namespace bounce {
+
+void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
+                             std::vector<glm::vec3>& out) const {
+  if (patch_exitance.size() != patches)
+    throw Error("final gather", "light for " + std::to_string(patch_exitance.size()) +
+                                    " patches, the gather was made for " + std::to_string(patches));
+  // The patches' light, then each cluster's area-weighted mean.
+  std::vector<glm::vec3> light(patches + clusters, glm::vec3(0.0f));
+  std::copy(patch_exitance.begin(), patch_exitance.end(), light.begin());
+  for (std::size_t p = 0; p < patches; ++p)
+    light[patches + cluster_of_patch[p]] += cluster_share[p] * patch_exitance[p];
+  const std::size_t n = points();
+  out.resize(n);
+  const glm::vec3* b = light.data();
+#pragma omp parallel for schedule(static, 1024)
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
+    glm::vec3 e(0.0f);
+    const auto row = static_cast<std::size_t>(i);
+    for (std::uint64_t k = first[row]; k < first[row + 1]; ++k) e += weight[k] * b[source[k]];
+    out[row] = e;
+  }
+}
+
+void FinalGather::validate(const std::string& what) const {
+  if (first.empty() || first.front() != 0 || first.back() != source.size() ||
+      source.size() != weight.size())
+    throw Error(what, "row offsets do not match the " + std::to_string(source.size()) + " entries");
+  if (cluster_of_patch.size() != patches || cluster_share.size() != patches)
+    throw Error(what, "one cluster and share per patch expected");
+  for (std::size_t p = 0; p < patches; ++p)
+    if (cluster_of_patch[p] >= clusters || !(cluster_share[p] >= 0.0f && cluster_share[p] <= 1.0f))
+      throw Error(what, "patch " + std::to_string(p) + "'s cluster or share is out of range");
+  for (std::size_t i = 0; i + 1 < first.size(); ++i) {
+    if (first[i + 1] < first[i])
+      throw Error(what, "row offsets decrease at point " + std::to_string(i));
+    double total = 0.0;
+    for (std::uint64_t k = first[i]; k < first[i + 1]; ++k) {
+      if (source[k] >= patches + clusters)
+        throw Error(what, "point " + std::to_string(i) + " gathers from source " +
+                              std::to_string(source[k]) + " of " +
+                              std::to_string(patches + clusters));
+      if (!(weight[k] >= 0.0f && weight[k] <= 1.0f))
+        throw Error(what, "point " + std::to_string(i) + " has a weight outside [0, 1]");
+      total += weight[k];
+    }
+    if (total > 1.0 + 1e-4)
+      throw Error(what, "point " + std::to_string(i) + "'s weights sum to " +
+                            std::to_string(total) + " > 1");
+  }
+}
+
+std::vector<glm::vec3> gather_points_of_vertices(const std::vector<glm::vec3>& positions,
+                                                 const std::vector<glm::uvec3>& triangles) {
+  std::vector<glm::vec3> out = positions;
+  std::vector<bool> moved(positions.size(), false);
+  for (const glm::uvec3& t : triangles) {
+    const glm::vec3 c = (positions[t.x] + positions[t.y] + positions[t.z]) / 3.0f;
+    for (int k = 0; k < 3; ++k) {
+      if (t[k] >= positions.size() || moved[t[k]]) continue;
+      out[t[k]] = positions[t[k]] + 0.05f * (c - positions[t[k]]);
+      moved[t[k]] = true;
+    }
+  }
+  return out;
+}
+
+namespace {
+
+// Clusters: the patches of one block of `block` x `block` x `block` voxels
+// whose normals share a dominant axis direction (a floor and the wall
+// standing on it stay apart) and whose positions along that axis lie in one
+// quarter-voxel layer (a floor and the lit top of a slab standing on it stay
+// apart too: a point under the slab sees the floor, not the slab's top),
+// numbered in order of first appearance.
+void make_clusters(const std::vector<Patch>& patches, const VoxelGrid& grid, int block,
+                   FinalGather& g) {
+  std::map<std::tuple<int, int, int, int, int>, std::uint32_t> index;
+  g.cluster_of_patch.resize(patches.size());
+  g.cluster_share.resize(patches.size());
+  std::vector<double> area;
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    const glm::ivec3 c = grid.cell_of(patches[p].position) / block;
+    const glm::vec3 a = glm::abs(patches[p].normal);
+    const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+    // Emitters are clusters of their own: a lamp's light differs from the
+    // surface it hangs on (and a point light next to a lamp makes its patches
+    // the brightest of the scene).
+    const bool emits = glm::dot(patches[p].emission, glm::vec3(1.0f)) > 0.0f;
+    const int direction = 2 * axis + (patches[p].normal[axis] < 0.0f ? 1 : 0) + (emits ? 6 : 0);
+    const int layer = static_cast<int>(std::floor(
+        (patches[p].position[axis] - grid.bounds().lo[axis]) / (0.25f * grid.cell_size())));
+    const auto [it, added] = index.try_emplace({c.x, c.y, c.z, direction, layer},
+                                               static_cast<std::uint32_t>(index.size()));
+    if (added) area.push_back(0.0);
+    g.cluster_of_patch[p] = it->second;
+    area[it->second] += patches[p].area;
+  }
+  g.clusters = index.size();
+  for (std::size_t p = 0; p < patches.size(); ++p) {
+    const double a = area[g.cluster_of_patch[p]];
+    g.cluster_share[p] = a > 0.0 ? static_cast<float>(patches[p].area / a) : 0.0f;
+  }
+}
+
+void basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
+  const glm::vec3 a = std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  t = glm::normalize(glm::cross(a, n));
+  b = glm::cross(n, t);
+}
+
+}  // namespace
+
+FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup& lookup,
+                               const std::vector<Patch>& patch_list, const VoxelGrid& grid,
+                               const std::vector<glm::vec3>& positions,
+                               const std::vector<glm::vec3>& normals,
+                               const FinalGatherSettings& settings, Progress* progress) {
+  if (positions.size() != normals.size())
+    throw Error("final gather", "positions and normals differ in count");
+  if (settings.rays < 1 || settings.kept < 1 || settings.cluster_voxels < 1)
+    throw Error("final gather", "rays, kept patches and cluster size per point must be at least 1");
+  const std::size_t patch_count = patch_list.size();
+  FinalGather g;
+  g.patches = patch_count;
+  g.rays = settings.rays;
+  make_clusters(patch_list, grid, settings.cluster_voxels, g);
+  const std::size_t n = positions.size();
+  const auto rays = static_cast<std::size_t>(settings.rays);
+  const auto kept = static_cast<std::size_t>(settings.kept);
+  const float eps = settings.offset_epsilons * tracer.epsilon();
+  const Scene& scene = tracer.scene();
+  // Fibonacci lattice on the unit disk, lifted to the hemisphere: cosine-
+  // distributed and evenly spread. Each point turns it by its own angle.
+  std::vector<glm::vec2> disk(rays);
+  for (std::size_t i = 0; i < rays; ++i) {
+    const double r = std::sqrt((static_cast<double>(i) + 0.5) / static_cast<double>(rays));
+    const double phi = 2.0 * std::numbers::pi * static_cast<double>(i) / 1.6180339887498949;
+    disk[i] = {static_cast<float>(r * std::cos(phi)), static_cast<float>(r * std::sin(phi))};
+  }
+
+  // Rows are built in chunks of points, each chunk's rows kept in its own
+  // buffer and joined in point order at the end.
+  constexpr std::size_t kChunk = 256;
+  const std::size_t chunks = (n + kChunk - 1) / kChunk;
+  std::vector<std::vector<std::uint32_t>> chunk_patch(chunks);
+  std::vector<std::vector<float>> chunk_weight(chunks);
+  std::vector<std::vector<std::uint32_t>> chunk_count(chunks);
+  if (progress) progress->begin_stage("final gather", std::max<std::size_t>(1, chunks));
+#pragma omp parallel
+  {
+    std::vector<std::uint32_t> hits(patch_count, 0), cluster_hits(g.clusters, 0);
+    std::vector<std::uint32_t> touched, cluster_touched;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t ci = 0; ci < static_cast<std::int64_t>(chunks); ++ci) {
+      if (progress && progress->should_stop()) continue;
+      const auto c = static_cast<std::size_t>(ci);
+      for (std::size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
+        const glm::vec3 nrm = normals[i];
+        touched.clear();
+        if (glm::dot(nrm, nrm) > 0.5f) {
+          glm::vec3 t, b;
+          basis(nrm, t, b);
+          Rng rng(settings.seed, 0xF1A1u ^ (static_cast<std::uint64_t>(i) << 16));
+          const float turn = 2.0f * std::numbers::pi_v<float> * rng.uniform();
+          const float ct = std::cos(turn), st = std::sin(turn);
+          const glm::vec3 origin = positions[i] + eps * nrm;
+          for (std::size_t k = 0; k < rays; ++k) {
+            const glm::vec2 d(ct * disk[k].x - st * disk[k].y, st * disk[k].x + ct * disk[k].y);
+            const float z = std::sqrt(std::max(0.0f, 1.0f - glm::dot(d, d)));
+            const glm::vec3 dir = d.x * t + d.y * b + z * nrm;
+            const Hit h = tracer.intersect(origin, dir);
+            if (!h.hit) continue;
+            const bool back = glm::dot(dir, h.geometric_normal) > 0.0f;
+            if (back && !scene.two_sided(h.triangle)) continue;
+            const std::int32_t p = lookup.patch_at(h.triangle, back, origin + h.t * dir);
+            if (p < 0) continue;
+            if (hits[static_cast<std::size_t>(p)]++ == 0)
+              touched.push_back(static_cast<std::uint32_t>(p));
+          }
+        }
+        // The strongest `kept` exactly, ties by patch index
+        // (deterministic); the rest's hits go to their clusters.
+        std::sort(touched.begin(), touched.end(), [&](std::uint32_t a, std::uint32_t b) {
+          return hits[a] != hits[b] ? hits[a] > hits[b] : a < b;
+        });
+        std::size_t keep = 0, landed = 0, covered = 0;
+        for (std::uint32_t p : touched) landed += hits[p];
+        while (keep < std::min(kept, touched.size()) &&
+               static_cast<double>(covered) < settings.coverage * static_cast<double>(landed))
+          covered += hits[touched[keep++]];
+        const double per_ray = 1.0 / static_cast<double>(rays);
+        std::size_t entries = keep;
+        for (std::size_t k = 0; k < keep; ++k) {
+          chunk_patch[c].push_back(touched[k]);
+          chunk_weight[c].push_back(static_cast<float>(per_ray * hits[touched[k]]));
+        }
+        cluster_touched.clear();
+        for (std::size_t k = keep; k < touched.size(); ++k) {
+          const std::uint32_t cl = g.cluster_of_patch[touched[k]];
+          if (cluster_hits[cl] == 0) cluster_touched.push_back(cl);
+          cluster_hits[cl] += hits[touched[k]];
+        }
+        std::sort(cluster_touched.begin(), cluster_touched.end());
+        for (std::uint32_t cl : cluster_touched) {
+          chunk_patch[c].push_back(static_cast<std::uint32_t>(patch_count + cl));
+          chunk_weight[c].push_back(static_cast<float>(per_ray * cluster_hits[cl]));
+          cluster_hits[cl] = 0;
+          ++entries;
+        }
+        chunk_count[c].push_back(static_cast<std::uint32_t>(entries));
+        for (std::uint32_t p : touched) hits[p] = 0;
+      }
+      if (progress) progress->advance();
+    }
+  }
+  if (progress) {
+    progress->check();
+    progress->end_stage();
+  }
+  g.first.reserve(n + 1);
+  g.first.push_back(0);
+  for (std::size_t c = 0; c < chunks; ++c) {
+    for (std::uint32_t k : chunk_count[c]) g.first.push_back(g.first.back() + k);
+    g.source.insert(g.source.end(), chunk_patch[c].begin(), chunk_patch[c].end());
+    g.weight.insert(g.weight.end(), chunk_weight[c].begin(), chunk_weight[c].end());
+  }
+  return g;
+}
+
+}  // namespace bounce
