@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "bake/final_gather_files.h"
 #include "base/error.h"
 #include "runtime/compressed_transport.h"
 #include "runtime/dense_transport.h"
@@ -66,6 +67,20 @@ PreviewLighting::PreviewLighting(std::shared_ptr<const BakeViewData> data)
   grid_ = TransferGrid::from_manifest(bake.manifest);
   geometry_ = build_transfer_mesh(scene, grid_, TransferSettings{});
   work_ = geometry_;
+  gather_ = read_final_gather(bake.dir, bake.size());
+  if (gather_) {
+    if (gather_->points() != geometry_.positions.size())
+      throw Error((bake.dir / "gather_first.npy").string(),
+                  "holds " + std::to_string(gather_->points()) +
+                      " vertices, the scene's lit mesh "
+                      "has " +
+                      std::to_string(geometry_.positions.size()) + ": not this scene");
+    vertex_albedo_.assign(geometry_.positions.size(), glm::vec3(0.0f));
+    for (std::size_t f = 0; f < geometry_.triangles.size(); ++f)
+      for (int c = 0; c < 3; ++c)
+        vertex_albedo_[geometry_.triangles[f][c]] =
+            scene.material_of(geometry_.source_triangle[f]).albedo;
+  }
 }
 
 PreviewLighting::~PreviewLighting() = default;
@@ -78,12 +93,24 @@ PreviewLighting::Solve PreviewLighting::solve(const glm::vec3& light_position) {
   frame_->solve(lights_);
   s.frame_seconds = since(t);
   t = Clock::now();
-  // The camera of `bounce solve` gathers T b the same way (it adds the
-  // direct light itself, as the preview's shaders do).
-  const PatchGather gather(data_->bake.patches.patches, frame_->indirect(), grid_, tracer_.get(),
-                           GatherSettings{});
-  relight(work_, gather);
-  s.vertex_indirect = work_.radiosity;
+  if (gather_) {
+    // The bake's final gather: each vertex sums the reflected light b + T b
+    // of the patches it sees, reflected with its own albedo (the shaders add
+    // the direct light themselves).
+    std::vector<glm::vec3> reflected(frame_->indirect().size());
+    for (std::size_t p = 0; p < reflected.size(); ++p)
+      reflected[p] = frame_->first_hit()[p] + frame_->indirect()[p];
+    gather_->irradiance(reflected, s.vertex_indirect);
+    for (std::size_t v = 0; v < s.vertex_indirect.size(); ++v)
+      s.vertex_indirect[v] *= vertex_albedo_[v];
+  } else {
+    // Without one, the nearest patches' T b (the camera of `bounce solve`
+    // does the same).
+    const PatchGather gather(data_->bake.patches.patches, frame_->indirect(), grid_, tracer_.get(),
+                             GatherSettings{});
+    relight(work_, gather);
+    s.vertex_indirect = work_.radiosity;
+  }
   s.transfer_seconds = since(t);
   return s;
 }

@@ -16,6 +16,7 @@
 // Not thread-safe: one solve() at a time (the preview's worker, or the UI
 // thread, never both).
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@
 
 #include "bake_view_data.h"
 #include "raytrace/ray_tracer.h"
+#include "runtime/final_gather.h"
 #include "runtime/mesh_transfer.h"
 #include "runtime/patch_lighting.h"
 #include "runtime/runtime_frame.h"
@@ -65,6 +67,10 @@ class PreviewLighting {
   TransferGrid grid_;
   LitMesh geometry_;  // read by the UI thread, never written after construction
   LitMesh work_;      // relit by solve()
+  // The bake's final gather of these vertices, when it stored one, and the
+  // albedo each vertex's light is reflected with.
+  std::optional<FinalGather> gather_;
+  std::vector<glm::vec3> vertex_albedo_;
   Light light_;
   std::vector<Light> lights_;  // the one light, moved per solve
 };

@@ -51,6 +51,11 @@ void BakeOptions::add_to(CLI::App& cmd, bool with_output) {
                  "(its closure, 1 in a closed room); the form factors are then balanced so each "
                  "row sums to it and reciprocity is exact. 0: keep the raw quadrature")
       ->capture_default_str();
+  cmd.add_option("--final-gather-rays", final_gather_rays,
+                 "Rays per vertex of the lit mesh: each vertex gathers its indirect light from "
+                 "the patches it sees through these ray-traced form factors, stored in the bake "
+                 "(gather_*.npy). 0: no final gather; vertices take the nearest patches' light")
+      ->capture_default_str();
   cmd.add_option("--seed", seed, "Seed of every random stream (results are reproducible)")
       ->capture_default_str();
   cmd.add_option("--bounces", bounces,
@@ -117,6 +122,7 @@ BakeSettings BakeOptions::settings() const {
   if (samples_per_face_option->count() > 0) s.samples_per_face = samples_per_face;
   s.visibility_rays = visibility_rays;
   s.closure_rays = closure_rays;
+  s.final_gather_rays = final_gather_rays;
   s.seed = seed;
   s.dump_matrices = dump_matrices;
   s.pictures = !no_pictures;

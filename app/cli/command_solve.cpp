@@ -14,6 +14,7 @@
 #include <string>
 
 #include "bake/bake_reader.h"
+#include "bake/final_gather_files.h"
 #include "base/error.h"
 #include "commands.h"
 #include "compute/opencl_context.h"
@@ -25,6 +26,7 @@
 #include "runtime/compressed_transport.h"
 #include "runtime/compressed_transport_cl.h"
 #include "runtime/dense_transport.h"
+#include "runtime/final_gather.h"
 #include "runtime/mesh_transfer.h"
 #include "runtime/patch_lighting.h"
 #include "runtime/runtime_frame.h"
@@ -232,10 +234,29 @@ void run_solve(const SolveOptions& opt) {
 
   const TransferGrid grid = TransferGrid::from_manifest(bake.manifest);
   ConsoleProgress console(opt.quiet || opt.json);
+  const std::optional<FinalGather> gather = read_final_gather(opt.bake, n);
   if (!opt.no_mesh) {
-    // The mesh shows everything the patches send out: emission + b + T b.
-    const LitMesh mesh = transfer_to_mesh(tracer, bake.patches.patches, grid, frame.exitance(),
-                                          TransferSettings{}, &console.progress());
+    LitMesh mesh;
+    if (gather) {
+      // Each vertex: its own direct light, plus albedo x the irradiance it
+      // gathers from the patches' reflected light b + T b (the bake's final
+      // gather), plus its emission.
+      mesh = build_transfer_mesh(scene, grid, TransferSettings{}, &console.progress());
+      if (mesh.positions.size() != gather->points())
+        throw Error((fs::path(opt.bake) / "gather_first.npy").string(),
+                    "holds " + std::to_string(gather->points()) +
+                        " vertices, the scene's lit "
+                        "mesh has " +
+                        std::to_string(mesh.positions.size()) + ": not this scene");
+      std::vector<glm::vec3> reflected(n), gathered;
+      for (std::size_t p = 0; p < n; ++p) reflected[p] = recorded(p, 1) + recorded(p, 2);
+      gather->irradiance(reflected, gathered);
+      light_vertices(tracer, scene.lights, area, gathered, mesh);
+    } else {
+      // The mesh shows everything the patches send out: emission + b + T b.
+      mesh = transfer_to_mesh(tracer, bake.patches.patches, grid, frame.exitance(),
+                              TransferSettings{}, &console.progress());
+    }
     write_lit_ply(out / "lit.ply", {mesh.positions, mesh.normals, mesh.radiosity, mesh.triangles});
     files.push_back("lit.ply");
     timings["mesh_transfer"] = since(t);
@@ -275,6 +296,7 @@ void run_solve(const SolveOptions& opt) {
       {"scene", scene.name},
       {"patches", n},
       {"multiply", multiplier.what},
+      {"transfer", gather ? "final gather" : "nearest patches"},
       {"lights", lights},
       {"area_light_triangles", area.size()},
       {"first_hit_power", direct_sum},

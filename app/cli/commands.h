@@ -26,6 +26,7 @@ struct BakeOptions {
   int samples_per_face = 4;
   int visibility_rays = 8;
   int closure_rays = BakeSettings{}.closure_rays;
+  int final_gather_rays = BakeSettings{}.final_gather_rays;
   std::uint64_t seed = 1;
   bool dump_matrices = false;
   std::string bounces = "auto";

@@ -11,6 +11,7 @@
 
 #include "raytrace/ray_tracer.h"
 #include "runtime/direct_light.h"
+#include "runtime/mesh_transfer.h"
 
 namespace bounce {
 
@@ -131,8 +132,9 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
       };
       reused({"voxelize", "ray tracer (BVH build)", "sample", "patches"}, BakeStage::Geometry);
       if (!plan.runs(BakeStage::FormFactors))
-        reused({"form factors", "checks", "closure", "balance", "evaluation lights"},
-               BakeStage::FormFactors);
+        reused(
+            {"form factors", "checks", "closure", "balance", "final gather", "evaluation lights"},
+            BakeStage::FormFactors);
       if (!plan.runs(BakeStage::Transport)) reused({"transport"}, BakeStage::Transport);
       if (!plan.runs(BakeStage::Compress)) reused({"compress"}, BakeStage::Compress);
     }
@@ -332,6 +334,21 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
               " iterations with rows within " + fmt(r.balance.residual, 3) +
               " of their closure (asked: " + fmt(BalanceSettings{}.tolerance, 3) + ")");
     warn_far_scaled_rows(scene_, r.patches, r.balance, diagnostics_);
+    r.stages.push_back(timer.finish());
+  }
+  if (plan.runs(BakeStage::FormFactors) && r.settings.final_gather_rays > 0) {
+    StageTimer timer("final gather");
+    // The vertices bounce solve and the studio light: the scene's triangles
+    // refined on the bake's grid (runtime/mesh_transfer.h).
+    const LitMesh mesh = build_transfer_mesh(scene_, TransferGrid::from(r.voxels.grid),
+                                             TransferSettings{}, &progress);
+    const SurfacePatchLookup lookup(r.voxels, r.samples, r.patch_of_sample);
+    FinalGatherSettings fg;
+    fg.rays = r.settings.final_gather_rays;
+    fg.seed = r.settings.seed;
+    r.vertex_gather = build_final_gather(*tracer, lookup, r.patches.patches, r.voxels.grid,
+                                         gather_points_of_vertices(mesh.positions, mesh.triangles),
+                                         mesh.normals, fg, &progress);
     r.stages.push_back(timer.finish());
   }
   if (plan.runs(BakeStage::FormFactors) && r.checks.row_sum_max > 1.02)

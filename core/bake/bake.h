@@ -20,6 +20,7 @@
 #include "patches/clustering.h"
 #include "patches/patch_set.h"
 #include "patches/samples.h"
+#include "runtime/final_gather.h"
 #include "transport/transport.h"
 #include "voxel/voxelization.h"
 
@@ -36,6 +37,9 @@ struct BakeResult {
   FormFactorChecks checks;        // of form_factors as stored
   FormFactorChecks checks_raw;    // of the quadrature, before balancing
   PatchClosure closure;           // empty when closure_rays is 0
+  // The final gather of the lit mesh's vertices (empty rows when
+  // final_gather_rays is 0), and what it took.
+  FinalGather vertex_gather;
   BalanceStats balance;
   ClusteringStats clustering;
   std::size_t patches_before_pruning = 0;

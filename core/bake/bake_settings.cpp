@@ -39,6 +39,9 @@ void BakeSettings::validate() const {
           "must be between 1 and 1024, got " + std::to_string(visibility_rays));
   require(closure_rays >= 0 && closure_rays <= 65536, "--closure-rays",
           "must be between 0 (no balancing) and 65536, got " + std::to_string(closure_rays));
+  require(
+      final_gather_rays >= 0 && final_gather_rays <= 65536, "--final-gather-rays",
+      "must be between 0 (no final gather) and 65536, got " + std::to_string(final_gather_rays));
   require(transport.bounces >= TransportSettings::kInfiniteBounces &&
               transport.bounces <= TransportSettings::kMaxBounces,
           "--bounces",

@@ -46,6 +46,10 @@ struct BakeSettings {
   // form-factor rows are then balanced (formfactor/balance.h); 0: neither,
   // the raw quadrature is kept.
   int closure_rays = 512;
+  // Rays per vertex of the lit mesh for the final gather
+  // (runtime/final_gather.h) the bake stores; 0: none, the run time spreads
+  // patch light to vertices from the nearest patches instead.
+  int final_gather_rays = 256;
   std::uint64_t seed = 1;
   bool dump_matrices = false;
 

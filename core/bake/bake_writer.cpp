@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bake/bake_pictures.h"
+#include "bake/final_gather_files.h"
 #include "compress/dds.h"
 #include "io/atomic_file.h"
 #include "io/npy.h"
@@ -223,6 +224,7 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                    {"samples_per_face", s.samples_per_face.value_or(0)},
                    {"visibility_rays", s.visibility_rays},
                    {"closure_rays", s.closure_rays},
+                   {"final_gather_rays", s.final_gather_rays},
                    {"seed", s.seed},
                    {"dump_matrices", s.dump_matrices},
                    {"out_of_core", to_string(s.out_of_core)}};
@@ -301,9 +303,33 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                      {"residual", r.balance.residual},
                      {"row_scale_min", r.balance.row_scale_min},
                      {"row_scale_max", r.balance.row_scale_max},
-                     {"kept_raw_targets", r.balance.kept_raw_targets}};
+                     {"kept_raw_targets", r.balance.kept_raw_targets},
+                     {"limited_targets", r.balance.limited_targets},
+                     {"max_row_scale", BalanceSettings{}.max_row_scale}};
   } else {
     ff["precision"] = "float32 storage, float32 kernel sums per pair (not balanced)";
+  }
+  if (r.vertex_gather.points() > 0) {
+    const FinalGather& fg = r.vertex_gather;
+    m["final_gather"] = {
+        {"transfer", "final gather"},
+        {"vertices", fg.points()},
+        {"entries", fg.source.size()},
+        {"entries_per_vertex", static_cast<double>(fg.source.size()) /
+                                   static_cast<double>(std::max<std::size_t>(1, fg.points()))},
+        {"rays_per_vertex", fg.rays},
+        {"kept_per_vertex_max", FinalGatherSettings{}.kept},
+        {"coverage", FinalGatherSettings{}.coverage},
+        {"clusters", fg.clusters},
+        {"rays",
+         {{"landed", fg.rays_landed},
+          {"escaped", fg.rays_escaped},
+          {"back_faces", fg.rays_back},
+          {"unrepresented_surface", fg.rays_unrepresented}}},
+        {"bytes", 4 * (fg.first.size() + fg.source.size() + fg.weight.size() +
+                       2 * fg.cluster_of_patch.size())}};
+  } else {
+    m["final_gather"] = {{"transfer", "nearest patches"}};
   }
   m["transport"] = transport_json(r.transport);
   m["transport"]["channel_of_rgb"] = r.probe.channel_of_rgb;
@@ -396,6 +422,15 @@ json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const Bake
            "float32 [patches x 2]: closure (share of the patch's light that lands on sampled "
            "surface, the row sum F is balanced to), row scale the balancing applied (balanced / "
            "raw row sum)");
+  }
+  if (r.vertex_gather.points() > 0) {
+    write_final_gather(dir.path(), r.vertex_gather);
+    record("gather_first.npy", "uint32 [lit-mesh vertices + 1]: final gather row starts");
+    record("gather_source.npy",
+           "uint32 [entries]: patch each entry gathers from, or patches + cluster index");
+    record("gather_weight.npy", "float32 [entries]: vertex-to-patch (or cluster) form factor");
+    record("gather_cluster.npy", "uint32 [patches]: cluster of each patch");
+    record("gather_share.npy", "float32 [patches]: each patch's share of its cluster's area");
   }
   if (r.settings.dump_matrices) {
     write_npy(dir.path() / "F.npy", r.form_factors.values, {n, n});

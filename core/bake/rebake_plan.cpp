@@ -104,6 +104,10 @@ RebakePlan plan_rebake(const Scene& scene, const BakeSettings& previous, const B
   changed(previous.closure_rays != s.closure_rays, BakeStage::Geometry,
           text_format("closure rays: %d -> %d", previous.closure_rays, s.closure_rays));
 
+  changed(
+      previous.final_gather_rays != s.final_gather_rays, BakeStage::Geometry,
+      text_format("final gather rays: %d -> %d", previous.final_gather_rays, s.final_gather_rays));
+
   const TransportSettings &a = previous.transport, &b = s.transport;
   changed(a.bounces != b.bounces, BakeStage::Transport,
           "bounces: " + bounces_text(a.bounces) + " -> " + bounces_text(b.bounces));

@@ -67,6 +67,15 @@ BalanceStats balance_form_factors(FormFactorMatrix& f, const std::vector<float>&
       ++stats.kept_raw_targets;
       stats.raw_target_patches.push_back(p);
     }
+    // A closure far from the raw row means the quadrature failed for this
+    // patch (its visibility rays blocked, a crevice): its row says little
+    // about where its light goes, and forcing it to the closure would scale
+    // it (and its column) by orders of magnitude. Trust the closure within
+    // a factor. (Scaling down is always safe: rows never exceed closures.)
+    if (c > raw_row[p] * settings.max_row_scale) {
+      c = raw_row[p] * settings.max_row_scale;
+      ++stats.limited_targets;
+    }
     target[p] = static_cast<double>(area[p]) * c;
   }
 

@@ -34,6 +34,8 @@ namespace bounce {
 struct BalanceSettings {
   double tolerance = 1e-7;  // float32 rounding of F's entries is ~6e-8
   int max_iterations = 2000;
+  // A row is scaled up by at most this factor to meet its closure.
+  double max_row_scale = 4.0;
   // Stop when the residual has not fallen by 1% in this many iterations.
   int stagnation_iterations = 50;
 };
@@ -52,6 +54,9 @@ struct BalanceStats {
   // quadrature saw; zeroing the row would cut the patch off).
   std::size_t kept_raw_targets = 0;
   std::vector<std::size_t> raw_target_patches;  // which ones
+  // Patches whose closure lay beyond max_row_scale of their raw row: their
+  // target is the nearest bound instead.
+  std::size_t limited_targets = 0;
 };
 
 // Scales `f` in place. `area` and `closure` are per patch (closure in [0, 1]).

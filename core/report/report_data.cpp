@@ -126,6 +126,8 @@ ordered_json report_to_json(const ReportData& report) {
          {"transfer", row.transfer},
          {"image_indirect_level", row.indirect_level},
          {"vertex_indirect_level", row.vertex_level},
+         {"layout_image_indirect_level", row.layout_indirect_level},
+         {"layout_vertex_indirect_level", row.layout_vertex_level},
          {"vertex_indirect",
           {{"relative_rmse", row.vertex.relative_rmse},
            {"mean_relative", row.vertex.mean_relative},
@@ -187,6 +189,8 @@ ReportData report_from_json(const json& j, const std::string& where) {
       row.transfer = jr.value("transfer", std::string("nearest patches"));
       row.indirect_level = jr.value("image_indirect_level", 0.0);
       row.vertex_level = jr.value("vertex_indirect_level", 0.0);
+      row.layout_indirect_level = jr.value("layout_image_indirect_level", 0.0);
+      row.layout_vertex_level = jr.value("layout_vertex_indirect_level", 0.0);
       const json& v = jr.at("vertex_indirect");
       row.vertex.relative_rmse = v.at("relative_rmse").get<double>();
       row.vertex.mean_relative = v.at("mean_relative").get<double>();

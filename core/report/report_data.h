@@ -47,6 +47,7 @@ struct ReportRow {
   // Mean indirect light against the reference's mean (1 = the right level):
   // over the picture's covered pixels (R+G+B) and over the vertices.
   double indirect_level = 0.0, vertex_level = 0.0;
+  double layout_indirect_level = 0.0, layout_vertex_level = 0.0;  // with exact patch values
   bool pareto = false;
   double update_ms() const { return direct_ms + multiply_ms; }
 };

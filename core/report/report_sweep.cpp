@@ -360,6 +360,8 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
           row.transfer = final_gather ? "final gather" : "nearest patches";
           row.indirect_level = m.indirect_level;
           row.vertex_level = m.vertex_level;
+          row.layout_indirect_level = layout.indirect_level;
+          row.layout_vertex_level = layout.vertex_level;
           report.rows.push_back(row);
         }
       }

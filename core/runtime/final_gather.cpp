@@ -8,6 +8,7 @@
 
 #include "base/error.h"
 #include "base/random.h"
+#include "runtime/direct_light.h"
 
 namespace bounce {
 
@@ -74,6 +75,28 @@ std::vector<glm::vec3> gather_points_of_vertices(const std::vector<glm::vec3>& p
     }
   }
   return out;
+}
+
+void light_vertices(const RayTracer& tracer, const std::vector<Light>& lights,
+                    const std::vector<AreaLight>& area, const std::vector<glm::vec3>& gathered,
+                    LitMesh& mesh) {
+  const std::size_t n = mesh.positions.size();
+  if (gathered.size() != n) throw Error("final gather", "one gathered value per vertex expected");
+  const Scene& scene = tracer.scene();
+  std::vector<std::uint32_t> triangle(n, 0);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    for (int c = 0; c < 3; ++c) triangle[mesh.triangles[f][c]] = mesh.source_triangle[f];
+  const std::vector<glm::vec3> at = gather_points_of_vertices(mesh.positions, mesh.triangles);
+  mesh.radiosity.resize(n);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::int64_t vi = 0; vi < static_cast<std::int64_t>(n); ++vi) {
+    const auto v = static_cast<std::size_t>(vi);
+    const Material& m = scene.material_of(triangle[v]);
+    const glm::vec3 direct =
+        irradiance_at(tracer, at[v] + 10.0f * tracer.epsilon() * mesh.normals[v], mesh.normals[v],
+                      lights, area, 4, v);
+    mesh.radiosity[v] = m.emission + m.albedo * (direct + gathered[v]);
+  }
 }
 
 namespace {
@@ -158,7 +181,8 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   std::vector<std::vector<float>> chunk_weight(chunks);
   std::vector<std::vector<std::uint32_t>> chunk_count(chunks);
   if (progress) progress->begin_stage("final gather", std::max<std::size_t>(1, chunks));
-#pragma omp parallel
+  std::size_t escaped = 0, backs = 0, unrepresented = 0, landed_rays = 0;
+#pragma omp parallel reduction(+ : escaped, backs, unrepresented, landed_rays)
   {
     std::vector<std::uint32_t> hits(patch_count, 0), cluster_hits(g.clusters, 0);
     std::vector<std::uint32_t> touched, cluster_touched;
@@ -181,11 +205,21 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
             const float z = std::sqrt(std::max(0.0f, 1.0f - glm::dot(d, d)));
             const glm::vec3 dir = d.x * t + d.y * b + z * nrm;
             const Hit h = tracer.intersect(origin, dir);
-            if (!h.hit) continue;
+            if (!h.hit) {
+              ++escaped;
+              continue;
+            }
             const bool back = glm::dot(dir, h.geometric_normal) > 0.0f;
-            if (back && !scene.two_sided(h.triangle)) continue;
+            if (back && !scene.two_sided(h.triangle)) {
+              ++backs;
+              continue;
+            }
             const std::int32_t p = lookup.patch_at(h.triangle, back, origin + h.t * dir);
-            if (p < 0) continue;
+            if (p < 0) {
+              ++unrepresented;
+              continue;
+            }
+            ++landed_rays;
             if (hits[static_cast<std::size_t>(p)]++ == 0)
               touched.push_back(static_cast<std::uint32_t>(p));
           }
@@ -229,6 +263,10 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
     progress->check();
     progress->end_stage();
   }
+  g.rays_landed = landed_rays;
+  g.rays_escaped = escaped;
+  g.rays_back = backs;
+  g.rays_unrepresented = unrepresented;
   g.first.reserve(n + 1);
   g.first.push_back(0);
   for (std::size_t c = 0; c < chunks; ++c) {

@@ -40,6 +40,8 @@
 #include "patches/patch_set.h"
 #include "patches/surface_patch_lookup.h"
 #include "raytrace/ray_tracer.h"
+#include "runtime/area_lights.h"
+#include "runtime/mesh_transfer.h"
 
 namespace bounce {
 
@@ -69,6 +71,9 @@ struct FinalGather {
   std::vector<float> cluster_share;
   std::size_t clusters = 0;
   int rays = 0;
+  // Where the rays went (at build time): onto a patch, out of the scene,
+  // onto the back of a one-sided triangle, onto surface no patch stands for.
+  std::size_t rays_landed = 0, rays_escaped = 0, rays_back = 0, rays_unrepresented = 0;
 
   std::size_t points() const { return first.empty() ? 0 : first.size() - 1; }
   // E at every point from the light leaving each patch (size `patches`).
@@ -86,6 +91,14 @@ struct FinalGather {
 // just inside its own face sees the corner as the face does.
 std::vector<glm::vec3> gather_points_of_vertices(const std::vector<glm::vec3>& positions,
                                                  const std::vector<glm::uvec3>& triangles);
+
+// Lights a lit mesh's vertices: radiosity = emission + albedo x (direct
+// irradiance, shadowed, at the vertex's gather point + `gathered`, the
+// indirect irradiance its final gather summed). Albedo and emission come from
+// a scene triangle the vertex's faces stand for.
+void light_vertices(const RayTracer& tracer, const std::vector<Light>& lights,
+                    const std::vector<AreaLight>& area, const std::vector<glm::vec3>& gathered,
+                    LitMesh& mesh);
 
 // Gathers for points `positions` with unit normals `normals` (the side that
 // receives). Thread-parallel; the result does not depend on the thread count.

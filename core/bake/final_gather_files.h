@@ -1,0 +1,26 @@
+#pragma once
+// The final gather of a bake's lit-mesh vertices (runtime/final_gather.h) as
+// files of the bake folder (docs/bake-format.md):
+//   gather_first.npy   <u4 [vertices + 1]   row starts
+//   gather_source.npy  <u4 [entries]        patch index, or patches + cluster
+//   gather_weight.npy  <f4 [entries]        point-to-source form factor
+//   gather_cluster.npy <u4 [patches]        each patch's cluster
+//   gather_share.npy   <f4 [patches]        its share of the cluster's area
+// The vertices are those build_transfer_mesh makes from the scene and the
+// bake's grid with default settings, in its order; a reader rebuilds that
+// mesh and checks the count.
+#include <filesystem>
+#include <optional>
+
+#include "runtime/final_gather.h"
+
+namespace bounce {
+
+void write_final_gather(const std::filesystem::path& dir, const FinalGather& gather);
+
+// nullopt when the folder has no gather (a bake made without one); throws
+// bounce::Error naming the file when the files are there but inconsistent
+// with each other or with `patches`.
+std::optional<FinalGather> read_final_gather(const std::filesystem::path& dir, std::size_t patches);
+
+}  // namespace bounce
