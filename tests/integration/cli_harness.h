@@ -138,6 +138,9 @@ struct RunOptions {
   // mounting anything.
   bool as_nobody = false;
   rlim_t max_file_bytes = RLIM_INFINITY;
+  // Caps the address space (RLIMIT_AS, as `ulimit -v` does): an allocation
+  // beyond it fails inside the program instead of waking the OOM killer.
+  rlim_t max_address_bytes = RLIM_INFINITY;
 };
 
 constexpr uid_t kNobody = 65534;
@@ -146,7 +149,7 @@ constexpr uid_t kNobody = 65534;
 // program: which step failed and errno. A successful exec closes the pipe
 // with nothing written.
 struct StartFailure {
-  enum Step : int { kChdir, kFileSizeLimit, kDropRoot, kExec } step;
+  enum Step : int { kChdir, kFileSizeLimit, kAddressSpaceLimit, kDropRoot, kExec } step;
   int error;
 };
 
@@ -158,6 +161,8 @@ inline std::string describe(const StartFailure& f, const std::string& program,
       return "cannot chdir to " + cwd + ": " + why;
     case StartFailure::kFileSizeLimit:
       return "cannot set RLIMIT_FSIZE: " + why;
+    case StartFailure::kAddressSpaceLimit:
+      return "cannot set RLIMIT_AS: " + why;
     case StartFailure::kDropRoot:
       return "cannot drop to user nobody: " + why;
     case StartFailure::kExec:
@@ -217,6 +222,10 @@ class Child {
         ::signal(SIGXFSZ, SIG_IGN);  // an ignored signal stays ignored across exec
         const rlimit limit{options.max_file_bytes, options.max_file_bytes};
         if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) fail(StartFailure::kFileSizeLimit);
+      }
+      if (options.max_address_bytes != RLIM_INFINITY) {
+        const rlimit limit{options.max_address_bytes, options.max_address_bytes};
+        if (::setrlimit(RLIMIT_AS, &limit) != 0) fail(StartFailure::kAddressSpaceLimit);
       }
       if (options.as_nobody &&
           (::setgroups(0, nullptr) != 0 || ::setgid(kNobody) != 0 || ::setuid(kNobody) != 0))
