@@ -80,16 +80,18 @@ build_preset() {
 # sanitizer report, leak, timeout (>10 s per input) or out-of-memory input is written
 # to build/fuzz/artifacts/ and fails the command.
 # "ci" instead of seconds: a fixed number of inputs per target (about a minute
-# each here) with the fixed seed, so the campaign is deterministic: CI fails on
+# or less each here; the bake-folder targets 15-60 s) with the fixed seed, so the campaign is deterministic: CI fails on
 # what the code does, not on how far a time limit let libFuzzer get. Longer
 # open-ended campaigns (./dev.sh fuzz 600) are how new inputs are found.
 declare -A ci_fuzz_runs=([fuzz_scene_json]=60000 [fuzz_mesh_obj]=500 [fuzz_mesh_ply]=40000
-                         [fuzz_mesh_gltf]=3000)
+                         [fuzz_mesh_gltf]=3000 [fuzz_bake_npy]=15000 [fuzz_bake_dds]=20000
+                         [fuzz_bake_manifest]=30000 [fuzz_bake_folder]=10000)
 fuzz() {
   local seconds=$1 failed=()
   build_preset fuzz
   mkdir -p "$root/build/fuzz/artifacts"
-  for target in fuzz_scene_json fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_gltf; do
+  for target in fuzz_scene_json fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_gltf fuzz_bake_npy \
+    fuzz_bake_dds fuzz_bake_manifest fuzz_bake_folder; do
     local work="$root/build/fuzz/corpus/$target"
     mkdir -p "$work"
     local budget=(-max_total_time="$seconds")
