@@ -35,13 +35,34 @@ install_missing_packages() {
   $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
+# Configures build/release once (again when $1 is "require-all" and the
+# cache lacks BOUNCE_REQUIRE_ALL=ON) and builds incrementally.
 build() {
   install_missing_packages
-  if [[ ! -f "$build_dir/build.ninja" ]]; then
-    log "configuring Release build in build/release"
-    cmake --preset release >/dev/null
+  local options=()
+  [[ "${1:-}" == require-all ]] && options=(-DBOUNCE_REQUIRE_ALL=ON)
+  if [[ ! -f "$build_dir/build.ninja" ]] ||
+    { ((${#options[@]} > 0)) && ! grep -qx 'BOUNCE_REQUIRE_ALL:BOOL=ON' "$build_dir/CMakeCache.txt"; }; then
+    log "configuring Release build in build/release ${options[*]}"
+    cmake --preset release "${options[@]}" >/dev/null
   fi
   cmake --build --preset release -- -j"$(nproc)"
+}
+
+# Tests registered per label; fails when a label has none, so that a part of
+# the suite cannot vanish unnoticed (a test binary not built, discovery that
+# found nothing).
+check_labels() {
+  local label count empty=()
+  for label in unit integration render; do
+    count=$(ctest --test-dir "$build_dir" -N -L "^${label}\$" | sed -n 's/^Total Tests: //p')
+    log "label $label: ${count:-0} tests"
+    [[ "${count:-0}" -gt 0 ]] || empty+=("$label")
+  done
+  if ((${#empty[@]} > 0)); then
+    log "no tests with label: ${empty[*]}"
+    return 1
+  fi
 }
 
 # Configures preset $1 once (in build/$1) and builds its targets.
@@ -59,16 +80,18 @@ build_preset() {
 # sanitizer report, leak, timeout (>10 s per input) or out-of-memory input is written
 # to build/fuzz/artifacts/ and fails the command.
 # "ci" instead of seconds: a fixed number of inputs per target (about a minute
-# each here) with the fixed seed, so the campaign is deterministic: CI fails on
+# or less each here; the bake-folder targets 15-60 s) with the fixed seed, so the campaign is deterministic: CI fails on
 # what the code does, not on how far a time limit let libFuzzer get. Longer
 # open-ended campaigns (./dev.sh fuzz 600) are how new inputs are found.
 declare -A ci_fuzz_runs=([fuzz_scene_json]=60000 [fuzz_mesh_obj]=500 [fuzz_mesh_ply]=40000
-                         [fuzz_mesh_gltf]=3000)
+                         [fuzz_mesh_gltf]=3000 [fuzz_bake_npy]=15000 [fuzz_bake_dds]=20000
+                         [fuzz_bake_manifest]=30000 [fuzz_bake_folder]=10000)
 fuzz() {
   local seconds=$1 failed=()
   build_preset fuzz
   mkdir -p "$root/build/fuzz/artifacts"
-  for target in fuzz_scene_json fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_gltf; do
+  for target in fuzz_scene_json fuzz_mesh_obj fuzz_mesh_ply fuzz_mesh_gltf fuzz_bake_npy \
+    fuzz_bake_dds fuzz_bake_manifest fuzz_bake_folder; do
     local work="$root/build/fuzz/corpus/$target"
     mkdir -p "$work"
     local budget=(-max_total_time="$seconds")
@@ -119,7 +142,10 @@ case "$cmd" in
     exec "$build_dir/app/bounce" bake "$scene" --out "bakes/${name%.*}" --reference "$@"
     ;;
   test)
-    build
+    # Every part built (configuring fails naming what is missing), and
+    # every label has tests; ctest ends with a time summary per label.
+    build require-all
+    check_labels
     cd "$build_dir"
     exec ctest --output-on-failure -j"$(nproc)" "$@"
     ;;

@@ -27,6 +27,25 @@ find_package(CLBlast REQUIRED)
 # broken on Debian 12, find the library directly; stb_dxt is header-only.
 find_library(SQUISH_LIB squish REQUIRED)
 find_path(STB_INCLUDE_DIR stb/stb_dxt.h REQUIRED)
+# BOUNCE_REQUIRE_ALL=ON (./dev.sh test, CI): the optional parts below must
+# all be built. Without it a missing package only drops its part (with a
+# warning), and the tests of that part vanish from ctest without failing
+# anything; with it, configuring fails and names each missing component.
+option(BOUNCE_REQUIRE_ALL "Fail configuring unless the studio (Qt 5, VTK) and the distributed bake (MPI, ScaLAPACK) can be built" OFF)
+set(BOUNCE_MISSING_COMPONENTS "")
+# Turns `flag` ON when the list `missing` is empty; else warns that `part` is
+# skipped, naming every missing component, and records them. A macro, so
+# that both variables are set in the caller's scope.
+macro(bounce_enable_unless_missing part flag)
+  if(missing)
+    list(JOIN missing ", " missing_text)
+    message(WARNING "${part} skipped, not found: ${missing_text}")
+    list(APPEND BOUNCE_MISSING_COMPONENTS ${missing})
+  else()
+    set(${flag} ON)
+  endif()
+endmacro()
+
 # Distributed bake (core/distributed, docs/cluster.md): OpenMPI and
 # ScaLAPACK built against it (libscalapack-openmpi-dev, whose CMake config is
 # for configuration "None" only: find the library itself). Built by default
@@ -36,32 +55,61 @@ set(BOUNCE_MPI_ENABLED OFF)
 if(BOUNCE_MPI)
   find_package(MPI COMPONENTS C QUIET)
   find_library(SCALAPACK_LIBRARY NAMES scalapack-openmpi scalapack)
-  if(MPI_C_FOUND AND SCALAPACK_LIBRARY)
-    set(BOUNCE_MPI_ENABLED ON)
-  else()
-    message(WARNING "Distributed bake skipped: MPI or ScaLAPACK not found; install openmpi-bin "
-                    "libopenmpi-dev libscalapack-openmpi-dev")
+  set(missing "")
+  if(NOT MPI_C_FOUND)
+    list(APPEND missing "MPI for C (libopenmpi-dev, openmpi-bin)")
   endif()
+  if(NOT SCALAPACK_LIBRARY)
+    list(APPEND missing "ScaLAPACK (libscalapack-openmpi-dev)")
+  endif()
+  bounce_enable_unless_missing("Distributed bake" BOUNCE_MPI_ENABLED)
+elseif(BOUNCE_REQUIRE_ALL)
+  list(APPEND BOUNCE_MISSING_COMPONENTS "the distributed bake (BOUNCE_MPI is OFF)")
 endif()
 # Bounce Studio (views/, app/studio/, tests/render/): Qt 5 Widgets and VTK 9.
 # VTK 9.1 on Debian 12 is built against Qt 5 and MPI: its config needs
 # MPI::MPI_C to exist, so MPI (C only) is found first. The studio is skipped,
-# with a warning, only when the packages are missing; the core never links them.
+# with a warning naming what is missing, only when packages are missing; the
+# core never links them.
 option(BOUNCE_STUDIO "Build Bounce Studio (needs Qt 5 and VTK 9, see tools/packages.txt)" ON)
 set(BOUNCE_STUDIO_ENABLED OFF)
+set(BOUNCE_VTK_MODULES CommonCore CommonDataModel FiltersCore FiltersSources FiltersGeneral
+    GUISupportQt InteractionStyle RenderingCore RenderingOpenGL2 RenderingAnnotation
+    RenderingFreeType ChartsCore ViewsContext2D RenderingContext2D RenderingContextOpenGL2 IOImage)
 if(BOUNCE_STUDIO)
   find_package(Qt5 COMPONENTS Widgets QUIET)
   find_package(MPI COMPONENTS C QUIET)
-  if(Qt5_FOUND AND MPI_C_FOUND)
-    find_package(VTK QUIET COMPONENTS CommonCore CommonDataModel FiltersCore FiltersSources
-                 FiltersGeneral GUISupportQt InteractionStyle RenderingCore RenderingOpenGL2
-                 RenderingAnnotation RenderingFreeType ChartsCore ViewsContext2D
-                 RenderingContext2D RenderingContextOpenGL2 IOImage)
+  set(missing "")
+  if(NOT Qt5_FOUND)
+    list(APPEND missing "Qt 5 Widgets (qtbase5-dev)")
   endif()
-  if(Qt5_FOUND AND VTK_FOUND)
-    set(BOUNCE_STUDIO_ENABLED ON)
+  if(NOT MPI_C_FOUND)
+    list(APPEND missing "MPI for C, which VTK 9 needs (libopenmpi-dev)")
   else()
-    message(WARNING "Bounce Studio skipped: Qt 5 Widgets or VTK 9 (with MPI C) not found; "
-                    "install qtbase5-dev libqt5opengl5-dev libvtk9-qt-dev libvtk9-dev")
+    # Each module on its own: VTK_FOUND alone cannot say which one is missing.
+    find_package(VTK QUIET COMPONENTS ${BOUNCE_VTK_MODULES})
+    if(NOT VTK_VERSION)
+      list(APPEND missing "VTK 9 (libvtk9-dev)")
+    else()
+      foreach(module ${BOUNCE_VTK_MODULES})
+        if(NOT VTK_${module}_FOUND)
+          list(APPEND missing "VTK module ${module}")
+        endif()
+      endforeach()
+      if(NOT VTK_FOUND AND NOT missing)
+        list(APPEND missing "VTK 9: ${VTK_NOT_FOUND_MESSAGE}")
+      endif()
+    endif()
   endif()
+  bounce_enable_unless_missing("Bounce Studio" BOUNCE_STUDIO_ENABLED)
+elseif(BOUNCE_REQUIRE_ALL)
+  list(APPEND BOUNCE_MISSING_COMPONENTS "Bounce Studio (BOUNCE_STUDIO is OFF)")
+endif()
+
+if(BOUNCE_REQUIRE_ALL AND BOUNCE_MISSING_COMPONENTS)
+  list(REMOVE_DUPLICATES BOUNCE_MISSING_COMPONENTS)
+  list(JOIN BOUNCE_MISSING_COMPONENTS "\n  " missing_text)
+  message(FATAL_ERROR "BOUNCE_REQUIRE_ALL is ON and these are missing:\n  ${missing_text}\n"
+                      "Install them (tools/packages.txt) or configure with "
+                      "-DBOUNCE_REQUIRE_ALL=OFF to build without them.")
 endif()

@@ -22,6 +22,16 @@ void require_shape(const fs::path& file, const std::vector<std::size_t>& shape,
                                    " columns (docs/bake-format.md)");
 }
 
+// A whole-number column of voxels.npy (cell coordinates, sample and patch
+// counts) as an int: converting a NaN or an out-of-range float is undefined,
+// and the folder may come from anywhere.
+int int_column(const fs::path& file, std::size_t row, std::size_t column, float v) {
+  if (!(v >= -2147483648.0f && v < 2147483648.0f && v == std::floor(v)))
+    throw Error(file.string(), "row " + std::to_string(row) + ", column " + std::to_string(column) +
+                                   " holds " + std::to_string(v) + ", not a whole number");
+  return static_cast<int>(v);
+}
+
 }  // namespace
 
 std::shared_ptr<const BakeViewData> load_bake_view_data(const fs::path& dir,
@@ -37,9 +47,9 @@ std::shared_ptr<const BakeViewData> load_bake_view_data(const fs::path& dir,
   data->voxels.reserve(v.shape[0]);
   for (std::size_t k = 0; k < v.shape[0]; ++k) {
     const float* r = &v.data[k * kVoxelColumns];
-    data->voxels.push_back(
-        {glm::ivec3(static_cast<int>(r[0]), static_cast<int>(r[1]), static_cast<int>(r[2])),
-         glm::vec3(r[3], r[4], r[5]), r[6], static_cast<int>(r[7]), static_cast<int>(r[8])});
+    const auto whole = [&](std::size_t c) { return int_column(voxel_file, k, c, r[c]); };
+    data->voxels.push_back({glm::ivec3(whole(0), whole(1), whole(2)), glm::vec3(r[3], r[4], r[5]),
+                            r[6], whole(7), whole(8)});
   }
 
   const fs::path f_file = dir / "F.npy";

@@ -172,7 +172,13 @@ void run_solve(const SolveOptions& opt) {
     throw Error("--samples", "must be between 1 and 16 (n x n rays per pixel)");
   nlohmann::ordered_json timings;
   auto t = Clock::now();
-  const LoadedBake bake = BakeReader::read(opt.bake, opt.multiply == "dense");
+  // auto multiplies a dense bake (T.npy, no T.dds) with its dense matrix, so
+  // T.npy is read then; a compressed bake's T.npy (--dump-matrices) is only
+  // read when --multiply dense asks for it: it can be large.
+  const BakeReader::Dense dense = opt.multiply == "dense"  ? BakeReader::Dense::kRead
+                                  : opt.multiply == "auto" ? BakeReader::Dense::kIfNotCompressed
+                                                           : BakeReader::Dense::kSkip;
+  const LoadedBake bake = BakeReader::read(opt.bake, dense);
   timings["read_bake"] = since(t);
 
   t = Clock::now();

@@ -1,9 +1,9 @@
 #include "exact_transport.h"
 
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "bake/bake.h"
+#include "bake/bake_reader.h"
 #include "base/diagnostics.h"
 #include "base/error.h"
 #include "io/npy.h"
@@ -22,16 +22,6 @@ std::string shape_text(const std::vector<std::size_t>& shape) {
   std::string s = "[";
   for (std::size_t k = 0; k < shape.size(); ++k) s += (k ? " x " : "") + std::to_string(shape[k]);
   return s + "]";
-}
-
-nlohmann::json read_manifest(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path.string(), "cannot open the bake manifest");
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(path.string(), std::string("not valid JSON: ") + e.what());
-  }
 }
 
 }  // namespace
@@ -56,12 +46,14 @@ ExactTransport read_bake_folder(const fs::path& folder) {
   x.source = "bake folder " + folder.string();
 
   const fs::path manifest_path = folder / "manifest.json";
-  const nlohmann::json manifest = read_manifest(manifest_path);
-  if (manifest.value("format", std::string()) != "bounce-bake")
+  const nlohmann::json manifest = read_manifest_json(manifest_path);
+  if (!manifest.is_object() || !manifest.contains("format") ||
+      manifest["format"] != nlohmann::json("bounce-bake"))
     throw Error(manifest_path.string(),
                 "not a bounce bake manifest (\"format\" is not "
                 "\"bounce-bake\")");
-  if (manifest.contains("scene") && manifest["scene"].contains("name"))
+  if (manifest.contains("scene") && manifest["scene"].is_object() &&
+      manifest["scene"].contains("name") && manifest["scene"]["name"].is_string())
     x.name = manifest["scene"]["name"].get<std::string>();
 
   const fs::path t_path = folder / "T.npy";
@@ -111,6 +103,8 @@ ExactTransport read_bake_folder(const fs::path& folder) {
     if (!c.is_array() || c.size() != 3)
       throw Error(manifest_path.string(), "transport.channel_of_rgb must be 3 numbers");
     for (std::size_t k = 0; k < 3; ++k) {
+      if (!c[k].is_number_integer())
+        throw Error(manifest_path.string(), "transport.channel_of_rgb must be 3 whole numbers");
       const int v = c[k].get<int>();
       if (v < 0 || static_cast<std::size_t>(v) >= stored)
         throw Error(manifest_path.string(), "transport.channel_of_rgb names matrix " +

@@ -3,9 +3,11 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "bake/bake_writer.h"
+#include "base/checked_size.h"
 #include "compress/dds.h"
 #include "io/npy.h"
 
@@ -79,15 +81,9 @@ void read_carried_polygons(const fs::path& dir, SampleSet& samples) {
 
 json read_manifest(const fs::path& dir) {
   const fs::path path = dir / "manifest.json";
-  std::ifstream in(path);
-  if (!in) throw ReadError(dir.string(), "is not a bake folder (no manifest.json)");
-  json m;
-  try {
-    m = json::parse(in);
-  } catch (const json::exception& e) {
-    throw ReadError(path.string(), std::string("is not valid JSON: ") + e.what());
-  }
-  if (m.value("format", "") != "bounce-bake")
+  if (!fs::exists(path)) throw ReadError(dir.string(), "is not a bake folder (no manifest.json)");
+  json m = read_manifest_json(path);
+  if (!m.is_object() || m.value("format", "") != "bounce-bake")
     throw ReadError(path.string(), "is not a Bounce bake manifest");
   const int version = m.value("format_version", 0);
   if (version != kBakeFormatVersion)
@@ -97,14 +93,39 @@ json read_manifest(const fs::path& dir) {
   return m;
 }
 
+// Every value of a (rows, columns) float array is finite: positions,
+// normals and areas feed rays and sums that would otherwise turn NaN far
+// from the file that caused it.
+void require_finite(const fs::path& file, const NpyArray<float>& a) {
+  const std::size_t columns = a.shape.size() == 2 ? a.shape[1] : 1;
+  for (std::size_t k = 0; k < a.data.size(); ++k)
+    if (!std::isfinite(a.data[k]))
+      throw ReadError(file.string(), "row " + std::to_string(k / columns) + ", column " +
+                                         std::to_string(k % columns) + " is not finite");
+}
+
+// An index stored as a float column (voxel, mesh, triangle): a whole number
+// that fits in 32 bits. Converting anything else to an integer is undefined.
+std::uint32_t index_column(const fs::path& file, std::size_t row, std::size_t column, float v) {
+  if (!(v >= 0.0f && v <= 4294967040.0f && v == std::floor(v)))
+    throw ReadError(file.string(), "row " + std::to_string(row) + ", column " +
+                                       std::to_string(column) + " holds " + std::to_string(v) +
+                                       ", not an index");
+  return static_cast<std::uint32_t>(v);
+}
+
 // Patches and their member samples from patches.npy and samples.npy.
 void read_patches(const fs::path& dir, std::size_t n, LoadedBake& b) {
   const fs::path pf = dir / "patches.npy", sf = dir / "samples.npy";
   const NpyArray<float> p = read_npy_f32(pf);
   require_shape(pf, p.shape, {n, 15});
+  require_finite(pf, p);
   const NpyArray<float> s = read_npy_f32(sf);
   if (s.shape.size() != 2 || s.shape[1] != 13) throw ReadError(sf.string(), "must have 13 columns");
+  require_finite(sf, s);
   const std::size_t count = s.shape[0];
+  if (count > std::numeric_limits<std::uint32_t>::max())
+    throw ReadError(sf.string(), "has " + std::to_string(count) + " samples, more than 2^32 - 1");
   for (std::size_t i = 0; i < n; ++i) {
     const float* r = &p.data[i * 15];
     Patch patch{};
@@ -112,8 +133,8 @@ void read_patches(const fs::path& dir, std::size_t n, LoadedBake& b) {
     patch.normal = {r[3], r[4], r[5]};
     patch.area = r[6];
     patch.albedo = {r[7], r[8], r[9]};
-    patch.voxel = static_cast<std::uint32_t>(r[10]);
-    patch.mesh = static_cast<std::uint32_t>(r[11]);
+    patch.voxel = index_column(pf, i, 10, r[10]);
+    patch.mesh = index_column(pf, i, 11, r[11]);
     patch.emission = {r[12], r[13], r[14]};
     b.patches.patches.push_back(patch);
   }
@@ -126,15 +147,14 @@ void read_patches(const fs::path& dir, std::size_t n, LoadedBake& b) {
     sample.normal = {r[3], r[4], r[5]};
     sample.area = r[6];
     sample.albedo = {r[7], r[8], r[9]};
-    sample.voxel = static_cast<std::uint32_t>(r[10]);
-    sample.triangle = static_cast<std::uint32_t>(r[12]);
+    sample.voxel = index_column(sf, k, 10, r[10]);
+    sample.triangle = index_column(sf, k, 12, r[12]);
     b.samples.samples.push_back(sample);
     const float patch = r[11];
     if (patch < 0.0f) continue;  // its patch was left out
-    if (patch >= static_cast<float>(n))
+    if (patch >= static_cast<float>(n) || patch != std::floor(patch))
       throw ReadError(sf.string(), "sample " + std::to_string(k) + " names patch " +
-                                       std::to_string(static_cast<long>(patch)) + " of " +
-                                       std::to_string(n));
+                                       std::to_string(patch) + " of " + std::to_string(n));
     members[static_cast<std::size_t>(patch)].push_back(static_cast<std::uint32_t>(k));
   }
   b.patches.member_first.push_back(0);
@@ -144,11 +164,63 @@ void read_patches(const fs::path& dir, std::size_t n, LoadedBake& b) {
   }
 }
 
+// A one-dimensional array of `expected` elements (any, when nullopt).
+template <typename T>
+std::vector<T> read_vector(const fs::path& file, NpyArray<T> (*read)(const fs::path&),
+                           std::optional<std::size_t> expected) {
+  NpyArray<T> a = read(file);
+  if (a.shape.size() != 1)
+    throw ReadError(file.string(), "must be one-dimensional, has " +
+                                       std::to_string(a.shape.size()) + " dimensions");
+  if (expected && a.shape[0] != *expected)
+    throw ReadError(file.string(), "has " + std::to_string(a.shape[0]) + " elements, expected " +
+                                       std::to_string(*expected));
+  return std::move(a.data);
+}
+
+// The exactly kept entries of stored channel `ch` (CSR: row starts,
+// columns, values). The arrays' lengths are checked against each other and
+// against n, and every row start and column index against its range, so
+// that the runtime can index with them unchecked.
+CsrMatrix read_kept(const fs::path& dir, int ch, std::size_t n) {
+  const std::string base = "T_kept_" + std::to_string(ch);
+  const fs::path rp = dir / (base + "_row_ptr.npy"), cp = dir / (base + "_col.npy"),
+                 vp = dir / (base + "_value.npy");
+  CsrMatrix k;
+  k.n = n;
+  k.row_ptr = read_vector(rp, read_npy_u32, n + 1);
+  k.col = read_vector(cp, read_npy_u32, std::nullopt);
+  k.value = read_vector(vp, read_npy_f32, k.col.size());
+  if (k.row_ptr.front() != 0)
+    throw ReadError(rp.string(),
+                    "row 0 starts at " + std::to_string(k.row_ptr.front()) + ", not 0");
+  if (k.row_ptr.back() != k.col.size())
+    throw ReadError(rp.string(), "the last row ends at " + std::to_string(k.row_ptr.back()) +
+                                     ", but " + cp.filename().string() + " has " +
+                                     std::to_string(k.col.size()) + " entries");
+  for (std::size_t i = 0; i < n; ++i)
+    if (k.row_ptr[i] > k.row_ptr[i + 1])
+      throw ReadError(rp.string(), "row starts must not decrease (row " + std::to_string(i) + ")");
+  for (std::size_t e = 0; e < k.col.size(); ++e)
+    if (k.col[e] >= n)
+      throw ReadError(cp.string(), "entry " + std::to_string(e) + " has column " +
+                                       std::to_string(k.col[e]) + " of " + std::to_string(n));
+  return k;
+}
+
 CompressedMatrix read_compressed(const fs::path& dir, const json& c, std::size_t n) {
+  const std::string manifest = (dir / "manifest.json").string();
   CompressedMatrix m;
   m.n = n;
   m.padded = c.at("padded_size").get<std::size_t>();
+  if (m.padded != (n + 3) / 4 * 4)
+    throw ReadError(manifest, "compression.padded_size is " + std::to_string(m.padded) + " for " +
+                                  std::to_string(n) + " patches (" +
+                                  std::to_string((n + 3) / 4 * 4) + " expected)");
   m.channels = c.at("stored_channels").get<int>();
+  if (m.channels != 1 && m.channels != 3)
+    throw ReadError(manifest, "compression.stored_channels is " + std::to_string(m.channels) +
+                                  " (1 or 3 expected)");
   m.codec = c.value("codec", "");
   m.encoder = c.value("encoder", "");
   m.ordering = c.value("ordering", "");
@@ -170,70 +242,90 @@ CompressedMatrix read_compressed(const fs::path& dir, const json& c, std::size_t
     LogQuantizer lq;
     lq.vmax = q.at("vmax").get<float>();
     lq.range = q.at("range").get<float>();
+    if (!std::isfinite(lq.vmax) || !std::isfinite(lq.range) || !(lq.range > 0.0f))
+      throw ReadError(manifest, "compression.quantizers[" + std::to_string(m.quantizers.size()) +
+                                    "] has vmax " + std::to_string(lq.vmax) + " and range " +
+                                    std::to_string(lq.range) + " (finite, range > 0 expected)");
     m.quantizers.push_back(lq);
   }
-  for (int ch = 0; ch < m.channels; ++ch) {
-    const std::string base = "T_kept_" + std::to_string(ch);
-    CsrMatrix k;
-    k.n = n;
-    const fs::path rp = dir / (base + "_row_ptr.npy"), cp = dir / (base + "_col.npy"),
-                   vp = dir / (base + "_value.npy");
-    k.row_ptr = read_npy_u32(rp).data;
-    k.col = read_npy_u32(cp).data;
-    k.value = read_npy_f32(vp).data;
-    if (k.row_ptr.size() != n + 1 || k.row_ptr.back() != k.col.size() ||
-        k.col.size() != k.value.size())
-      throw ReadError(rp.string(), "CSR arrays of stored channel " + std::to_string(ch) +
-                                       " do not fit together");
-    for (std::size_t i = 0; i < n; ++i)
-      if (k.row_ptr[i] > k.row_ptr[i + 1])
-        throw ReadError(rp.string(), "row starts must not decrease");
-    for (std::uint32_t col : k.col)
-      if (col >= n) throw ReadError(cp.string(), "column index out of range");
-    m.kept.push_back(std::move(k));
-  }
+  for (int ch = 0; ch < m.channels; ++ch) m.kept.push_back(read_kept(dir, ch, n));
   if (m.quantizers.size() != static_cast<std::size_t>(m.channels))
-    throw ReadError((dir / "manifest.json").string(), "quantizer count differs from channels");
+    throw ReadError(manifest, "compression.quantizers has " + std::to_string(m.quantizers.size()) +
+                                  " entries for " + std::to_string(m.channels) +
+                                  " stored channels");
   return m;
 }
 
 }  // namespace
 
-LoadedBake BakeReader::read(const fs::path& dir, bool with_dense) {
+json read_manifest_json(const fs::path& path) {
+  const std::size_t bytes = regular_file_size<ReadError>(path);
+  if (bytes > kMaxManifestBytes)
+    throw ReadError(path.string(), "is " + std::to_string(bytes) +
+                                       " bytes; a bake manifest is at most " +
+                                       std::to_string(kMaxManifestBytes));
+  std::ifstream in(path);
+  if (!in) throw ReadError(path.string(), "cannot open file");
+  try {
+    return json::parse(in);
+  } catch (const json::exception& e) {
+    throw ReadError(path.string(), std::string("is not valid JSON: ") + e.what());
+  }
+}
+
+LoadedBake BakeReader::read(const fs::path& dir, Dense dense) {
   // A manifest with missing or mistyped entries is a damaged bake: say so,
   // naming the file, rather than letting a JSON exception escape.
   try {
-    return read_checked(dir, with_dense);
+    return read_checked(dir, dense);
   } catch (const nlohmann::json::exception& e) {
     throw ReadError((dir / "manifest.json").string(),
                     std::string("lacks an entry or has one of the wrong type: ") + e.what());
   }
 }
 
-LoadedBake BakeReader::read_checked(const fs::path& dir, bool with_dense) {
+LoadedBake BakeReader::read_checked(const fs::path& dir, Dense dense) {
   LoadedBake b;
   b.dir = dir;
   b.manifest = read_manifest(dir);
+  const fs::path manifest_path = dir / "manifest.json";
+  // Every array below is checked against this count, and through it
+  // against the files' sizes, so a manifest cannot ask for more memory than
+  // the bake's files hold; with 0 patches, shapes such as (lights, 0, 3)
+  // would hold no data and bound nothing.
   const auto n = b.manifest.at("counts").at("patches").get<std::size_t>();
+  if (n == 0) throw ReadError(manifest_path.string(), "counts.patches is 0");
   read_patches(dir, n, b);
   read_carried_polygons(dir, b.samples);
   const json& t = b.manifest.at("transport");
   b.channel_of_rgb = t.at("channel_of_rgb").get<std::array<int, 3>>();
   b.stored_channels = static_cast<int>(t.at("channels").size());
+  if (b.stored_channels < 1 || b.stored_channels > 3)
+    throw ReadError(manifest_path.string(), "transport.channels has " +
+                                                std::to_string(b.stored_channels) +
+                                                " entries (1 to 3 expected)");
+  for (int c : b.channel_of_rgb)
+    if (c < 0 || c >= b.stored_channels)
+      throw ReadError(manifest_path.string(), "transport.channel_of_rgb names channel " +
+                                                  std::to_string(c) + " of " +
+                                                  std::to_string(b.stored_channels));
   const json& c = b.manifest.at("compression");
   if (c.contains("stored_channels")) b.compressed = read_compressed(dir, c, n);
   const fs::path tf = dir / "T.npy";
-  if (with_dense && fs::exists(tf)) {
-    const NpyArray<float> dense = read_npy_f32(tf);
+  const bool want_dense =
+      dense == Dense::kRead || (dense == Dense::kIfNotCompressed && !b.compressed);
+  if (want_dense && fs::exists(tf)) {
+    const NpyArray<float> matrix = read_npy_f32(tf);
     const auto channels = static_cast<std::size_t>(b.stored_channels);
-    require_shape(tf, dense.shape, {channels, n, n});
+    require_shape(tf, matrix.shape, {channels, n, n});
     for (std::size_t ch = 0; ch < channels; ++ch)
-      b.dense.emplace_back(dense.data.begin() + static_cast<std::ptrdiff_t>(ch * n * n),
-                           dense.data.begin() + static_cast<std::ptrdiff_t>((ch + 1) * n * n));
+      b.dense.emplace_back(matrix.data.begin() + static_cast<std::ptrdiff_t>(ch * n * n),
+                           matrix.data.begin() + static_cast<std::ptrdiff_t>((ch + 1) * n * n));
   }
   if (!b.compressed && b.dense.empty())
-    throw ReadError(dir.string(), with_dense ? "holds no transport matrix (T.dds or T.npy)"
-                                             : "holds no compressed transport matrix (T.dds)");
+    throw ReadError(dir.string(), dense != Dense::kSkip
+                                      ? "holds no transport matrix (T.dds or T.npy)"
+                                      : "holds no compressed transport matrix (T.dds)");
   const fs::path lf = dir / "lights_first_hit.npy";
   const NpyArray<float> lights = read_npy_f32(lf);
   if (lights.shape.size() != 3 || lights.shape[1] != n || lights.shape[2] != 3)

@@ -44,11 +44,30 @@ class BakeReader {
     using Error::Error;
   };
 
-  // `with_dense`: also read T.npy when present (it can be large).
-  static LoadedBake read(const std::filesystem::path& dir, bool with_dense = true);
+  // Whether to read the exact matrix T.npy (it can be large).
+  enum class Dense {
+    kSkip,             // never
+    kIfNotCompressed,  // only when the bake has no compressed matrix (a dense bake)
+    kRead,             // whenever it is there
+  };
+
+  // `with_dense`: also read T.npy when present.
+  static LoadedBake read(const std::filesystem::path& dir, bool with_dense = true) {
+    return read(dir, with_dense ? Dense::kRead : Dense::kSkip);
+  }
+  static LoadedBake read(const std::filesystem::path& dir, Dense dense);
 
  private:
-  static LoadedBake read_checked(const std::filesystem::path& dir, bool with_dense);
+  static LoadedBake read_checked(const std::filesystem::path& dir, Dense dense);
 };
+
+// Real manifests are a few KiB to a few hundred KiB; a larger one is not a
+// manifest, and parsing it would take memory in proportion.
+inline constexpr std::size_t kMaxManifestBytes = std::size_t(16) << 20;
+
+// A bake manifest (or any JSON file of a bake folder) parsed; throws
+// BakeReader::ReadError naming the file when it is missing, not a regular
+// file, larger than kMaxManifestBytes or not JSON. Checks nothing else.
+nlohmann::json read_manifest_json(const std::filesystem::path& path);
 
 }  // namespace bounce

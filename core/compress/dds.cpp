@@ -1,11 +1,13 @@
 #include "compress/dds.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <limits>
 #include <string>
 
+#include "base/checked_size.h"
 #include "io/atomic_file.h"
 
 namespace bounce {
@@ -111,6 +113,10 @@ void write_dds(const std::filesystem::path& path, DdsFormat format, std::uint32_
 
 DdsImage read_dds(const std::filesystem::path& path) {
   const std::string where = path.string();
+  // The header's width and height are compared with the file's real size
+  // before the blocks are allocated: a 128-byte file must not be able to
+  // ask for gigabytes.
+  const std::size_t file_size = regular_file_size<DdsError>(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DdsError(where, std::string("cannot open: ") + std::strerror(errno));
   std::uint8_t header[kFileHeaderBytes + kDx10Bytes];
@@ -163,14 +169,20 @@ DdsImage read_dds(const std::filesystem::path& path) {
     throw DdsError(where, "unsupported format: FourCC '" + fourcc_text(code) +
                               "' (only DXT1, ATI1/BC4U or DX10 with BC1/BC4)");
   }
+  // At most 2^30 x 2^30 blocks of 8 bytes: the product fits in 64 bits.
   const std::size_t bytes = dds_block_bytes(image.width, image.height);
-  image.blocks.resize(bytes);
-  in.read(reinterpret_cast<char*>(image.blocks.data()), static_cast<std::streamsize>(bytes));
-  const auto data = static_cast<std::size_t>(in.gcount());
+  const std::size_t header_bytes =
+      kFileHeaderBytes + (code == fourcc("DX10") ? kDx10Bytes : std::size_t(0));
+  const std::size_t data = file_size - std::min(file_size, header_bytes);
   if (data < bytes)
-    throw DdsError(where, "truncated: " + std::to_string(image.width) + "x" +
+    throw DdsError(where, "truncated: header width x height " + std::to_string(image.width) + "x" +
                               std::to_string(image.height) + " needs " + std::to_string(bytes) +
                               " bytes of blocks, found " + std::to_string(data));
+  image.blocks.resize(bytes);
+  in.read(reinterpret_cast<char*>(image.blocks.data()), static_cast<std::streamsize>(bytes));
+  if (static_cast<std::size_t>(in.gcount()) < bytes)
+    throw DdsError(where, "read failed after " + std::to_string(in.gcount()) + " of " +
+                              std::to_string(bytes) + " bytes of blocks");
   return image;
 }
 

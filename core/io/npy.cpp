@@ -4,9 +4,12 @@
 #include <bit>
 #include <cstring>
 #include <fstream>
+#include <limits>
+#include <optional>
 #include <sstream>
 #include <utility>
 
+#include "base/checked_size.h"
 #include "base/mapped_buffer.h"
 #include "io/atomic_file.h"
 
@@ -29,9 +32,8 @@ std::string shape_string(const std::vector<std::size_t>& shape) {
 }
 
 std::size_t element_count(const std::vector<std::size_t>& shape) {
-  std::size_t n = 1;
-  for (std::size_t d : shape) n *= d;
-  return n;
+  const auto n = checked_product(shape);
+  return n ? *n : std::numeric_limits<std::size_t>::max();
 }
 
 // The data is the concatenation of `parts` (pointer, bytes).
@@ -69,26 +71,54 @@ void write_raw(const fs::path& path, const char* descr, const RawParts& parts, s
   file.commit();
 }
 
+// One dimension of a header's shape: decimal digits only, surrounded by
+// spaces (what NumPy writes). std::stoull alone would accept "-1" (as
+// 2^64 - 1) and trailing junk.
+std::optional<std::size_t> parse_dimension(const std::string& item) {
+  const auto first = item.find_first_not_of(' ');
+  const auto last = item.find_last_not_of(' ');
+  if (first == std::string::npos) return std::nullopt;
+  std::size_t value = 0;
+  for (std::size_t k = first; k <= last; ++k) {
+    const char c = item[k];
+    if (c < '0' || c > '9') return std::nullopt;
+    const auto next = checked_product(value, 10);
+    if (!next || *next > std::numeric_limits<std::size_t>::max() - std::size_t(c - '0'))
+      return std::nullopt;
+    value = *next + std::size_t(c - '0');
+  }
+  return value;
+}
+
 template <typename T>
 NpyArray<T> read_typed(const fs::path& path, const char* want) {
+  // Every size below comes from the file and is checked against the file's
+  // real size before anything is allocated: a few bytes of header must not
+  // be able to ask for gigabytes.
+  const std::size_t file_size = regular_file_size<NpyError>(path);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw NpyError(path.string(), "cannot open file");
   char magic[8];
   in.read(magic, 8);
   if (!in || std::memcmp(magic, "\x93NUMPY", 6) != 0)
     throw NpyError(path.string(), "not a .npy file (bad magic)");
-  std::size_t header_len = 0;
+  std::size_t header_len = 0, prefix = 0;
   if (magic[6] == 1) {
     std::uint16_t l = 0;
     in.read(reinterpret_cast<char*>(&l), 2);
     header_len = l;
+    prefix = 10;
   } else if (magic[6] == 2 || magic[6] == 3) {
     std::uint32_t l = 0;
     in.read(reinterpret_cast<char*>(&l), 4);
     header_len = l;
+    prefix = 12;
   } else {
     throw NpyError(path.string(), "unsupported .npy version " + std::to_string(magic[6]));
   }
+  if (!in || header_len > file_size - std::min(file_size, prefix))
+    throw NpyError(path.string(), "truncated header: header length " + std::to_string(header_len) +
+                                      ", file has " + std::to_string(file_size) + " bytes");
   std::string header(header_len, '\0');
   in.read(header.data(), static_cast<std::streamsize>(header_len));
   if (!in) throw NpyError(path.string(), "truncated header");
@@ -98,7 +128,7 @@ NpyArray<T> read_typed(const fs::path& path, const char* want) {
   if (header.find("'fortran_order': False") == std::string::npos)
     throw NpyError(path.string(), "Fortran-order arrays are not supported");
   const auto open = header.find("'shape': (");
-  const auto close = header.find(')', open);
+  const auto close = open == std::string::npos ? open : header.find(')', open);
   if (open == std::string::npos || close == std::string::npos)
     throw NpyError(path.string(), "header has no shape");
   NpyArray<T> a;
@@ -106,23 +136,22 @@ NpyArray<T> read_typed(const fs::path& path, const char* want) {
   std::string item;
   while (std::getline(dims, item, ',')) {
     if (item.find_first_not_of(' ') == std::string::npos) continue;
-    try {
-      a.shape.push_back(static_cast<std::size_t>(std::stoull(item)));
-    } catch (const std::exception&) {
-      throw NpyError(path.string(), "bad shape in header " + header);
-    }
+    const auto d = parse_dimension(item);
+    if (!d) throw NpyError(path.string(), "header field 'shape': bad dimension '" + item + "'");
+    a.shape.push_back(*d);
   }
-  const std::size_t n = element_count(a.shape);
-  const auto data_start = in.tellg();
-  in.seekg(0, std::ios::end);
-  const auto available = static_cast<std::size_t>(in.tellg() - data_start);
-  if (available < n * sizeof(T))
-    throw NpyError(path.string(), "truncated: shape " + shape_string(a.shape) + " needs " +
-                                      std::to_string(n * sizeof(T)) + " bytes of data, file has " +
-                                      std::to_string(available));
-  in.seekg(data_start);
-  a.data.resize(n);
-  in.read(reinterpret_cast<char*>(a.data.data()), static_cast<std::streamsize>(n * sizeof(T)));
+  const auto n = checked_product(a.shape);
+  const auto bytes = n ? checked_product(*n, sizeof(T)) : std::nullopt;
+  if (!bytes)
+    throw NpyError(path.string(), "header field 'shape' " + shape_string(a.shape) +
+                                      ": the element count overflows 64 bits");
+  const std::size_t available = file_size - (prefix + header_len);
+  if (available < *bytes)
+    throw NpyError(path.string(), "truncated: header field 'shape' " + shape_string(a.shape) +
+                                      " needs " + std::to_string(*bytes) +
+                                      " bytes of data, file has " + std::to_string(available));
+  a.data.resize(*n);
+  in.read(reinterpret_cast<char*>(a.data.data()), static_cast<std::streamsize>(*bytes));
   if (!in) throw NpyError(path.string(), "read failed");
   return a;
 }

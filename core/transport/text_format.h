@@ -1,19 +1,13 @@
 #pragma once
 // printf-style formatting into a std::string for decision and warning texts
-// (GCC 12's libstdc++ has no std::format).
-#include <cstdio>
+// (GCC 12's libstdc++ has no std::format). A C variadic function with the
+// printf format attribute, not a template over snprintf: the compiler then
+// checks every call's conversions against its arguments (-Wformat), and the
+// build makes a mismatch an error (-Werror=format in bounce_warnings).
 #include <string>
 
 namespace bounce {
 
-template <class... Args>
-std::string text_format(const char* fmt, Args... args) {
-  const int size = std::snprintf(nullptr, 0, fmt, args...);
-  if (size <= 0) return {};
-  std::string s(static_cast<std::size_t>(size) + 1, '\0');
-  std::snprintf(s.data(), s.size(), fmt, args...);
-  s.pop_back();
-  return s;
-}
+std::string text_format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
 
 }  // namespace bounce

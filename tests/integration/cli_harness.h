@@ -4,7 +4,9 @@
 // own fresh temporary folder, which is also the child's working directory, so
 // a bake that forgets --out cannot litter the source tree.
 #include <fcntl.h>
+#include <grp.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -12,14 +14,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -36,7 +41,21 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-inline const fs::path kCli = BOUNCE_CLI;
+// The `bounce` under test: the one this test binary was built with, or
+// BOUNCE_TEST_CLI when set (a copy placed elsewhere, e.g. in a folder only its
+// owner may enter, to test the harness from there).
+inline fs::path cli_under_test() {
+  const char* chosen = std::getenv("BOUNCE_TEST_CLI");
+  return chosen != nullptr && *chosen != '\0' ? fs::path(chosen) : fs::path(BOUNCE_CLI);
+}
+inline const fs::path kCli = cli_under_test();
+
+// The harness itself could not start the program (chdir, resource limit,
+// dropping root, exec): a broken test set-up, never an answer of the program.
+class HarnessError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 inline const fs::path kScenes = fs::path(BOUNCE_RESOURCE_DIR) / "scenes";
 
 inline std::string read_text(const fs::path& path) {
@@ -111,7 +130,46 @@ struct RunOptions {
   fs::path cwd;                                 // empty: the test's own working folder
   std::map<std::string, std::string> env;       // added to (or replacing in) the environment
   std::chrono::duration<double> timeout{60.0};  // killed with SIGKILL after this
+  fs::path program;                             // empty: kCli
+  // Confinement: drop root to the `nobody` user (uid and gid 65534, no
+  // supplementary groups) so that permission bits apply, and cap the size of
+  // each file the program writes (RLIMIT_FSIZE, with SIGXFSZ ignored so that
+  // write() fails with EFBIG instead of killing it): a full disk without
+  // mounting anything.
+  bool as_nobody = false;
+  rlim_t max_file_bytes = RLIM_INFINITY;
+  // Caps the address space (RLIMIT_AS, as `ulimit -v` does): an allocation
+  // beyond it fails inside the program instead of waking the OOM killer.
+  rlim_t max_address_bytes = RLIM_INFINITY;
 };
+
+constexpr uid_t kNobody = 65534;
+
+// What a child writes into its close-on-exec pipe when it cannot start the
+// program: which step failed and errno. A successful exec closes the pipe
+// with nothing written.
+struct StartFailure {
+  enum Step : int { kChdir, kFileSizeLimit, kAddressSpaceLimit, kDropRoot, kExec } step;
+  int error;
+};
+
+inline std::string describe(const StartFailure& f, const std::string& program,
+                            const std::string& cwd) {
+  const std::string why = std::strerror(f.error);
+  switch (f.step) {
+    case StartFailure::kChdir:
+      return "cannot chdir to " + cwd + ": " + why;
+    case StartFailure::kFileSizeLimit:
+      return "cannot set RLIMIT_FSIZE: " + why;
+    case StartFailure::kAddressSpaceLimit:
+      return "cannot set RLIMIT_AS: " + why;
+    case StartFailure::kDropRoot:
+      return "cannot drop to user nobody: " + why;
+    case StartFailure::kExec:
+      break;
+  }
+  return "cannot exec " + program + ": " + why;
+}
 
 // A running `bounce`, its stdout and stderr going to files.
 class Child {
@@ -127,7 +185,8 @@ class Child {
 
     // Everything the child needs is built before fork(): after it only
     // async-signal-safe calls.
-    std::vector<std::string> argv_strings{kCli.string()};
+    const std::string program = options.program.empty() ? kCli.string() : options.program.string();
+    std::vector<std::string> argv_strings{program};
     argv_strings.insert(argv_strings.end(), args.begin(), args.end());
     std::vector<char*> argv;
     for (std::string& a : argv_strings) argv.push_back(a.data());
@@ -144,21 +203,57 @@ class Child {
     envp.push_back(nullptr);
     const std::string cwd = options.cwd.string();
     const int null_fd = ::open("/dev/null", O_RDONLY);
+    int report[2];
+    if (::pipe2(report, O_CLOEXEC) != 0) throw HarnessError("pipe2 failed");
 
     pid_ = ::fork();
-    if (pid_ < 0) throw std::runtime_error("fork failed");
+    if (pid_ < 0) throw HarnessError("fork failed");
     if (pid_ == 0) {
+      const auto fail = [&report](StartFailure::Step step) {
+        const StartFailure f{step, errno};
+        [[maybe_unused]] const ssize_t written = ::write(report[1], &f, sizeof f);
+        ::_exit(127);
+      };
       ::dup2(null_fd, STDIN_FILENO);
       ::dup2(out_fd, STDOUT_FILENO);
       ::dup2(err_fd, STDERR_FILENO);
-      if (!cwd.empty() && ::chdir(cwd.c_str()) != 0) ::_exit(126);
+      if (!cwd.empty() && ::chdir(cwd.c_str()) != 0) fail(StartFailure::kChdir);
+      if (options.max_file_bytes != RLIM_INFINITY) {
+        ::signal(SIGXFSZ, SIG_IGN);  // an ignored signal stays ignored across exec
+        const rlimit limit{options.max_file_bytes, options.max_file_bytes};
+        if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) fail(StartFailure::kFileSizeLimit);
+      }
+      if (options.max_address_bytes != RLIM_INFINITY) {
+        const rlimit limit{options.max_address_bytes, options.max_address_bytes};
+        if (::setrlimit(RLIMIT_AS, &limit) != 0) fail(StartFailure::kAddressSpaceLimit);
+      }
+      if (options.as_nobody &&
+          (::setgroups(0, nullptr) != 0 || ::setgid(kNobody) != 0 || ::setuid(kNobody) != 0))
+        fail(StartFailure::kDropRoot);
       ::execve(argv[0], argv.data(), envp.data());
-      ::_exit(127);
+      fail(StartFailure::kExec);
     }
+    ::close(report[1]);
     ::close(out_fd);
     ::close(err_fd);
     if (null_fd >= 0) ::close(null_fd);
     start_ = Clock::now();
+    // Blocks until the exec closes the pipe or the child reports why it could
+    // not get there; the latter is the harness's failure, not an exit code
+    // of the program.
+    StartFailure failure{};
+    ssize_t got = 0;
+    do {
+      got = ::read(report[0], &failure, sizeof failure);
+    } while (got < 0 && errno == EINTR);
+    ::close(report[0]);
+    if (got == static_cast<ssize_t>(sizeof failure)) {
+      int status = 0;
+      ::waitpid(pid_, &status, 0);
+      finished_ = true;
+      remove_outputs();
+      throw HarnessError(describe(failure, program, cwd));
+    }
   }
 
   ~Child() {
@@ -167,9 +262,7 @@ class Child {
       int status = 0;
       ::waitpid(pid_, &status, 0);
     }
-    std::error_code ec;
-    fs::remove(out_path_, ec);
-    fs::remove(err_path_, ec);
+    remove_outputs();
   }
   Child(const Child&) = delete;
   Child& operator=(const Child&) = delete;
@@ -212,6 +305,12 @@ class Child {
   }
 
  private:
+  void remove_outputs() {
+    std::error_code ec;
+    fs::remove(out_path_, ec);
+    fs::remove(err_path_, ec);
+  }
+
   void record(int status) {
     finished_ = true;
     result_.seconds = seconds_since_start();

@@ -195,5 +195,52 @@ INSTANTIATE_TEST_SUITE_P(
                              [](const fs::path& b) { fs::remove(b / "lights_first_hit.npy"); }}),
     [](const ::testing::TestParamInfo<Damage>& p) { return std::string(p.param.name); });
 
+// `solve` with the default --multiply auto takes every bake `bake` writes:
+// a dense bake (T.npy, no T.dds) with its dense matrix, a compressed one with
+// the compressed product.
+class SolveAuto : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(SolveAuto, MultipliesWhatTheCodecStored) {
+  const std::string codec = GetParam();
+  TempDir tmp;
+  const fs::path bake = tmp / "bake";
+  const RunResult baked = run({"bake", scene("cornell-box"), "--voxel", "4", "--codec", codec,
+                               "--no-pictures", "--quiet", "--out", bake.string()},
+                              tmp.path(), 120.0);
+  ASSERT_EQ(baked.exit_code, 0) << baked;
+  ASSERT_EQ(fs::exists(bake / "T.dds"), codec != "dense");
+  ASSERT_EQ(fs::exists(bake / "T.npy"), codec == "dense");
+  auto solve = [&](const std::string& name, const std::vector<std::string>& extra) {
+    std::vector<std::string> args{"solve",  bake.string(), "--no-images",        "--no-mesh",
+                                  "--json", "--out",       (tmp / name).string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const RunResult r = run(args, tmp.path(), 120.0);
+    EXPECT_EQ(r.exit_code, 0) << r;
+    return std::make_pair(parse_json(r.out), read_npy_f32(tmp / name / "patch_light.npy"));
+  };
+  const auto [summary, light] = solve("auto", {});
+  const std::string multiply = summary.value("multiply", "");
+  EXPECT_EQ(multiply.rfind(codec == "dense" ? "dense" : "compressed", 0), 0u) << multiply;
+  // The indirect light (slot 2 of each patch) is there and finite.
+  double indirect = 0.0;
+  for (std::size_t p = 0; p < light.shape[0]; ++p)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const float v = light.data[p * 9 + 6 + k];
+      ASSERT_TRUE(std::isfinite(v)) << "patch " << p;
+      indirect += v;
+    }
+  EXPECT_GT(indirect, 0.0);
+  if (codec == "dense") {
+    // auto on a dense bake is exactly the dense product asked for by name.
+    const auto [named_summary, named] = solve("dense", {"--multiply", "dense"});
+    EXPECT_EQ(light.data, named.data);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Codecs, SolveAuto, ::testing::Values("dense", "paper", "ours"),
+                         [](const ::testing::TestParamInfo<const char*>& p) {
+                           return std::string(p.param);
+                         });
+
 }  // namespace
 }  // namespace bounce::itest

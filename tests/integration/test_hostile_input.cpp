@@ -304,93 +304,91 @@ TEST_F(HostileSceneJson, MeshFileThatIsTheSceneJsonItself) {
 
 // --- Export failures ---------------------------------------------------------
 
-// Runs `bounce args...` like run() but lets the child drop root (to the
-// `nobody` user, so permission bits apply) and cap the size of the files it
-// writes (RLIMIT_FSIZE, with SIGXFSZ ignored so write() fails with EFBIG
-// instead of killing it): a full disk without mounting anything.
-struct Confinement {
-  bool as_nobody = false;
-  rlim_t max_file_bytes = RLIM_INFINITY;
-};
-
+// Runs `bounce args...` in `cwd` under `confinement` (RunOptions: as the
+// `nobody` user and/or with a file size limit).
 RunResult run_confined(const std::vector<std::string>& args, const fs::path& cwd,
-                       const Confinement& confinement,
-                       const std::map<std::string, std::string>& env = {}) {
-  const fs::path out_file = cwd / "confined-stdout.txt";
-  const fs::path err_file = cwd / "confined-stderr.txt";
-  std::vector<std::string> argv_strings{kCli.string()};
-  argv_strings.insert(argv_strings.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (std::string& a : argv_strings) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  std::vector<std::string> env_strings;
-  for (char** e = environ; *e != nullptr; ++e) {
-    const std::string entry(*e);
-    if (env.count(entry.substr(0, entry.find('='))) == 0) env_strings.push_back(entry);
-  }
-  for (const auto& [key, value] : env) env_strings.push_back(key + "=" + value);
-  std::vector<char*> envp;
-  for (std::string& e : env_strings) envp.push_back(e.data());
-  envp.push_back(nullptr);
-  const int out_fd = ::open(out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  const int err_fd = ::open(err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  const int null_fd = ::open("/dev/null", O_RDONLY);
-  if (out_fd < 0 || err_fd < 0 || null_fd < 0) throw std::runtime_error("cannot open output files");
+                       RunOptions confinement) {
+  confinement.cwd = cwd;
+  return run(args, confinement);
+}
 
-  const auto start = Clock::now();
+// Why `nobody` cannot run `program` here, or "" when it can. A child drops
+// to `nobody` the way the harness does and asks the kernel whether it may
+// execute the program, which covers every folder above it (a clone in a
+// home folder of mode 0700 fails here) and a noexec mount.
+std::string why_nobody_cannot_run(const fs::path& program) {
+  int report[2];
+  if (::pipe2(report, O_CLOEXEC) != 0) return std::string("pipe2: ") + std::strerror(errno);
   const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid < 0) return std::string("fork: ") + std::strerror(errno);
   if (pid == 0) {
-    ::dup2(null_fd, STDIN_FILENO);
-    ::dup2(out_fd, STDOUT_FILENO);
-    ::dup2(err_fd, STDERR_FILENO);
-    if (::chdir(cwd.c_str()) != 0) ::_exit(126);
-    if (confinement.max_file_bytes != RLIM_INFINITY) {
-      ::signal(SIGXFSZ, SIG_IGN);  // an ignored signal stays ignored across exec
-      const rlimit limit{confinement.max_file_bytes, confinement.max_file_bytes};
-      if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(125);
-    }
-    if (confinement.as_nobody &&
-        (::setgroups(0, nullptr) != 0 || ::setgid(65534) != 0 || ::setuid(65534) != 0))
-      ::_exit(124);
-    ::execve(argv[0], argv.data(), envp.data());
-    ::_exit(127);
+    int step = 0;
+    if (::setgroups(0, nullptr) != 0 || ::setgid(kNobody) != 0 || ::setuid(kNobody) != 0)
+      step = 1;
+    else if (::access(program.c_str(), X_OK) != 0)
+      step = 2;
+    const int answer[2] = {step, errno};
+    [[maybe_unused]] const ssize_t written = ::write(report[1], answer, sizeof answer);
+    ::_exit(0);
   }
-  ::close(out_fd);
-  ::close(err_fd);
-  ::close(null_fd);
-  RunResult r;
+  ::close(report[1]);
+  int answer[2] = {0, 0};
+  ssize_t got = 0;
+  do {
+    got = ::read(report[0], answer, sizeof answer);
+  } while (got < 0 && errno == EINTR);
+  ::close(report[0]);
   int status = 0;
-  const auto deadline = start + std::chrono::seconds(60);
-  while (::waitpid(pid, &status, WNOHANG) == 0) {
-    if (Clock::now() >= deadline) {
-      ::kill(pid, SIGKILL);
-      ::waitpid(pid, &status, 0);
-      r.timed_out = true;
+  ::waitpid(pid, &status, 0);
+  if (got != static_cast<ssize_t>(sizeof answer)) return "the probe process did not answer";
+  if (answer[0] == 1)
+    return std::string("cannot switch to user nobody (") + std::strerror(answer[1]) +
+           "): no CAP_SETUID here";
+  if (answer[0] != 2) return "";
+  std::string why =
+      "user nobody cannot execute " + program.string() + " (" + std::strerror(answer[1]) + ")";
+  for (fs::path dir = program.parent_path(); !dir.empty(); dir = dir.parent_path()) {
+    struct stat st {};
+    if (::stat(dir.c_str(), &st) == 0 && (st.st_mode & S_IXOTH) == 0 && st.st_uid != kNobody) {
+      why += ": " + dir.string() +
+             " is not searchable by others; set TMPDIR to a folder they can enter";
       break;
     }
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (dir == dir.root_path()) break;
   }
-  r.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.out = read_text(out_file);
-  r.err = read_text(err_file);
-  return r;
+  return why;
 }
 
 class ExportFailure : public HostileInput {
  protected:
   void SetUp() override {
     // The scene must be readable by `nobody`: the temp folder is 0700.
-    fs::permissions(tmp.path(), fs::perms::owner_all | fs::perms::group_read |
-                                    fs::perms::group_exec | fs::perms::others_read |
-                                    fs::perms::others_exec);
+    fs::permissions(tmp.path(), kOthersEnter);
     scene_dir = tmp / "scene";
     write_text(scene_dir / "squares.obj", kSquaresObj);
     write_text(scene_dir / "scene.json", scene_json_for("squares.obj"));
   }
 
-  RunResult bake_confined(const fs::path& target, const Confinement& c) {
+  // Root ignores permission bits, so as root the bake runs as `nobody`.
+  // The build tree may lie where `nobody` cannot reach it (a clone in
+  // /root, mode 0700), so it runs a copy of `bounce` placed in this test's
+  // folder. The copy needs nothing else from the build tree: bounce_core is
+  // a static library and the OpenCL kernels are compiled into it. Returns
+  // the reason when `nobody` cannot run even the copy (no CAP_SETUID, a
+  // temp folder under a private folder, a noexec mount).
+  std::string run_as_nobody(RunOptions& confinement) {
+    const fs::path bin = tmp / "bin";
+    fs::create_directories(bin);
+    fs::permissions(bin, kOthersEnter);
+    const fs::path copy = bin / "bounce";
+    fs::copy_file(kCli, copy, fs::copy_options::overwrite_existing);
+    fs::permissions(copy, kOthersEnter);
+    confinement.as_nobody = true;
+    confinement.program = copy;
+    return why_nobody_cannot_run(copy);
+  }
+
+  RunResult bake_confined(const fs::path& target, const RunOptions& c) {
     return run_confined({"bake", scene_dir.string(), "--voxel", "4", "--out", target.string()},
                         tmp.path(), c);
   }
@@ -410,17 +408,21 @@ class ExportFailure : public HostileInput {
         << "hidden temporary folders left: " << testing::PrintToString(hidden_leftovers(target));
   }
 
+  // rwxr-xr-x: others may enter (and read) but not write.
+  static constexpr fs::perms kOthersEnter = fs::perms::owner_all | fs::perms::group_read |
+                                            fs::perms::group_exec | fs::perms::others_read |
+                                            fs::perms::others_exec;
   fs::path scene_dir;
 };
 
 TEST_F(ExportFailure, ReadOnlyFolderIsRefusedWithoutLeftovers) {
   const fs::path parent = tmp / "read-only";
   fs::create_directories(parent);
-  fs::permissions(parent, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
-                              fs::perms::others_read | fs::perms::others_exec);
-  Confinement c;
+  fs::permissions(parent, kOthersEnter);
+  RunOptions c;
   if (::geteuid() == 0) {
-    c.as_nobody = true;  // root ignores permission bits
+    const std::string why_not = run_as_nobody(c);
+    if (!why_not.empty()) GTEST_SKIP() << "cannot run the bake without root's rights: " << why_not;
   } else {
     fs::permissions(parent, fs::perms::owner_write, fs::perm_options::remove);
   }
@@ -442,10 +444,10 @@ TEST_F(ExportFailure, PreviousBakeInAReadOnlyFolderStaysIntact) {
   const std::string manifest_before = read_text(target / "manifest.json");
   const std::vector<std::string> files_before = entries(target);
   if (::geteuid() != 0) GTEST_SKIP() << "needs root to run the second bake as another user";
-  fs::permissions(parent, fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
-                              fs::perms::others_read | fs::perms::others_exec);
-  Confinement c;
-  c.as_nobody = true;
+  fs::permissions(parent, kOthersEnter);
+  RunOptions c;
+  const std::string why_not = run_as_nobody(c);
+  if (!why_not.empty()) GTEST_SKIP() << "cannot run the bake without root's rights: " << why_not;
   const RunResult r = bake_confined(target, c);
   expect_export_error(r, target, "Permission denied");
   EXPECT_EQ(entries(target), files_before);
@@ -457,7 +459,7 @@ TEST_F(ExportFailure, FullDiskIsAClearErrorWithoutLeftovers) {
   // patches.npy alone holds 15 floats per patch, more than 1 KiB for this
   // scene, so a 1 KiB file size limit makes a write fail partway.
   const fs::path target = tmp / "bakes" / "bake";
-  Confinement c;
+  RunOptions c;
   c.max_file_bytes = 1024;
   const RunResult r = bake_confined(target, c);
   expect_export_error(r, target, "write failed");

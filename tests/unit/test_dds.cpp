@@ -17,6 +17,8 @@
 #include "compress/block_bc4.h"
 #include "compress/block_image.h"
 #include "compress/dds.h"
+#include "error_text.h"
+#include "memory_cap.h"
 #include "scratch_dir.h"
 
 namespace bounce {
@@ -245,6 +247,48 @@ TEST_F(DdsTest, BadFilesAreErrorsNamingTheFile) {
   EXPECT_THROW(write_dds(dir / "wrong.dds", DdsFormat::kBc4, 8, 8, random_blocks(3, 1)), DdsError);
   EXPECT_FALSE(fs::exists(dir / "wrong.dds"));
   EXPECT_THROW(write_dds(dir / "empty.dds", DdsFormat::kBc1, 0, 4, {}), DdsError);
+}
+
+// A valid 8x8 DXT1 file with its header's width and height replaced.
+std::vector<char> with_size(const std::vector<char>& good, std::uint32_t width,
+                            std::uint32_t height) {
+  std::vector<char> bytes = good;
+  for (int k = 0; k < 4; ++k) {
+    bytes[12 + static_cast<std::size_t>(k)] = static_cast<char>((height >> (8 * k)) & 0xff);
+    bytes[16 + static_cast<std::size_t>(k)] = static_cast<char>((width >> (8 * k)) & 0xff);
+  }
+  return bytes;
+}
+
+// The error read_dds gives for `path`, or "" when it reads the file.
+std::string dds_error(const fs::path& path) {
+  return test::error_text<DdsError>([&] { read_dds(path); });
+}
+
+TEST_F(DdsTest, HugeSizeInAHeaderIsRefusedBeforeAllocating) {
+  write_dds(dir / "good.dds", DdsFormat::kBc1, 8, 8, random_blocks(4, 7));
+  const std::vector<char> good = read_bytes(dir / "good.dds");
+  // 65536 x 65536 asks for 2 GiB of blocks, 2^32 - 1 squared for 2^63 bytes
+  // (more than a std::vector may hold); the file has 32.
+  write_bytes(dir / "2gib.dds", with_size(good, 65536, 65536));
+  const std::string answer = test::with_memory_cap([&] { return dds_error(dir / "2gib.dds"); });
+  EXPECT_NE(answer.find("2gib.dds: truncated: header width x height 65536x65536 needs "
+                        "2147483648 bytes of blocks, found 32"),
+            std::string::npos)
+      << answer;
+  write_bytes(dir / "max.dds", with_size(good, 0xffffffffu, 0xffffffffu));
+  const std::string max = test::with_memory_cap([&] { return dds_error(dir / "max.dds"); });
+  EXPECT_NE(max.find("max.dds: truncated: header width x height 4294967295x4294967295 needs "
+                     "9223372036854775808 bytes"),
+            std::string::npos)
+      << max;
+}
+
+TEST_F(DdsTest, FolderOrDeviceInPlaceOfAFileIsRefused) {
+  fs::create_directories(dir / "folder.dds");
+  EXPECT_NE(dds_error(dir / "folder.dds").find("not a regular file"), std::string::npos);
+  fs::create_symlink("/dev/zero", dir / "zero.dds");
+  EXPECT_NE(dds_error(dir / "zero.dds").find("not a regular file"), std::string::npos);
 }
 
 }  // namespace bounce
