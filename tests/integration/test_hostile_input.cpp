@@ -389,8 +389,11 @@ class ExportFailure : public HostileInput {
   }
 
   RunResult bake_confined(const fs::path& target, const RunOptions& c) {
-    return run_confined({"bake", scene_dir.string(), "--voxel", "4", "--out", target.string()},
-                        tmp.path(), c);
+    // Quiet: the file size limit of the full-disk case applies to the
+    // child's captured stderr too, and progress lines would fill it first.
+    return run_confined(
+        {"bake", scene_dir.string(), "--voxel", "4", "--quiet", "--out", target.string()},
+        tmp.path(), c);
   }
 
   // One error line naming the bake folder `target`, holding `why`.

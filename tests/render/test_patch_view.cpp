@@ -1,6 +1,7 @@
 #include <QVTKOpenGLNativeWidget.h>
 #include <QMouseEvent>
 
+#include "compress/matrix_picture.h"
 #include "patch_view.h"
 #include "render_support.h"
 
@@ -105,6 +106,44 @@ TEST_F(PatchView, PickedPatchColoursItsFormFactorRow) {
     }
   EXPECT_GT(unseen, 0u) << "a patch on a wall does not see its own wall";
   EXPECT_GT(non_uniform_share(view_.render_image()), 0.2);
+}
+
+TEST_F(PatchView, ClosureAndBalancingScaleColourEachPatch) {
+  // The Cornell box is open at the front: patches facing it lose light there
+  // (closure below 1), patches deep inside keep nearly all of it.
+  ASSERT_EQ(data_->closure.size(), data_->patch_count()) << "the fixture bake has closure.npy";
+  const std::size_t n = data_->patch_count();
+  view_.set_colour_by(views::PatchView::ColourBy::Closure);
+  settle();
+  const auto most_open = static_cast<std::size_t>(
+      std::min_element(data_->closure.begin(), data_->closure.end()) - data_->closure.begin());
+  const auto most_closed = static_cast<std::size_t>(
+      std::max_element(data_->closure.begin(), data_->closure.end()) - data_->closure.begin());
+  ASSERT_LT(data_->closure[most_open], data_->closure[most_closed]);
+  for (std::size_t p : {most_open, most_closed}) {
+    std::uint8_t expected[3];
+    colormap(static_cast<double>(data_->closure[p]), expected);
+    EXPECT_EQ(view_.patch_colours()[p],
+              (std::array<unsigned char, 3>{expected[0], expected[1], expected[2]}))
+        << "patch " << p << " closure " << data_->closure[p];
+  }
+  EXPECT_GT(non_uniform_share(view_.render_image()), 0.2);
+
+  // Balancing scale: white where the row kept its sum, red where it was
+  // scaled up, blue where down.
+  view_.set_colour_by(views::PatchView::ColourBy::RowScale);
+  settle();
+  for (std::size_t p = 0; p < n; ++p) {
+    const float s = data_->row_scale[p];
+    const auto& c = view_.patch_colours()[p];
+    if (s > 1.01f) {
+      EXPECT_EQ(c[0], 255) << "scaled up, patch " << p;
+      EXPECT_LT(c[2], 255) << "scaled up, patch " << p;
+    } else if (s < 0.99f) {
+      EXPECT_EQ(c[2], 255) << "scaled down, patch " << p;
+      EXPECT_LT(c[0], 255) << "scaled down, patch " << p;
+    }
+  }
 }
 
 }  // namespace bounce::render_test

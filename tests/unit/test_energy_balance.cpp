@@ -13,6 +13,13 @@
 #include "formfactor/balance.h"
 #include "formfactor/closure.h"
 #include "formfactor/kernel.h"
+#include "patches/surface_patch_lookup.h"
+#include "raytrace/ray_tracer.h"
+#include "reference/path_tracer.h"
+#include "runtime/area_lights.h"
+#include "runtime/direct_light.h"
+#include "runtime/final_gather.h"
+#include "scene/scene_loader.h"
 #include "test_scenes.h"
 
 namespace bounce {
@@ -213,6 +220,127 @@ TEST(Closure, AlbedoOneInAClosedRoomIsAClearErrorNotAHang) {
     double sum = 0.0;
     for (std::size_t q = 0; q < n; ++q) sum += t.channels[0].t[p * n + q];
     EXPECT_NEAR(sum, ideal, 5e-3 * ideal) << p;
+  }
+}
+
+// The Cornell box without its two blocks, lit by its ceiling light only.
+Scene empty_cornell_box() {
+  Diagnostics d;
+  const Scene full = SceneLoader(d).load(std::string(BOUNCE_RESOURCE_DIR) + "/scenes/cornell-box");
+  Scene s = full;
+  s.lights.clear();
+  s.triangles.clear();
+  s.triangle_material.clear();
+  s.triangle_mesh.clear();
+  s.meshes.clear();
+  for (std::size_t m = 0; m < full.meshes.size(); ++m) {
+    if (full.meshes[m].name.find("Box") != std::string::npos) continue;
+    MeshInfo mesh = full.meshes[m];
+    mesh.first_triangle = static_cast<std::uint32_t>(s.triangles.size());
+    for (std::uint32_t t = full.meshes[m].first_triangle;
+         t < full.meshes[m].first_triangle + full.meshes[m].triangle_count; ++t) {
+      s.triangles.push_back(full.triangles[t]);
+      s.triangle_material.push_back(full.triangle_material[t]);
+      s.triangle_mesh.push_back(static_cast<std::uint32_t>(s.meshes.size()));
+    }
+    s.meshes.push_back(mesh);
+  }
+  return s;
+}
+
+TEST(Closure, EmptyCornellBoxIndirectOverDirectPerWallMatchesThePathTracer) {
+  // Each wall's indirect / direct irradiance over its central half: the
+  // bake's final gather of b + T b against the path tracer, which shares
+  // nothing with the form factors. Closed-row form factors must not add
+  // light (the raw quadrature gave +2.5% to +5% on every wall).
+  const Scene scene = empty_cornell_box();
+  ASSERT_EQ(scene.triangles.size(), 12u);  // 5 walls and the light
+  BakeSettings bs;
+  bs.voxel_resolution = 10;
+  bs.codec = CodecChoice::Dense;
+  bs.transport.bounces = TransportSettings::kInfiniteBounces;
+  bs.transport.backend = TransportSettings::Backend::OpenBLAS;
+  bs.pictures = false;
+  Diagnostics d;
+  Progress progress;
+  const BakeResult r = Baker(scene, bs, d).run(progress);
+  const RayTracer tracer(scene);
+  const std::vector<AreaLight> area = area_lights(scene);
+  const std::size_t n = r.patches.size();
+  const std::vector<glm::vec3> b =
+      first_bounce(r.patches, direct_irradiance(tracer, r.samples, r.patches, {}, area, 8));
+  std::vector<glm::vec3> reflected(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    glm::vec3 tb(0.0f);
+    for (int c = 0; c < 3; ++c) {
+      const auto& t = r.transport.channel(c).t;
+      for (std::size_t q = 0; q < n; ++q) tb[c] += t[p * n + q] * b[q][c];
+    }
+    reflected[p] = b[p] + tb;
+  }
+  // Points on a 5 x 5 grid over each wall's central half, a hair off it.
+  struct Wall {
+    const char* name;
+    glm::vec3 centre, u, v, normal;
+  };
+  const Bounds box = scene.bounds();
+  const glm::vec3 lo = box.lo, hi = box.hi, mid = 0.5f * (lo + hi), size = hi - lo;
+  const Wall walls[] = {
+      {"floor", {mid.x, lo.y, mid.z}, {size.x, 0, 0}, {0, 0, size.z}, {0, 1, 0}},
+      {"ceiling", {mid.x, 1.98f, mid.z}, {size.x, 0, 0}, {0, 0, size.z}, {0, -1, 0}},
+      {"back", {mid.x, mid.y, lo.z + 0.02f}, {size.x, 0, 0}, {0, size.y, 0}, {0, 0, 1}},
+      {"left", {lo.x + 0.02f, mid.y, mid.z}, {0, size.y, 0}, {0, 0, size.z}, {1, 0, 0}},
+      {"right", {hi.x - 0.01f, mid.y, mid.z}, {0, size.y, 0}, {0, 0, size.z}, {-1, 0, 0}}};
+  ReferenceSettings rs;
+  rs.samples = 4000;
+  const ReferencePathTracer pt(tracer, rs);
+  const SurfacePatchLookup lookup(r.voxels, r.samples, r.patch_of_sample);
+  for (const Wall& w : walls) {
+    std::vector<glm::vec3> points, normals;
+    std::vector<ReferencePoint> ref_points;
+    for (int i = 0; i < 5; ++i)
+      for (int j = 0; j < 5; ++j) {
+        // Onto the wall itself: from the room's centre along the wall.
+        const glm::vec3 target = w.centre + (static_cast<float>(i) / 4.0f - 0.5f) * 0.5f * w.u +
+                                 (static_cast<float>(j) / 4.0f - 0.5f) * 0.5f * w.v;
+        const glm::vec3 from = target + 0.3f * w.normal;
+        const Hit h = tracer.intersect(from, -w.normal);
+        ASSERT_TRUE(h.hit) << w.name;
+        const glm::vec3 x = from - h.t * w.normal;
+        points.push_back(x);
+        normals.push_back(w.normal);
+        ref_points.push_back({x, w.normal, glm::vec3(0.5f), glm::vec3(0.0f)});
+      }
+    FinalGatherSettings fs;
+    fs.rays = 2048;
+    std::vector<glm::vec3> gathered;
+    build_final_gather(tracer, lookup, r.patches.patches, r.voxels.grid, points, normals, fs)
+        .irradiance(reflected, gathered);
+    const PointReference ref = pt.estimate_points(ref_points);
+    glm::dvec3 bounce_direct(0.0), bounce_indirect(0.0), ref_direct(0.0), ref_indirect(0.0),
+        ref_var(0.0);
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      bounce_direct += glm::dvec3(
+          irradiance_at(tracer, points[k] + 1e-4f * normals[k], normals[k], {}, area, 8, k));
+      bounce_indirect += glm::dvec3(gathered[k]);
+      ref_direct += glm::dvec3(ref.direct_irradiance[k]);
+      ref_indirect += glm::dvec3(ref.indirect_irradiance[k]);
+      ref_var += glm::dvec3(ref.indirect_variance[k]);
+    }
+    for (int c = 0; c < 3; ++c) {
+      // The ceiling gets no direct light from the lamp under it: its
+      // indirect light itself is compared there.
+      const bool lit = ref_direct[c] > 0.0;
+      const double ours = lit ? bounce_indirect[c] / bounce_direct[c] : bounce_indirect[c];
+      const double theirs = lit ? ref_indirect[c] / ref_direct[c] : ref_indirect[c];
+      const double sigma = std::sqrt(ref_var[c]) / (lit ? ref_direct[c] : 1.0);
+      std::printf("empty box %-8s channel %c: %s %.4f, reference %.4f +- %.4f (%+.2f%%)\n", w.name,
+                  "RGB"[c], lit ? "indirect/direct" : "indirect", ours, theirs, sigma,
+                  100.0 * (ours / theirs - 1.0));
+      // Measured -1.6% .. -2.7% (the raw quadrature: +2.5% .. +5%); 3% is
+      // the bound held, the 1.5% aimed at is not reached yet.
+      EXPECT_NEAR(ours, theirs, 0.03 * theirs + 3.0 * sigma) << w.name << " channel " << c;
+    }
   }
 }
 
