@@ -110,14 +110,13 @@ PatchClosure measure_closure(const Scene& scene, const RayTracer& tracer, const 
         const double target = (static_cast<double>(k) + shift) / static_cast<double>(rays) * area;
         while (walked < target && at + 1 < pieces.size()) walked += pieces[++at].area;
         const Piece& piece = pieces[at];
-        const glm::vec3 origin =
-            point_in_polygon(piece, rng.uniform(), rng.uniform(), rng.uniform()) +
-            eps * piece.normal;
+        glm::vec3 origin = point_in_polygon(piece, rng.uniform(), rng.uniform(), rng.uniform()) +
+                           eps * piece.normal;
         glm::vec3 t, b;
         basis(piece.normal, t, b);
         const glm::vec3 l = cosine_direction(order[k], rays, turn);
         const glm::vec3 dir = l.x * t + l.y * b + l.z * piece.normal;
-        const Hit h = tracer.intersect(origin, dir);
+        const Hit h = intersect_leaving_surface(tracer, origin, dir, eps);
         if (!h.hit) continue;
         const bool back = glm::dot(dir, h.geometric_normal) > 0.0f;
         if (back && !scene.two_sided(h.triangle)) continue;

@@ -178,4 +178,17 @@ void RayTracer::occluded(const ShadowRay* rays, std::size_t count, std::uint8_t*
   throw_pending_error();
 }
 
+Hit intersect_leaving_surface(const RayTracer& tracer, glm::vec3& origin,
+                              const glm::vec3& direction, float offset) {
+  Hit hit = tracer.intersect(origin, direction);
+  for (int retry = 0;
+       retry < 3 && hit.hit && hit.t <= offset &&
+       glm::dot(hit.geometric_normal, direction) > 0.0f && !tracer.scene().two_sided(hit.triangle);
+       ++retry) {
+    origin += offset * hit.geometric_normal;
+    hit = tracer.intersect(origin, direction);
+  }
+  return hit;
+}
+
 }  // namespace bounce

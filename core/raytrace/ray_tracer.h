@@ -69,4 +69,14 @@ class RayTracer {
   std::unique_ptr<Impl> impl_;
 };
 
+// The first hit of a ray leaving a surface point at `origin` (already lifted
+// by `offset` along its normal). A point on an edge or in a corner lies in its
+// neighbours' planes: a one-sided neighbour's back met within `offset` is not
+// a blocker but the plane the point stands in, so the origin moves off it,
+// to its front, and the ray is cast again (up to three times). A front face
+// met at t ~ 0 stays a hit: it is the neighbouring wall, seen at the edge.
+// `origin` is updated; the hit point is origin + t * direction.
+Hit intersect_leaving_surface(const RayTracer& tracer, glm::vec3& origin,
+                              const glm::vec3& direction, float offset);
+
 }  // namespace bounce

@@ -199,12 +199,13 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
           Rng rng(settings.seed, 0xF1A1u ^ (static_cast<std::uint64_t>(i) << 16));
           const float turn = 2.0f * std::numbers::pi_v<float> * rng.uniform();
           const float ct = std::cos(turn), st = std::sin(turn);
-          const glm::vec3 origin = positions[i] + eps * nrm;
+          const glm::vec3 lifted = positions[i] + eps * nrm;
           for (std::size_t k = 0; k < rays; ++k) {
             const glm::vec2 d(ct * disk[k].x - st * disk[k].y, st * disk[k].x + ct * disk[k].y);
             const float z = std::sqrt(std::max(0.0f, 1.0f - glm::dot(d, d)));
             const glm::vec3 dir = d.x * t + d.y * b + z * nrm;
-            const Hit h = tracer.intersect(origin, dir);
+            glm::vec3 origin = lifted;
+            const Hit h = intersect_leaving_surface(tracer, origin, dir, eps);
             if (!h.hit) {
               ++escaped;
               continue;
