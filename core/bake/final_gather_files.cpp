@@ -1,5 +1,6 @@
 #include "bake/final_gather_files.h"
 
+#include <algorithm>
 #include <limits>
 
 #include "base/error.h"
@@ -23,30 +24,23 @@ void write_final_gather(const fs::path& dir, const FinalGather& g) {
 
 std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t patches) {
   if (!fs::exists(dir / "gather_first.npy")) return std::nullopt;
-  const auto one_dimensional = [](const fs::path& file, const std::vector<std::size_t>& shape) {
-    if (shape.size() != 1) throw Error(file.string(), "expected a one-dimensional array");
+  // Each file one-dimensional, read whole.
+  const auto vector_of = [&dir](const char* name, auto reader) {
+    const fs::path file = dir / name;
+    auto array = reader(file);
+    if (array.shape.size() != 1) throw Error(file.string(), "expected a one-dimensional array");
+    return std::move(array.data);
   };
+  const auto u32 = [](const fs::path& f) { return read_npy_u32(f); };
+  const auto f32 = [](const fs::path& f) { return read_npy_f32(f); };
   FinalGather g;
-  const fs::path first_file = dir / "gather_first.npy";
-  const NpyArray<std::uint32_t> first = read_npy_u32(first_file);
-  one_dimensional(first_file, first.shape);
-  g.first.assign(first.data.begin(), first.data.end());
-  const fs::path source_file = dir / "gather_source.npy";
-  NpyArray<std::uint32_t> source = read_npy_u32(source_file);
-  one_dimensional(source_file, source.shape);
-  g.source = std::move(source.data);
-  const fs::path weight_file = dir / "gather_weight.npy";
-  NpyArray<float> weight = read_npy_f32(weight_file);
-  one_dimensional(weight_file, weight.shape);
-  g.weight = std::move(weight.data);
+  const std::vector<std::uint32_t> first = vector_of("gather_first.npy", u32);
+  g.first.assign(first.begin(), first.end());
+  g.source = vector_of("gather_source.npy", u32);
+  g.weight = vector_of("gather_weight.npy", f32);
+  g.cluster_of_patch = vector_of("gather_cluster.npy", u32);
+  g.cluster_share = vector_of("gather_share.npy", f32);
   const fs::path cluster_file = dir / "gather_cluster.npy";
-  NpyArray<std::uint32_t> cluster = read_npy_u32(cluster_file);
-  one_dimensional(cluster_file, cluster.shape);
-  g.cluster_of_patch = std::move(cluster.data);
-  const fs::path share_file = dir / "gather_share.npy";
-  NpyArray<float> share = read_npy_f32(share_file);
-  one_dimensional(share_file, share.shape);
-  g.cluster_share = std::move(share.data);
   g.patches = patches;
   if (g.cluster_of_patch.size() != patches)
     throw Error(cluster_file.string(), "expected one cluster per patch (" +
