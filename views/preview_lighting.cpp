@@ -75,11 +75,8 @@ PreviewLighting::PreviewLighting(std::shared_ptr<const BakeViewData> data)
                       " vertices, the scene's lit mesh "
                       "has " +
                       std::to_string(geometry_.positions.size()) + ": not this scene");
-    vertex_albedo_.assign(geometry_.positions.size(), glm::vec3(0.0f));
-    for (std::size_t f = 0; f < geometry_.triangles.size(); ++f)
-      for (int c = 0; c < 3; ++c)
-        vertex_albedo_[geometry_.triangles[f][c]] =
-            scene.material_of(geometry_.source_triangle[f]).albedo;
+    for (const std::uint32_t t : vertex_source_triangles(geometry_))
+      vertex_albedo_.push_back(scene.material_of(t).albedo);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "base/random.h"
+#include "raytrace/cosine_lattice.h"
 
 namespace bounce {
 
@@ -39,24 +40,6 @@ glm::vec3 point_in_polygon(const Piece& piece, float u, float v, float w) {
   return poly[0] + v * (poly[tri] - poly[0]) + w * (poly[tri + 1] - poly[0]);
 }
 
-// Direction i of n on the hemisphere about z, cosine-distributed: point i of a
-// Fibonacci lattice on the unit disk (rotated by `turn`), lifted up.
-glm::vec3 cosine_direction(std::size_t i, std::size_t n, float turn) {
-  constexpr double kGolden = 1.6180339887498949;
-  const double r = std::sqrt((static_cast<double>(i) + 0.5) / static_cast<double>(n));
-  const double phi =
-      2.0 * std::numbers::pi * (static_cast<double>(i) / kGolden + static_cast<double>(turn));
-  const double x = r * std::cos(phi), y = r * std::sin(phi);
-  return glm::vec3(static_cast<float>(x), static_cast<float>(y),
-                   static_cast<float>(std::sqrt(std::max(0.0, 1.0 - r * r))));
-}
-
-void basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
-  const glm::vec3 a = std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-  t = glm::normalize(glm::cross(a, n));
-  b = glm::cross(n, t);
-}
-
 }  // namespace
 
 PatchClosure measure_closure(const Scene& scene, const RayTracer& tracer, const Voxelization& vox,
@@ -66,6 +49,7 @@ PatchClosure measure_closure(const Scene& scene, const RayTracer& tracer, const 
   const std::size_t n = patches.size();
   const std::size_t rays = static_cast<std::size_t>(std::max(1, settings.rays_per_patch));
   const float eps = 10.0f * tracer.epsilon();
+  const CosineLattice lattice(rays);
 
   PatchClosure out;
   out.rays_per_patch = static_cast<int>(rays);
@@ -101,7 +85,7 @@ PatchClosure measure_closure(const Scene& scene, const RayTracer& tracer, const 
       for (std::size_t k = 0; k < rays; ++k) order[k] = static_cast<std::uint32_t>(k);
       for (std::size_t k = rays; k-- > 1;)
         std::swap(order[k], order[static_cast<std::size_t>(rng.next() % (k + 1))]);
-      const float turn = rng.uniform();
+      const float turn = 2.0f * std::numbers::pi_v<float> * rng.uniform();
       const float shift = rng.uniform();
       std::size_t closed = 0, at = 0;
       double walked = pieces[0].area;
@@ -112,10 +96,7 @@ PatchClosure measure_closure(const Scene& scene, const RayTracer& tracer, const 
         const Piece& piece = pieces[at];
         glm::vec3 origin = point_in_polygon(piece, rng.uniform(), rng.uniform(), rng.uniform()) +
                            eps * piece.normal;
-        glm::vec3 t, b;
-        basis(piece.normal, t, b);
-        const glm::vec3 l = cosine_direction(order[k], rays, turn);
-        const glm::vec3 dir = l.x * t + l.y * b + l.z * piece.normal;
+        const glm::vec3 dir = lattice.direction(order[k], CosineLattice::Frame(piece.normal, turn));
         const Hit h = intersect_leaving_surface(tracer, origin, dir, eps);
         if (!h.hit) continue;
         const bool back = glm::dot(dir, h.geometric_normal) > 0.0f;

@@ -9,11 +9,10 @@
 // samples carry (spread over them by area) and leave with cosine-distributed
 // directions, the distribution of diffusely emitted light, so the share of
 // rays that hit is the share of the energy that does. Directions come from a
-// stratified pattern (a rotated Fibonacci lattice on the unit disk, lifted to
-// the hemisphere), so the estimate's noise falls faster than 1/sqrt(rays).
-// A ray counts as closed when its first hit is the front of a triangle (or
-// either side of a two-sided one) that a patch stands for (`lookup`). In a closed scene every ray
-// hits such a surface, so the closure is exactly 1 by construction, not by luck of the estimate.
+// stratified pattern (raytrace/cosine_lattice.h), so the estimate's noise falls faster than
+// 1/sqrt(rays). A ray counts as closed when its first hit is the front of a triangle (or either
+// side of a two-sided one) that a patch stands for (`lookup`). In a closed scene every ray hits
+// such a surface, so the closure is exactly 1 by construction, not by luck of the estimate.
 #include <cstdint>
 #include <vector>
 

@@ -154,10 +154,9 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
     points.push_back(
         {eval_mesh.positions[v], eval_mesh.normals[v], glm::vec3(0.0f), glm::vec3(0.0f)});
   // Albedo per vertex from a face that uses it.
-  for (std::size_t f = 0; f < eval_mesh.triangles.size(); ++f)
-    for (int c = 0; c < 3; ++c)
-      points[eval_mesh.triangles[f][c]].albedo =
-          scene.material_of(eval_mesh.source_triangle[f]).albedo;
+  const std::vector<std::uint32_t> vertex_triangle = vertex_source_triangles(eval_mesh);
+  for (std::size_t v = 0; v < points.size(); ++v)
+    points[v].albedo = scene.material_of(vertex_triangle[v]).albedo;
   const PointReference ref_points =
       cached_reference_points(pt, points, cache, &progress, &points_cached);
   std::vector<glm::vec3> ref_vertex_indirect(points.size()), ref_vertex_variance(points.size());

@@ -8,6 +8,7 @@
 
 #include "base/error.h"
 #include "base/random.h"
+#include "raytrace/cosine_lattice.h"
 #include "runtime/direct_light.h"
 
 namespace bounce {
@@ -83,9 +84,7 @@ void light_vertices(const RayTracer& tracer, const std::vector<Light>& lights,
   const std::size_t n = mesh.positions.size();
   if (gathered.size() != n) throw Error("final gather", "one gathered value per vertex expected");
   const Scene& scene = tracer.scene();
-  std::vector<std::uint32_t> triangle(n, 0);
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
-    for (int c = 0; c < 3; ++c) triangle[mesh.triangles[f][c]] = mesh.source_triangle[f];
+  const std::vector<std::uint32_t> triangle = vertex_source_triangles(mesh);
   const std::vector<glm::vec3> at = gather_points_of_vertices(mesh.positions, mesh.triangles);
   mesh.radiosity.resize(n);
 #pragma omp parallel for schedule(dynamic, 256)
@@ -137,12 +136,6 @@ void make_clusters(const std::vector<Patch>& patches, const VoxelGrid& grid, int
   }
 }
 
-void basis(const glm::vec3& n, glm::vec3& t, glm::vec3& b) {
-  const glm::vec3 a = std::abs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
-  t = glm::normalize(glm::cross(a, n));
-  b = glm::cross(n, t);
-}
-
 }  // namespace
 
 FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup& lookup,
@@ -164,14 +157,8 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   const auto kept = static_cast<std::size_t>(settings.kept);
   const float eps = settings.offset_epsilons * tracer.epsilon();
   const Scene& scene = tracer.scene();
-  // Fibonacci lattice on the unit disk, lifted to the hemisphere: cosine-
-  // distributed and evenly spread. Each point turns it by its own angle.
-  std::vector<glm::vec2> disk(rays);
-  for (std::size_t i = 0; i < rays; ++i) {
-    const double r = std::sqrt((static_cast<double>(i) + 0.5) / static_cast<double>(rays));
-    const double phi = 2.0 * std::numbers::pi * static_cast<double>(i) / 1.6180339887498949;
-    disk[i] = {static_cast<float>(r * std::cos(phi)), static_cast<float>(r * std::sin(phi))};
-  }
+  // Each point turns the lattice by its own angle.
+  const CosineLattice lattice(rays);
 
   // Rows are built in chunks of points, each chunk's rows kept in its own
   // buffer and joined in point order at the end.
@@ -194,16 +181,11 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
         const glm::vec3 nrm = normals[i];
         touched.clear();
         if (glm::dot(nrm, nrm) > 0.5f) {
-          glm::vec3 t, b;
-          basis(nrm, t, b);
           Rng rng(settings.seed, 0xF1A1u ^ (static_cast<std::uint64_t>(i) << 16));
-          const float turn = 2.0f * std::numbers::pi_v<float> * rng.uniform();
-          const float ct = std::cos(turn), st = std::sin(turn);
+          const CosineLattice::Frame frame(nrm, 2.0f * std::numbers::pi_v<float> * rng.uniform());
           const glm::vec3 lifted = positions[i] + eps * nrm;
           for (std::size_t k = 0; k < rays; ++k) {
-            const glm::vec2 d(ct * disk[k].x - st * disk[k].y, st * disk[k].x + ct * disk[k].y);
-            const float z = std::sqrt(std::max(0.0f, 1.0f - glm::dot(d, d)));
-            const glm::vec3 dir = d.x * t + d.y * b + z * nrm;
+            const glm::vec3 dir = lattice.direction(k, frame);
             glm::vec3 origin = lifted;
             const Hit h = intersect_leaving_surface(tracer, origin, dir, eps);
             if (!h.hit) {

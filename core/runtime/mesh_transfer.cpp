@@ -238,4 +238,11 @@ LitMesh transfer_to_mesh(const RayTracer& tracer, const std::vector<Patch>& patc
   return mesh;
 }
 
+std::vector<std::uint32_t> vertex_source_triangles(const LitMesh& mesh) {
+  std::vector<std::uint32_t> triangle(mesh.positions.size(), 0);
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    for (int c = 0; c < 3; ++c) triangle[mesh.triangles[f][c]] = mesh.source_triangle[f];
+  return triangle;
+}
+
 }  // namespace bounce

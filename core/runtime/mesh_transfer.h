@@ -73,6 +73,10 @@ struct LitMesh {
 LitMesh build_transfer_mesh(const Scene& scene, const TransferGrid& grid,
                             const TransferSettings& settings, Progress* progress = nullptr);
 
+// The scene triangle each vertex stands on (one of its faces'; 0 for a
+// vertex no face uses), for its material.
+std::vector<std::uint32_t> vertex_source_triangles(const LitMesh& mesh);
+
 // Fills mesh.radiosity from the gather and the dark/widened/ray counts.
 void relight(LitMesh& mesh, const PatchGather& gather, Progress* progress = nullptr);
 
