@@ -79,9 +79,10 @@ void print_bake_report(std::FILE* out, const json& m) {
   std::fprintf(out, "  patches     %zu (%zu before leaving out patches that see nothing)\n",
                c["patches"].get<std::size_t>(), c["patches_before_pruning"].get<std::size_t>());
   const json& sa = m["sampling"];
-  std::fprintf(out, "  area        %.4g sampled of %.4g surface (%.4g unsampled)\n",
+  std::fprintf(out,
+               "  area        %.4g sampled of %.4g surface (%.4g by %zu samples at part centres)\n",
                sa["sampled_area"].get<double>(), sa["surface_area"].get<double>(),
-               sa["unsampled_area"].get<double>());
+               sa["centre_sampled_area"].get<double>(), sa["centre_samples"].get<std::size_t>());
   const json& f = m["checks"]["form_factors"];
   std::fprintf(out, "\nForm-factor checks\n");
   std::fprintf(out, "  row sums     max %.4f  mean %.4f  rows > 1: %zu\n",

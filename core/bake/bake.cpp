@@ -192,10 +192,6 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
     if (r.samples.samples.empty())
       throw Error(scene_.path,
                   "no surface samples: no ray hit the scene's surfaces from inside any voxel");
-    if (r.samples.unsampled_area > 1e-3 * r.samples.surface_area)
-      diagnostics_.warn("sample", fmt(100.0 * r.samples.unsampled_area / r.samples.surface_area) +
-                                      "% of the surface area found no sample facing its way in its "
-                                      "voxel and carries no light (raise --samples-per-face)");
     r.stages.push_back(timer.finish());
   }
 

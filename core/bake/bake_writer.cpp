@@ -240,7 +240,8 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                  {"patches_before_pruning", r.patches_before_pruning}};
   m["sampling"] = {{"surface_area", r.samples.surface_area},
                    {"sampled_area", r.samples.sampled_area},
-                   {"unsampled_area", r.samples.unsampled_area},
+                   {"centre_sampled_area", r.samples.centre_sampled_area},
+                   {"centre_samples", r.samples.centre_samples},
                    {"voxels_without_samples", r.samples.voxels_without_samples}};
   if (s.patch_mode == PatchMode::Virtual)
     m["clustering"] = {{"feature_targets", r.clustering.feature_targets},

@@ -91,7 +91,8 @@ glm::vec3 hit_on_plane(const Scene& scene, std::uint32_t triangle, const glm::ve
 }
 
 VoxelSamples sample_voxel(const Scene& scene, const RayTracer& tracer, const Voxelization& vox,
-                          std::uint32_t v, const SamplingSettings& settings, double& unsampled) {
+                          std::uint32_t v, const SamplingSettings& settings, double& centred,
+                          std::size_t& centre_samples) {
   const OccupiedVoxel& voxel = vox.voxels[v];
   const Bounds box = vox.grid.cell_bounds(voxel.coord);
   const float cell = vox.grid.cell_size();
@@ -191,22 +192,53 @@ VoxelSamples sample_voxel(const Scene& scene, const RayTracer& tracer, const Vox
         }
         continue;
       }
+      // A part no ray hit (a small triangle, or a sliver) goes whole to the
+      // nearest sample of this voxel on the same surface: facing the same
+      // way, with the whole part within kSameSurfaceCells of its plane, so
+      // that light found anywhere on the part is that sample's. Without such
+      // a sample the part gets its own at its centre: given to a sample on
+      // another surface (the floor under a slab to the slab's top), it
+      // would stand for light it does not receive, and rays that land on it
+      // would find nothing.
       const glm::vec3 n_side = front ? n_front : -n_front;
+      const float tolerance = kSameSurfaceCells * cell;
+      glm::vec3 centre(0.0f);
+      for (const glm::vec3& x : polygon) centre += x;
+      centre /= static_cast<float>(polygon.size());
       float best = std::numeric_limits<float>::infinity();
       std::int64_t best_index = -1;
       for (std::size_t s = 0; s < samples.size(); ++s) {
         if (glm::dot(samples[s].normal, n_side) <= 0.5f) continue;
-        const glm::vec3 d = samples[s].position - centroid;
+        bool same_surface = true;
+        for (const glm::vec3& x : polygon)
+          same_surface = same_surface && std::abs(glm::dot(samples[s].position - x,
+                                                           samples[s].normal)) <= tolerance;
+        if (!same_surface) continue;
+        const glm::vec3 d = samples[s].position - centre;
         const float dist2 = glm::dot(d, d);
         if (dist2 < best) {
           best = dist2;
           best_index = static_cast<std::int64_t>(s);
         }
       }
-      if (best_index >= 0)
-        carry(static_cast<std::size_t>(best_index), part_index, !front, polygon, part.area, true);
-      else
-        unsampled += part.area;
+      if (best_index < 0) {
+        if (!(part.area > 0.0f)) continue;
+        const Material& m = scene.material_of(part.triangle);
+        Sample own{};
+        own.position = centre;
+        own.normal = n_side;
+        own.albedo = m.albedo;
+        own.emission = m.emission;
+        own.voxel = v;
+        own.triangle = part.triangle;
+        own.mesh = scene.triangle_mesh[part.triangle];
+        best_index = static_cast<std::int64_t>(samples.size());
+        samples.push_back(own);
+        carried.emplace_back();
+        centred += part.area;
+        ++centre_samples;
+      }
+      carry(static_cast<std::size_t>(best_index), part_index, !front, polygon, part.area, true);
     }
   }
   // A hit exactly on the voxel's boundary can land on a triangle whose part
@@ -228,13 +260,14 @@ SampleSet generate_samples(const Scene& scene, const RayTracer& tracer, const Vo
   const std::size_t nv = vox.voxels.size();
   if (progress) progress->begin_stage("sample", nv);
   std::vector<VoxelSamples> per_voxel(nv);
-  std::vector<double> unsampled(nv, 0.0);
+  std::vector<double> centred(nv, 0.0);
+  std::vector<std::size_t> centre_samples(nv, 0);
 #pragma omp parallel for schedule(dynamic, 4)
   for (std::int64_t v = 0; v < static_cast<std::int64_t>(nv); ++v) {
     if (progress && progress->should_stop()) continue;
     const auto vi = static_cast<std::size_t>(v);
-    per_voxel[vi] =
-        sample_voxel(scene, tracer, vox, static_cast<std::uint32_t>(v), settings, unsampled[vi]);
+    per_voxel[vi] = sample_voxel(scene, tracer, vox, static_cast<std::uint32_t>(v), settings,
+                                 centred[vi], centre_samples[vi]);
     if (progress) progress->advance();
   }
   if (progress) progress->check();
@@ -255,7 +288,8 @@ SampleSet generate_samples(const Scene& scene, const RayTracer& tracer, const Vo
       }
       set.carried_first.push_back(static_cast<std::uint32_t>(set.carried.size()));
     }
-    set.unsampled_area += unsampled[v];
+    set.centre_sampled_area += centred[v];
+    set.centre_samples += centre_samples[v];
     set.carried_vertices.insert(set.carried_vertices.end(), vs.vertices.begin(), vs.vertices.end());
   }
   set.first.push_back(static_cast<std::uint32_t>(set.samples.size()));

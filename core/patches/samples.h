@@ -15,8 +15,11 @@
 // each sample now stands for the piece of surface around it, a polygon the
 // form factors integrate over near edges and corners. Triangle parts that no
 // ray hit (tiny triangles) go whole to the nearest sample of the same voxel
-// facing the same way, so a voxel's sample areas add up to its surface area;
-// area that has no such sample is counted as unsampled, never hidden.
+// on the same surface (facing the same way, the part within
+// kSameSurfaceCells of the sample's plane), or, without one, to a sample of
+// their own at their centre: every part of the surface is carried by a
+// sample that stands on it, so a voxel's sample areas add up to its surface
+// area and light found anywhere on the surface belongs to some sample.
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +30,11 @@
 #include "voxel/voxelization.h"
 
 namespace bounce {
+
+// A sample stands for surface within this many voxel sizes of its plane; one
+// farther off is on another surface (a curved surface's own samples lie
+// within its sagitta over one voxel, far less).
+inline constexpr float kSameSurfaceCells = 0.25f;
 
 struct Sample {
   glm::vec3 position;
@@ -59,7 +67,10 @@ struct SampleSet {
   std::vector<std::uint32_t> first;  // samples of voxel v: [first[v], first[v+1])
   double sampled_area = 0.0;         // total area carried by samples
   double surface_area = 0.0;         // total area of the sampled sides of all triangles
-  double unsampled_area = 0.0;       // area that found no sample to carry it
+  // Parts no ray hit and no sample on their surface could carry: each got
+  // a sample of its own at its centre. Their area and how many.
+  double centre_sampled_area = 0.0;
+  std::size_t centre_samples = 0;
   std::uint32_t voxels_without_samples = 0;
 };
 

@@ -32,9 +32,8 @@ class SurfacePatchLookup {
   std::int32_t patch_at(std::uint32_t triangle, bool back, const glm::vec3& x) const;
 
   // A carrying sample farther than this (voxel sizes) from the point's
-  // plane stands on another surface: no patch. A curved surface's own
-  // samples lie within its sagitta over one voxel, far less.
-  static constexpr float kOffSurface = 0.25f;
+  // plane stands on another surface: no patch (samples.h).
+  static constexpr float kOffSurface = kSameSurfaceCells;
 
  private:
   struct Entry {
