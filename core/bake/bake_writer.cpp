@@ -163,6 +163,7 @@ json storage_json(const MatrixStorage& s, std::size_t probe_lights_total) {
   m["kept_fraction"] = c.kept_fraction;
   m["light_weighted"] = c.light_weighted;
   m["kept_passes"] = c.kept_passes;
+  m["lights_rebalanced"] = c.lights_rebalanced;
   m["error_budget"] = s.error_budget ? json(*s.error_budget) : json();
   if (s.error_budget) {
     m["error_budget_metric"] = "errors.indirect_light.rel_rms_max";

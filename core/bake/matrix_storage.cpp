@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "compress/entry_importance.h"
+#include "compress/light_rebalance.h"
 #include "transport/text_format.h"
 
 namespace bounce {
@@ -12,20 +13,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-struct Trial {
-  CompressedMatrix compressed;
-  CompressionErrors errors;
-};
-
-Trial compress_and_measure(const std::vector<const float*>& exact, std::size_t n,
-                           const CodecSettings& codec, const IndirectLightProbe& probe,
-                           std::vector<float>* abs_error_sum, Progress* progress,
-                           CompressionExecutor* executor) {
-  Trial t;
-  t.compressed = compress_matrix(exact, n, codec, progress, executor);
-  t.errors = measure_compression(exact, t.compressed, probe, abs_error_sum, progress);
-  return t;
-}
+using Trial = MeasuredCompression;
 
 // The smallest kept fraction of the ladder whose light error meets the
 // budget within the size limit; when none does, the largest that fits (the
@@ -59,7 +47,7 @@ Trial search_kept_fraction(const std::vector<const float*>& exact, std::size_t n
   while (lo <= hi) {
     const int mid = (lo + hi) / 2;
     codec.kept_fraction = kKeptFractionLadder[mid];
-    last = compress_and_measure(exact, n, codec, probe, &last_map, progress, executor);
+    last = compress_for_light(exact, n, codec, probe, &last_map, progress, executor);
     s.trials.push_back({codec.kept_fraction, last->errors.matrix.rel_frobenius,
                         last->errors.indirect, last->compressed.total_bytes()});
     if (budgeted_light_error(last->errors.indirect) <= budget) {
@@ -77,31 +65,32 @@ Trial search_kept_fraction(const std::vector<const float*>& exact, std::size_t n
                        static_cast<double>(bytes) * mib,
                        static_cast<double>(s.dense_rgb_bytes) / static_cast<double>(bytes));
   };
-  std::string limit_text = text_format("the size limit (%g of dense float32 RGB: %.1f MiB)", limit,
-                                       static_cast<double>(s.size_limit_bytes) * mib);
-  if (best >= 0) {
-    s.error_budget_met = true;
-    const Trial& t = *passed;
-    s.error_budget_outcome = text_format(
-        "met: kept fraction %g gives a light error of %.3g on the worst of %zu evaluation "
-        "lights (mean %.3g), within the budget %g; %s, within %s",
-        kKeptFractionLadder[best], budgeted_light_error(t.errors.indirect),
-        t.errors.indirect.lights, t.errors.indirect.rel_rms_mean, budget,
-        bytes_text(t.compressed.total_bytes()).c_str(), limit_text.c_str());
-  } else {
+  const std::string limit_text = text_format("the size limit (%g of dense float32 RGB: %.1f MiB)",
+                                             limit, static_cast<double>(s.size_limit_bytes) * mib);
+  s.error_budget_met = best >= 0;
+  if (!s.error_budget_met) {
     best = top;  // bisection that never passes ends on the top rung
     passed = std::move(last);
     passed_map.swap(last_map);
-    const Trial& t = *passed;
+  }
+  if (!passed) throw Error("compress", "the kept-fraction search compressed nothing");
+  const IndirectLightError& light = passed->errors.indirect;
+  const std::size_t bytes = passed->compressed.total_bytes();
+  if (s.error_budget_met) {
+    s.error_budget_outcome = text_format(
+        "met: kept fraction %g gives a light error of %.3g on the worst of %zu evaluation "
+        "lights (mean %.3g), within the budget %g; %s, within %s",
+        kKeptFractionLadder[best], budgeted_light_error(light), light.lights, light.rel_rms_mean,
+        budget, bytes_text(bytes).c_str(), limit_text.c_str());
+  } else {
     s.error_budget_outcome = text_format(
         "NOT met: %s; kept fraction %g, %s, gives a light error of %.3g on the worst of %zu "
         "evaluation lights (mean %.3g) against the budget %g. Kept that instead; for the "
         "budget, raise --size-limit or use --codec dense (exact, %.1f MiB)",
         nothing_fits ? ("no kept fraction fits " + limit_text).c_str()
                      : ("no kept fraction within " + limit_text + " meets it").c_str(),
-        kKeptFractionLadder[best], bytes_text(t.compressed.total_bytes()).c_str(),
-        budgeted_light_error(t.errors.indirect), t.errors.indirect.lights,
-        t.errors.indirect.rel_rms_mean, budget, static_cast<double>(s.dense_bytes) * mib);
+        kKeptFractionLadder[best], bytes_text(bytes).c_str(), budgeted_light_error(light),
+        light.lights, light.rel_rms_mean, budget, static_cast<double>(s.dense_bytes) * mib);
     diagnostics.warn("compress", "error budget " + s.error_budget_outcome);
   }
   if (passed->errors.indirect.lights == 0)
@@ -199,7 +188,7 @@ MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t
     s.decisions.push_back(
         {text_format("kept fraction: %g", codec.kept_fraction),
          settings.kept_fraction ? "requested" : "the published pipeline keeps 4% of the entries"});
-    chosen = compress_and_measure(exact, n, codec, probe, &s.abs_error_sum, progress, executor);
+    chosen = compress_for_light(exact, n, codec, probe, &s.abs_error_sum, progress, executor);
   } else {
     chosen =
         search_kept_fraction(exact, n, probe, settings, codec, s, progress, diagnostics, executor);

@@ -12,6 +12,7 @@
 #include "base/progress.h"
 #include "compress/codec.h"
 #include "compress/compression_error.h"
+#include "compress/light_rebalance.h"
 #include "transport/transport.h"
 
 namespace bounce {
@@ -58,10 +59,6 @@ struct MatrixStorage {
 // up costs 8 bytes per entry kept and channel.
 inline constexpr double kKeptFractionLadder[] = {0.0025, 0.005, 0.01, 0.015, 0.02, 0.03, 0.04,
                                                  0.06,   0.08,  0.12, 0.16,  0.24, 0.32};
-
-// The error figure the error budget bounds: the relative RMS error of the
-// indirect light on the worst evaluation light.
-inline double budgeted_light_error(const IndirectLightError& e) { return e.rel_rms_max; }
 
 // `executor`: where the block encoding of every compression tried runs (a
 // distributed bake's ranks; compress_matrix); nullptr: in this process.

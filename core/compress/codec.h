@@ -82,6 +82,9 @@ struct CompressedMatrix {
   double kept_fraction = 0.0;
   bool light_weighted = false;  // kept entries and block weights chosen by EntryImportance
   int kept_passes = 1;          // CodecSettings::kept_passes, as used
+  // The importance weighted each light by its share of an earlier
+  // compression's light error (bake/matrix_storage.h).
+  bool lights_rebalanced = false;
   double seconds_split = 0.0, seconds_ordering = 0.0, seconds_encoding = 0.0;
 
   std::size_t sparse_bytes() const;

@@ -24,7 +24,10 @@ std::vector<float> to_float(const std::vector<double>& w) { return {w.begin(), w
 EntryImportance light_importance(const std::vector<const float*>& exact, std::size_t n,
                                  const std::vector<std::vector<glm::vec3>>& first_hit,
                                  const std::array<int, 3>& channel_of_rgb,
-                                 const std::vector<float>& area) {
+                                 const std::vector<float>& area,
+                                 const std::vector<double>& light_factor) {
+  if (!light_factor.empty() && light_factor.size() != first_hit.size())
+    throw Error("light importance", "one factor per light expected");
   if (area.size() != n) throw Error("light importance", "patch areas do not match the matrix size");
   for (int c : channel_of_rgb)
     if (c < 0 || static_cast<std::size_t>(c) >= exact.size())
@@ -34,7 +37,9 @@ EntryImportance light_importance(const std::vector<const float*>& exact, std::si
   std::vector<std::vector<double>> column(exact.size(), std::vector<double>(n, 0.0));
   std::vector<std::size_t> lights_used(exact.size(), 0);
   std::vector<double> indirect(n);
-  for (const auto& light : first_hit) {
+  for (std::size_t l = 0; l < first_hit.size(); ++l) {
+    const auto& light = first_hit[l];
+    const double factor = light_factor.empty() ? 1.0 : light_factor[l];
     if (light.size() != n) throw Error("light importance", "a light vector has the wrong length");
     // |I|^2 of this light over every colour channel: the relative error of
     // the light is measured against it.
@@ -50,12 +55,12 @@ EntryImportance light_importance(const std::vector<const float*>& exact, std::si
       }
       for (std::size_t i = 0; i < n; ++i) reference += area[i] * indirect[i] * indirect[i];
     }
-    if (!(reference > 0.0)) continue;
+    if (!(reference > 0.0) || !(factor > 0.0)) continue;
     for (int k = 0; k < 3; ++k) {
       const auto c = static_cast<std::size_t>(channel_of_rgb[static_cast<std::size_t>(k)]);
       for (std::size_t j = 0; j < n; ++j) {
         const double b = light[j][k];
-        column[c][j] += b * b / reference;
+        column[c][j] += factor * b * b / reference;
       }
       ++lights_used[c];
     }

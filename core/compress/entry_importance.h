@@ -34,9 +34,12 @@ inline constexpr float kColumnWeightFloor = 0.1f;
 // `exact[c]`: stored channel c (n x n, row-major); `first_hit`: per light, b
 // per patch (R, G, B); `channel_of_rgb[k]`: the stored channel colour k uses;
 // `area`: per patch. Lights whose exact indirect light is zero add nothing.
+// `light_factor` (empty, or one per light): how much more each light counts
+// than the others.
 EntryImportance light_importance(const std::vector<const float*>& exact, std::size_t n,
                                  const std::vector<std::vector<glm::vec3>>& first_hit,
                                  const std::array<int, 3>& channel_of_rgb,
-                                 const std::vector<float>& area);
+                                 const std::vector<float>& area,
+                                 const std::vector<double>& light_factor = {});
 
 }  // namespace bounce
