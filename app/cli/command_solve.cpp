@@ -27,6 +27,7 @@
 #include "io/ply_writer.h"
 #include "metrics/error_heat_map.h"
 #include "metrics/image_metrics.h"
+#include "metrics/patch_light_error.h"
 #include "metrics/vertex_metrics.h"
 #include "raytrace/ray_tracer.h"
 #include "runtime/camera_image.h"
@@ -61,20 +62,6 @@ struct SolveOptions {
 
 // The error picture's colour map runs from 0 to this relative error.
 constexpr double kErrorPictureFullScale = 0.1;
-
-// sqrt(sum_p A_p |x_p - y_p|^2 / sum_p A_p |y_p|^2): the bake's indirect-light
-// error figure, for one frame's light.
-double area_weighted_relative_rms(const std::vector<Patch>& patches,
-                                  const std::vector<glm::vec3>& test,
-                                  const std::vector<glm::vec3>& exact) {
-  double err2 = 0.0, ref2 = 0.0;
-  for (std::size_t p = 0; p < patches.size(); ++p) {
-    const glm::dvec3 d = glm::dvec3(test[p]) - glm::dvec3(exact[p]);
-    err2 += patches[p].area * glm::dot(d, d);
-    ref2 += patches[p].area * glm::dot(glm::dvec3(exact[p]), glm::dvec3(exact[p]));
-  }
-  return ref2 > 0.0 ? std::sqrt(err2 / ref2) : 0.0;
-}
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) {
@@ -286,8 +273,10 @@ void run_solve(const SolveOptions& opt) {
     for (const auto& m : bake.dense) exact_matrices.push_back(m.data());
     exact_indirect.resize(n);
     dense_indirect(exact_matrices, n, bake.channel_of_rgb, first_hit, exact_indirect);
+    std::vector<float> patch_area;
+    for (const Patch& p : bake.patches.patches) patch_area.push_back(p.area);
     comparison["patch_indirect_rel_rms"] =
-        area_weighted_relative_rms(bake.patches.patches, indirect, exact_indirect);
+        area_weighted_relative_rms(patch_area, indirect, exact_indirect);
   }
 
   const TransferGrid grid = TransferGrid::from_manifest(bake.manifest);

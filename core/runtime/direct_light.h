@@ -59,6 +59,7 @@ std::vector<glm::vec3> first_bounce(const PatchSet& patches,
 // light) per entry of kEvaluationSuns, elevation above the horizon of the
 // scene camera's up vector and azimuth around it. (The bake adds the emissive
 // triangles, if any, as one more.)
+inline constexpr std::size_t kEvaluationPointLights = 4;
 inline constexpr std::pair<float, float> kEvaluationSuns[] = {
     {75.0f, 30.0f}, {45.0f, 0.0f}, {45.0f, 90.0f}, {45.0f, 180.0f}, {45.0f, 270.0f}};
 std::vector<Light> evaluation_lights(const Scene& scene);
