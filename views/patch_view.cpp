@@ -27,9 +27,12 @@
 #include <QMouseEvent>
 #include <QVBoxLayout>
 
+#include "compress/codec.h"
 #include "compress/matrix_picture.h"
 #include "io/tone_map.h"
+#include "metrics/patch_light_error.h"
 #include "runtime/dense_transport.h"
+#include "runtime/direct_light.h"
 #include "vtk_scene.h"
 
 namespace bounce::views {
@@ -57,6 +60,7 @@ PatchView::PatchView(QWidget* parent)
     : QWidget(parent),
       vtk_widget_(new QVTKOpenGLNativeWidget(this)),
       colour_box_(new QComboBox(this)),
+      light_box_(new QComboBox(this)),
       status_(new QLabel(this)),
       renderer_(vtkSmartPointer<vtkRenderer>::New()),
       centres_(vtkSmartPointer<vtkPolyData>::New()),
@@ -66,7 +70,8 @@ PatchView::PatchView(QWidget* parent)
       sample_actor_(vtkSmartPointer<vtkActor>::New()),
       picker_(vtkSmartPointer<vtkCellPicker>::New()) {
   colour_box_->addItems({tr("Albedo"), tr("Patch id"), tr("Radiosity (first light)"),
-                         tr("Form-factor row"), tr("Closure"), tr("Balancing scale")});
+                         tr("Form-factor row"), tr("Closure"), tr("Balancing scale"),
+                         tr("Indirect-light error")});
   colour_box_->setToolTip(
       tr("Albedo: the patch colour. Patch id: one colour per patch. Radiosity: light leaving "
          "each patch under the scene's first light, direct plus indirect through T. "
@@ -74,7 +79,12 @@ PatchView::PatchView(QWidget* parent)
          "scale); click a patch first. Closure: the share of each patch's light that lands on "
          "sampled surface (1 in a closed room; dark where light escapes). Balancing scale: how "
          "much the patch's form-factor row was scaled to reach its closure (white: 1, blue: "
-         "scaled down, red: scaled up; strong colours show where the quadrature struggled)"));
+         "scaled down, red: scaled up; strong colours show where the quadrature struggled). "
+         "Indirect-light error: how far the compressed matrix's indirect light is from the "
+         "exact one under the light chosen beside it, relative per patch, 0 .. 10%; click a "
+         "patch for its exact and compressed light and the entries that make the difference "
+         "(needs a compressed bake made with --dump-matrices)"));
+  light_box_->setToolTip(tr("The light of the indirect-light error"));
   // The controls never force a minimum width on the view: at small sizes
   // (screenshots) they are cut off instead.
   auto* bar = new QWidget(this);
@@ -83,6 +93,7 @@ PatchView::PatchView(QWidget* parent)
   controls->setContentsMargins(0, 0, 0, 0);
   controls->addWidget(new QLabel(tr("Colour by"), this));
   controls->addWidget(colour_box_);
+  controls->addWidget(light_box_);
   controls->addStretch(1);
   controls->addWidget(status_);
   auto* layout = new QVBoxLayout(this);
@@ -135,6 +146,8 @@ PatchView::PatchView(QWidget* parent)
 
   connect(colour_box_, qOverload<int>(&QComboBox::currentIndexChanged), this,
           [this](int) { recolour(); });
+  connect(light_box_, qOverload<int>(&QComboBox::currentIndexChanged), this,
+          [this](int) { recolour(); });
 
   // A click without a drag picks; VTK's trackball keeps rotating on drag.
   auto click = vtkSmartPointer<vtkCallbackCommand>::New();
@@ -177,6 +190,17 @@ void PatchView::set_data(std::shared_ptr<const BakeViewData> bake) {
   centres_->SetPoints(points);
   centres_->GetPointData()->SetNormals(normals);
   centres_->GetPointData()->SetScalars(radius);
+  decoded_.clear();
+  light_box_->blockSignals(true);
+  light_box_->clear();
+  if (data_) {
+    light_box_->addItem(tr("scene's lights"));
+    for (std::size_t l = 0; l < data_->bake.probe.first_hit.size(); ++l)
+      light_box_->addItem(tr("evaluation light %1").arg(l));
+  }
+  light_box_->blockSignals(false);
+  colour_box_->setItemData(static_cast<int>(ColourBy::IndirectError),
+                           can_show_indirect_error() ? QVariant() : QVariant(0), Qt::UserRole - 1);
   const bool has_f = data_ && !data_->form_factors.empty();
   colour_box_->setItemData(3, has_f ? QVariant() : QVariant(0), Qt::UserRole - 1);
   recolour();
@@ -189,9 +213,19 @@ void PatchView::set_data(std::shared_ptr<const BakeViewData> bake) {
 
 void PatchView::set_colour_by(ColourBy by) { colour_box_->setCurrentIndex(static_cast<int>(by)); }
 
+void PatchView::set_error_light(int index) { light_box_->setCurrentIndex(index); }
+
+bool PatchView::can_show_indirect_error() const {
+  return data_ && data_->bake.compressed && !data_->bake.dense.empty() &&
+         !data_->bake.probe.first_hit.empty();
+}
+
+QString PatchView::status_text() const { return status_->text(); }
+
 void PatchView::select_patch(int p) {
   selected_ = data_ && p >= 0 && static_cast<std::size_t>(p) < data_->patch_count() ? p : -1;
-  if (selected_ >= 0 && !data_->form_factors.empty())
+  if (selected_ >= 0 && !data_->form_factors.empty() &&
+      colour_box_->currentIndex() != static_cast<int>(ColourBy::IndirectError))
     colour_box_->setCurrentIndex(static_cast<int>(ColourBy::FormFactorRow));
   show_samples();
   recolour();
@@ -206,6 +240,8 @@ void PatchView::recolour() {
     by = ColourBy::Albedo;
   if ((by == ColourBy::Closure || by == ColourBy::RowScale) && (!data_ || data_->closure.empty()))
     by = ColourBy::Albedo;
+  if (by == ColourBy::IndirectError && !can_show_indirect_error()) by = ColourBy::Albedo;
+  light_box_->setEnabled(by == ColourBy::IndirectError);
   QString what;
   if (by == ColourBy::Albedo) {
     for (std::size_t p = 0; p < n; ++p) colours_[p] = srgb(data_->bake.patches.patches[p].albedo);
@@ -235,6 +271,8 @@ void PatchView::recolour() {
                              ? std::string("the first evaluation light")
                              : b.manifest.at("scene").at("lights")[0].value("name", "light 1")))
                : tr("no exact T in this bake: emission only");
+  } else if (by == ColourBy::IndirectError) {
+    what = indirect_error_colours();
   } else if (by == ColourBy::Closure) {
     float lo = 1.0f;
     for (std::size_t p = 0; p < n; ++p) {
@@ -289,6 +327,66 @@ void PatchView::recolour() {
   if (!what.isEmpty()) text += " - " + what;
   status_->setText(text);
   render();
+}
+
+QString PatchView::indirect_error_colours() {
+  const LoadedBake& b = data_->bake;
+  const std::size_t n = data_->patch_count();
+  if (decoded_.empty())
+    for (int c = 0; c < b.compressed->channels; ++c) {
+      decoded_.emplace_back(n * n);
+      decompress_channel(*b.compressed, c, decoded_.back().data());
+    }
+  std::vector<const float*> exact, approx;
+  for (const auto& m : b.dense) exact.push_back(m.data());
+  for (const auto& m : decoded_) approx.push_back(m.data());
+  // Light 0: the scene's lights as `bounce solve` lights the bake, i.e. the
+  // first hits of the scene's own lights (the first entries of the
+  // evaluation lights) and, with emissive triangles, of the area light (the
+  // last entry).
+  const int index = std::max(0, light_box_->currentIndex());
+  std::vector<glm::vec3> light(n, glm::vec3(0.0f));
+  QString name;
+  if (index == 0) {
+    const std::size_t scene_lights = b.manifest.at("scene").at("lights").size();
+    const bool area = b.probe.first_hit.size() >
+                      scene_lights + kEvaluationPointLights + std::size(kEvaluationSuns);
+    for (std::size_t l = 0; l < b.probe.first_hit.size(); ++l)
+      if (l < scene_lights || (area && l + 1 == b.probe.first_hit.size()))
+        for (std::size_t p = 0; p < n; ++p) light[p] += b.probe.first_hit[l][p];
+    name = tr("the scene's lights");
+  } else {
+    light = b.probe.first_hit[static_cast<std::size_t>(index - 1)];
+    name = tr("evaluation light %1").arg(index - 1);
+  }
+  std::vector<float> area;
+  for (const Patch& p : b.patches.patches) area.push_back(p.area);
+  const PatchLightError e = patch_light_error(exact, approx, n, b.channel_of_rgb, light, area);
+  error_rms_ = e.rel_rms;
+  for (std::size_t p = 0; p < n; ++p) {
+    std::uint8_t c[3];
+    colormap(std::min(1.0, static_cast<double>(e.relative[p]) / kErrorFullScale), c);
+    colours_[p] = {c[0], c[1], c[2]};
+  }
+  QString what = tr("indirect-light error under %1: %2 relative RMS (area-weighted), per patch "
+                    "0 .. %3%")
+                     .arg(name)
+                     .arg(e.rel_rms, 0, 'g', 4)
+                     .arg(100.0 * kErrorFullScale, 0, 'g', 3);
+  if (selected_ >= 0) {
+    const auto p = static_cast<std::size_t>(selected_);
+    const auto rgb = [](const glm::vec3& v) {
+      return QString("(%1, %2, %3)").arg(v.r, 0, 'g', 4).arg(v.g, 0, 'g', 4).arg(v.b, 0, 'g', 4);
+    };
+    what += tr("; patch %1: exact %2, compressed %3; largest (T~ - T)_pj b_j from columns")
+                .arg(selected_)
+                .arg(rgb(e.exact[p]))
+                .arg(rgb(e.approx[p]));
+    for (const EntryContribution& k :
+         largest_contributions(exact, approx, n, b.channel_of_rgb, light, p, 3))
+      what += QString(" %1 %2").arg(k.column).arg(rgb(k.difference));
+  }
+  return what;
 }
 
 void PatchView::show_samples() {

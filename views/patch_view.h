@@ -4,9 +4,13 @@
 // the scene's first light, or - once a patch is picked - by that patch's
 // form-factor row (who it sees), by its closure (the share of its light that
 // lands on sampled surface) or by the scale the form-factor balancing applied
-// to its row (where the quadrature struggled). Clicking a disc picks its patch and shows
-// its member samples as points.
+// to its row (where the quadrature struggled), or by the indirect-light error
+// the compressed matrix causes under a chosen light (exact T.npy against the
+// decoded T.dds: per patch, heat map 0 .. 10%; a picked patch shows its exact
+// and compressed light and the matrix entries that make the difference).
+// Clicking a disc picks its patch and shows its member samples as points.
 #include <memory>
+#include <vector>
 
 #include <vtkSmartPointer.h>
 #include <QWidget>
@@ -27,7 +31,17 @@ namespace bounce::views {
 class PatchView : public QWidget {
   Q_OBJECT
  public:
-  enum class ColourBy { Albedo, PatchId, Radiosity, FormFactorRow, Closure, RowScale };
+  enum class ColourBy {
+    Albedo,
+    PatchId,
+    Radiosity,
+    FormFactorRow,
+    Closure,
+    RowScale,
+    IndirectError
+  };
+  // The error map's colour scale runs from 0 to this relative error.
+  static constexpr double kErrorFullScale = 0.1;
 
   // Colour of the picked patch's member samples.
   static constexpr unsigned char kSampleColour[3] = {255, 0, 255};
@@ -39,6 +53,17 @@ class PatchView : public QWidget {
   // FormFactorRow needs F.npy and a picked patch, Closure and RowScale
   // closure.npy; otherwise they fall back to albedo.
   void set_colour_by(ColourBy by);
+  // The light of IndirectError: 0 = the scene's lights together (the first
+  // hit `bounce solve` lights the bake with), k >= 1 = evaluation light k - 1
+  // (lights_first_hit.npy).
+  void set_error_light(int index);
+  // IndirectError needs the exact T.npy and a compressed matrix: whether this
+  // bake has both, and the area-weighted relative RMS error of the indirect
+  // light last shown (the bake's figure, `bounce solve --compare-exact`'s
+  // patch_indirect_rel_rms for light 0).
+  bool can_show_indirect_error() const;
+  double indirect_error_rms() const { return error_rms_; }
+  QString status_text() const;
   // Picks patch `p` (-1: none).
   void select_patch(int p);
   int selected_patch() const { return selected_; }
@@ -57,12 +82,15 @@ class PatchView : public QWidget {
 
  private:
   void recolour();
+  // Colours the patches by IndirectError; returns what the status says.
+  QString indirect_error_colours();
   void show_samples();
   void render();
 
   std::shared_ptr<const BakeViewData> data_;
   QVTKOpenGLNativeWidget* vtk_widget_;
   QComboBox* colour_box_;
+  QComboBox* light_box_;
   QLabel* status_;
   vtkSmartPointer<vtkRenderer> renderer_;
   vtkSmartPointer<vtkPolyData> centres_;
@@ -73,6 +101,10 @@ class PatchView : public QWidget {
   vtkSmartPointer<vtkCellPicker> picker_;
   std::vector<std::array<unsigned char, 3>> colours_;
   int selected_ = -1;
+  // The decoded compressed matrix (stored channels, patch order), made when
+  // IndirectError first needs it.
+  std::vector<std::vector<float>> decoded_;
+  double error_rms_ = 0.0;
 };
 
 }  // namespace bounce::views

@@ -80,8 +80,8 @@ void BakeOptions::add_to(CLI::App& cmd, bool with_output) {
                  "How the transport matrix is stored: auto (ours, or dense when it is under "
                  "1 MiB and compression would not pay), dense (exact float32), paper (the "
                  "published pipeline: 4% kept, greedy L1 reordering, libsquish BC1), ours "
-                 "(error-weighted BC1/BC4, better reordering, kept fraction from the error "
-                 "budget)")
+                 "(entries kept and blocks weighted by the light they carry, better "
+                 "reordering, kept fraction from the error budget)")
       ->check(CLI::IsMember({"auto", "dense", "paper", "ours"}))
       ->capture_default_str();
   cmd.add_option("--ordering", ordering,
@@ -97,8 +97,18 @@ void BakeOptions::add_to(CLI::App& cmd, bool with_output) {
       "--codec paper; chosen from --error-budget for ours)");
   error_budget_option =
       cmd.add_option("--error-budget", error_budget,
-                     "Relative Frobenius error the compressed matrix may have; ours keeps the "
-                     "fewest entries that meet it")
+                     "Relative RMS error of the indirect light the compressed matrix may cause "
+                     "(area-weighted over patches, on the worst of the evaluation lights: the "
+                     "scene's lights, four point lights, five suns); ours keeps the fewest "
+                     "entries that meet it (default: the scene's bake block, else 0.02)")
+          ->capture_default_str()
+          ->excludes(kept_fraction_option);
+  size_limit_option =
+      cmd.add_option("--size-limit", size_limit,
+                     "Largest size the error budget's search may give the compressed matrix, as "
+                     "a share of dense float32 RGB (0.125: at least 8x smaller); when no kept "
+                     "fraction within it meets the budget, the bake keeps the largest that fits "
+                     "and says so")
           ->capture_default_str()
           ->excludes(kept_fraction_option);
   if (with_output) {
@@ -162,6 +172,7 @@ BakeSettings BakeOptions::settings() const {
     if (ordering == ordering_name(m)) s.ordering = m;
   if (kept_fraction_option->count() > 0) s.kept_fraction = kept_fraction;
   if (error_budget_option->count() > 0) s.error_budget = error_budget;
+  if (size_limit_option->count() > 0) s.size_limit = size_limit;
   return s;
 }
 

@@ -28,6 +28,8 @@
 #include "commands.h"
 #include "compress/codec.h"
 #include "compress/compression_error.h"
+#include "compress/entry_importance.h"
+#include "compress/light_rebalance.h"
 #include "console_progress.h"
 #include "exact_transport.h"
 
@@ -67,6 +69,7 @@ struct Row {
   double seconds_encoding = 0.0;
   std::size_t bytes = 0, sparse_bytes = 0, block_bytes = 0, permutation_bytes = 0;
   CompressionErrors errors;
+  bool light_weighted = false;
 };
 
 // Permutations already computed in this run, per ordering, with the time
@@ -83,7 +86,10 @@ class RowRunner {
 
   // Compresses with `settings` (its ordering taken from the cache when there,
   // computed and cached otherwise) and measures the errors.
-  Row run(const std::string& what, CodecSettings settings, OrderingCache* cache) {
+  // With `rebalance`, as bakes compress (compress_for_light: the lights
+  // rebalanced when that lowers the worst light's error).
+  Row run(const std::string& what, CodecSettings settings, OrderingCache* cache,
+          bool rebalance = false) {
     const OrderingMethod ordering = *settings.ordering;
     const bool reuse = cache && cache->permutation.count(ordering) > 0;
     if (reuse) settings.permutation = cache->permutation.at(ordering);
@@ -92,7 +98,12 @@ class RowRunner {
       std::fprintf(stderr, "[%zu/%zu] %s, kept %g (%s)\n", step_, steps_, what.c_str(),
                    settings.kept_fraction,
                    reuse ? "ordering computed earlier" : "computing the ordering");
-    const CompressedMatrix m = compress_matrix(exact_.matrices(), exact_.n, settings, &progress_);
+    const MeasuredCompression measured =
+        rebalance ? compress_for_light(exact_.matrices(), exact_.n, settings, exact_.probe, nullptr,
+                                       &progress_)
+                  : MeasuredCompression{
+                        compress_matrix(exact_.matrices(), exact_.n, settings, &progress_), {}};
+    const CompressedMatrix& m = measured.compressed;
     if (cache && !reuse) {
       cache->permutation[ordering] = m.permutation;
       cache->seconds[ordering] = m.seconds_ordering;
@@ -104,6 +115,7 @@ class RowRunner {
     r.codec = m.codec;
     r.format = m.format == DdsFormat::kBc4 ? "BC4" : "BC1";
     r.kept_fraction = m.kept_fraction;
+    r.light_weighted = m.light_weighted;
     r.seconds_split = m.seconds_split;
     r.ordering_reused = reuse;
     r.seconds_ordering = reuse ? cache->seconds.at(ordering) : m.seconds_ordering;
@@ -112,7 +124,9 @@ class RowRunner {
     r.sparse_bytes = m.sparse_bytes();
     r.block_bytes = m.block_bytes();
     r.permutation_bytes = m.permutation_bytes();
-    r.errors = measure_compression(exact_.matrices(), m, exact_.probe, nullptr, &progress_);
+    r.errors = rebalance
+                   ? measured.errors
+                   : measure_compression(exact_.matrices(), m, exact_.probe, nullptr, &progress_);
     return r;
   }
 
@@ -128,7 +142,9 @@ struct BenchResult {
   std::vector<Row> grid;        // encoder-major, as listed in the options
   std::optional<Row> paper;     // the reference when it is not in the grid
   std::size_t paper_index = 0;  // the reference's index in `grid` otherwise
-  Row ours_default;
+  Row ours_largest;             // ours keeping the largest entries, weighing by value only
+  Row ours_one_pass;            // ours keeping the largest light-weighted entries, one pass
+  Row ours_default;        // ours as bakes use it: light-weighted, kept by a first pass's error
   std::vector<Row> extra;  // other block formats (BC4 per channel)
   const Row& reference() const { return paper ? *paper : grid[paper_index]; }
 };
@@ -137,11 +153,14 @@ double ratio(double a, double b) { return b > 0.0 ? a / b : 0.0; }
 
 void print_row(const Row& r, const Row& ref, const char* mark) {
   const MatrixError& e = r.errors.matrix;
-  std::printf("  %-40s %8.2f%s %8.2f %10zu %9.3g %9.3g %9.4g %8.4f %8.4f %7.3fx %7.3fx\n",
-              (r.what + mark).c_str(), r.seconds_ordering, r.ordering_reused ? "r" : " ",
-              r.seconds_encoding, r.bytes, e.mean_abs, e.max_abs, e.sum_abs, e.rel_frobenius,
-              r.errors.indirect.rel_rms_mean, ratio(e.sum_abs, ref.errors.matrix.sum_abs),
-              ratio(static_cast<double>(r.bytes), static_cast<double>(ref.bytes)));
+  std::printf(
+      "  %-40s %8.2f%s %8.2f %10zu %9.3g %9.3g %9.4g %8.4f %8.4f %8.4f %7.3fx %7.3fx %7.3fx\n",
+      (r.what + mark).c_str(), r.seconds_ordering, r.ordering_reused ? "r" : " ",
+      r.seconds_encoding, r.bytes, e.mean_abs, e.max_abs, e.sum_abs, e.rel_frobenius,
+      r.errors.indirect.rel_rms_mean, r.errors.indirect.rel_rms_max,
+      ratio(e.sum_abs, ref.errors.matrix.sum_abs),
+      ratio(r.errors.indirect.rel_rms_max, ref.errors.indirect.rel_rms_max),
+      ratio(static_cast<double>(r.bytes), static_cast<double>(ref.bytes)));
 }
 
 void print_table(const ExactTransport& exact, double kept, const BenchResult& b,
@@ -153,26 +172,29 @@ void print_table(const ExactTransport& exact, double kept, const BenchResult& b,
               kPaperKeptFraction, 3 * exact.n * exact.n * sizeof(float));
   std::printf(
       "  rows: the published pipeline (its kept split and log quantiser) with the encoder and "
-      "ordering swapped; last: our whole default codec\n");
+      "ordering swapped; then our codec keeping the largest entries, and our default codec, "
+      "which keeps and weighs entries by the light they carry\n");
   std::printf(
       "  order (s): the ordering's one computation (r = reused from an earlier row); "
       "bytes: kept CSR + blocks + permutation;\n");
   std::printf(
       "  |e| over every entry of every stored channel; rel.Frob = ||T~ - T||_F / "
-      "||T||_F; indirect = mean relative RMS\n");
+      "||T||_F; light mean / max = relative RMS error\n");
   std::printf(
-      "  of the indirect light over %zu evaluation lights; ratios against the paper "
-      "row (marked *)\n",
+      "  of the indirect light, mean and worst over %zu evaluation lights; ratios against the "
+      "paper row (marked *)\n",
       ref.errors.indirect.lights);
-  std::printf("  %-40s %9s %8s %10s %9s %9s %9s %8s %8s %8s %8s\n", "encoder + ordering",
-              "order(s)", "enc(s)", "bytes", "mean|e|", "max|e|", "sum|e|", "rel.Frob", "indirect",
-              "sum/pap", "size/pap");
+  std::printf("  %-40s %9s %8s %10s %9s %9s %9s %8s %8s %8s %8s %8s %8s\n", "encoder + ordering",
+              "order(s)", "enc(s)", "bytes", "mean|e|", "max|e|", "sum|e|", "rel.Frob", "lightmean",
+              "lightmax", "sum/pap", "lmax/pap", "size/pap");
   for (std::size_t k = 0; k < b.grid.size(); ++k) {
     if (k > 0 && b.grid[k].encoder != b.grid[k - 1].encoder) std::printf("\n");
     print_row(b.grid[k], ref, !b.paper && k == b.paper_index ? " *" : "");
   }
   std::printf("\n");
   if (b.paper) print_row(*b.paper, ref, " *");
+  print_row(b.ours_largest, ref, "");
+  print_row(b.ours_one_pass, ref, "");
   print_row(b.ours_default, ref, "");
   for (const Row& r : b.extra) print_row(r, ref, "");
 
@@ -186,6 +208,14 @@ void print_table(const ExactTransport& exact, double kept, const BenchResult& b,
       "%.3fx the size: %s%s\n",
       sum_ratio, size_ratio, met ? "met" : "MISSED",
       exact.n < 4096 ? " (the target is stated for >= 4096 patches)" : "");
+  const double light_ratio =
+      ratio(b.ours_default.errors.indirect.rel_rms_max, b.ours_largest.errors.indirect.rel_rms_max);
+  std::printf(
+      "  light-weighted against largest kept, same size (%.3fx): worst-light error %.4f vs "
+      "%.4f (%.3fx); paper %.4f\n",
+      ratio(static_cast<double>(b.ours_default.bytes), static_cast<double>(b.ours_largest.bytes)),
+      b.ours_default.errors.indirect.rel_rms_max, b.ours_largest.errors.indirect.rel_rms_max,
+      light_ratio, ref.errors.indirect.rel_rms_max);
   // Encoding speed, summed over the orderings so one noisy run weighs less.
   auto encode_total = [&](Bc1Encoder enc) {
     double s = 0.0;
@@ -229,6 +259,9 @@ nlohmann::json row_json(const Row& r, const Row& ref) {
           {"indirect_lights", r.errors.indirect.lights},
           {"indirect_rel_rms_mean", r.errors.indirect.rel_rms_mean},
           {"indirect_rel_rms_max", r.errors.indirect.rel_rms_max},
+          {"light_weighted", r.light_weighted},
+          {"indirect_rel_rms_max_vs_paper",
+           ratio(r.errors.indirect.rel_rms_max, ref.errors.indirect.rel_rms_max)},
           {"sum_abs_vs_paper", ratio(e.sum_abs, ref.errors.matrix.sum_abs)},
           {"bytes_vs_paper", ratio(static_cast<double>(r.bytes), static_cast<double>(ref.bytes))}};
 }
@@ -248,6 +281,8 @@ nlohmann::json result_json(const ExactTransport& exact, double kept, const Bench
           {"dense_rgb_bytes", 3 * exact.n * exact.n * sizeof(float)},
           {"grid", grid},
           {"paper", row_json(ref, ref)},
+          {"ours_largest_kept", row_json(b.ours_largest, ref)},
+          {"ours_light_weighted_one_pass", row_json(b.ours_one_pass, ref)},
           {"ours_default", row_json(b.ours_default, ref)},
           {"other_formats", extra}};
 }
@@ -265,8 +300,8 @@ BenchResult run_one(const ExactTransport& exact, double kept,
   const bool paper_in_grid = kept == kPaperKeptFraction &&
                              has_encoder(Bc1Encoder::kSquishClusterFit) &&
                              has_ordering(OrderingMethod::Paper2);
-  const std::size_t steps = encoders.size() * orderings.size() + (paper_in_grid ? 1 : 2) +
-                            (exact.channels.size() > 1 ? 2 : 0);
+  const std::size_t steps = encoders.size() * orderings.size() + (paper_in_grid ? 3 : 4) +
+                            (exact.channels.size() > 1 ? 3 : 0);
   RowRunner runner(exact, progress, verbose, steps);
   OrderingCache cache;
 
@@ -301,13 +336,25 @@ BenchResult run_one(const ExactTransport& exact, double kept,
                          kept == kPaperKeptFraction ? &cache : nullptr);
   }
 
-  // Our full default codec at the same kept fraction. Its quantiser gives
-  // other codes than the paper's, so its ordering is computed on them anew.
+  // Our codec at the same kept fraction, twice: keeping the largest entries
+  // (as it did before it knew the light), and as bakes use it, keeping and
+  // weighing entries by the light their columns carry over the evaluation
+  // lights. Its quantiser gives other codes than the paper's, and the holes
+  // differ between the two, so each ordering is computed anew.
   CodecSettings s;
   s.kind = CodecKind::Ours;
   s.kept_fraction = kept;
   s.ordering = OrderingMethod::Ours;
-  b.ours_default = runner.run("ours (default codec)", s, nullptr);
+  b.ours_largest = runner.run("ours, largest entries kept", s, nullptr);
+  const EntryImportance importance =
+      light_importance(exact.matrices(), exact.n, exact.probe.first_hit, exact.probe.channel_of_rgb,
+                       exact.probe.area);
+  CodecSettings weighted = s;
+  weighted.importance = &importance;
+  weighted.kept_passes = 1;
+  b.ours_one_pass = runner.run("ours, light-weighted, one pass", weighted, nullptr);
+  weighted.kept_passes = CodecSettings{}.kept_passes;
+  b.ours_default = runner.run("ours, light-weighted (default codec)", weighted, nullptr, true);
 
   // The other block format that might win (issue 3): BC4 per channel, 8 bytes
   // per block and channel where BC1 spends 8 on all three. Once at the same
@@ -324,6 +371,9 @@ BenchResult run_one(const ExactTransport& exact, double kept,
                           static_cast<double>(exact.n) * static_cast<double>(exact.n));
     bc4.kept_fraction = std::max(0.0, kept - fewer);
     b.extra.push_back(runner.run("ours, BC4 per channel (same size)", bc4, nullptr));
+    bc4.importance = &importance;
+    b.extra.push_back(
+        runner.run("ours, BC4 per channel, light-weighted (same size)", bc4, nullptr));
   }
   return b;
 }
@@ -334,6 +384,9 @@ void run(const CompressBenchOptions& opt) {
     throw Error("--codec", "does not apply to bench compress, which compares every codec");
   if (bo.error_budget_option->count() > 0)
     throw Error("--error-budget",
+                "does not apply to bench compress, which compares codecs at one --kept-fraction");
+  if (bo.size_limit_option->count() > 0)
+    throw Error("--size-limit",
                 "does not apply to bench compress, which compares codecs at one --kept-fraction");
   const double kept = bo.kept_fraction;
   if (!(kept > 0.0 && kept < 1.0))
@@ -390,11 +443,13 @@ void register_bench_compress(CLI::App& bench) {
       "written); a BAKE folder from `bounce bake` is read as it is and needs T.npy (bake with "
       "--dump-matrices). Then one table, one row per encoder and ordering: ordering and encoding "
       "seconds, total bytes (kept CSR + blocks + permutation), mean/max/sum |error|, relative "
-      "Frobenius error, indirect-light error (mean relative RMS over the evaluation lights), "
-      "and sum |error| and size relative to the paper row (libsquish cluster fit, paper's "
+      "Frobenius error, indirect-light error (relative RMS, mean and worst over the evaluation "
+      "lights), and sum |error|, worst light error and size relative to the paper row (libsquish "
+      "cluster fit, paper's "
       "2-pass ordering, 4% kept). Every row but the last is the published pipeline (its kept "
-      "split and log quantiser) with the encoder and ordering swapped; the last row is our whole "
-      "default codec at the same kept fraction. "
+      "split and log quantiser) with the encoder and ordering swapped; the last rows are our "
+      "codec at the same kept fraction keeping the largest entries, and as bakes use it, "
+      "keeping and weighing entries by the light they carry. "
       "Each ordering is computed once and shared by the encoders. Takes minutes: the paper's "
       "ordering is O(N^3).\n\nExample:\n  bounce bench compress resources/scenes/cornell-bunny "
       "--patches-total 4096");
@@ -408,7 +463,10 @@ void register_bench_compress(CLI::App& bench) {
       "(default 0.04, the paper's; the paper row always keeps 0.04)");
   cmd->get_option("--codec")->group("");  // hidden: the bench compares every codec
   opt->bake.error_budget_option->group("");
+  opt->bake.size_limit_option->group("");
   opt->bake.kept_fraction_option->remove_excludes(opt->bake.error_budget_option);
+  opt->bake.kept_fraction_option->remove_excludes(opt->bake.size_limit_option);
+  opt->bake.size_limit_option->remove_excludes(opt->bake.kept_fraction_option);
   opt->bake.error_budget_option->remove_excludes(opt->bake.kept_fraction_option);
   cmd->add_option("--encoders", opt->encoders,
                   "BC1 encoders to compare, comma-separated: weighted (ours), squish-cluster "

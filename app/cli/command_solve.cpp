@@ -3,7 +3,11 @@
 // indirect), the lit mesh as a PLY with vertex colours, and the scene
 // camera's pictures (direct, indirect, full) as PNG and EXR. The frame on
 // the patches runs through the runtime's frame graph (runtime/runtime_frame.h).
+// With --compare-exact, the same frame through the exact matrix too, and
+// what the compression changes: per patch, per vertex (in the PLY) and per
+// pixel of the camera's indirect picture (an error picture).
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -21,6 +25,10 @@
 #include "console_progress.h"
 #include "io/npy.h"
 #include "io/ply_writer.h"
+#include "metrics/error_heat_map.h"
+#include "metrics/image_metrics.h"
+#include "metrics/patch_light_error.h"
+#include "metrics/vertex_metrics.h"
 #include "raytrace/ray_tracer.h"
 #include "runtime/camera_image.h"
 #include "runtime/compressed_transport.h"
@@ -49,7 +57,11 @@ struct SolveOptions {
   bool no_images = false, no_mesh = false;
   bool json = false, quiet = false;
   bool float32 = false;  // the C++ product in float32 instead of the default bfloat16 loop
+  bool compare_exact = false;
 };
+
+// The error picture's colour map runs from 0 to this relative error.
+constexpr double kErrorPictureFullScale = 0.1;
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) {
@@ -175,10 +187,21 @@ void run_solve(const SolveOptions& opt) {
   // auto multiplies a dense bake (T.npy, no T.dds) with its dense matrix, so
   // T.npy is read then; a compressed bake's T.npy (--dump-matrices) is only
   // read when --multiply dense asks for it: it can be large.
-  const BakeReader::Dense dense = opt.multiply == "dense"  ? BakeReader::Dense::kRead
+  if (opt.compare_exact && opt.multiply == "dense")
+    throw Error("--compare-exact",
+                "compares the compressed product with the exact one; --multiply dense would "
+                "compare the exact one with itself");
+  const BakeReader::Dense dense = opt.multiply == "dense" || opt.compare_exact
+                                      ? BakeReader::Dense::kRead
                                   : opt.multiply == "auto" ? BakeReader::Dense::kIfNotCompressed
                                                            : BakeReader::Dense::kSkip;
   const LoadedBake bake = BakeReader::read(opt.bake, dense);
+  if (opt.compare_exact && !bake.compressed)
+    throw Error(opt.bake,
+                "stores the exact matrix (dense): --compare-exact has no compression "
+                "error to show");
+  if (opt.compare_exact && bake.dense.empty())
+    throw Error(opt.bake, "holds no exact T.npy for --compare-exact (bake with --dump-matrices)");
   timings["read_bake"] = since(t);
 
   t = Clock::now();
@@ -238,6 +261,24 @@ void run_solve(const SolveOptions& opt) {
   };
   json files = json::array({"patch_light.npy"});
 
+  // The exact product of the same first-hit light, for --compare-exact.
+  std::vector<glm::vec3> first_hit(n), indirect(n), exact_indirect;
+  for (std::size_t p = 0; p < n; ++p) {
+    first_hit[p] = recorded(p, 1);
+    indirect[p] = recorded(p, 2);
+  }
+  nlohmann::ordered_json comparison;
+  if (opt.compare_exact) {
+    std::vector<const float*> exact_matrices;
+    for (const auto& m : bake.dense) exact_matrices.push_back(m.data());
+    exact_indirect.resize(n);
+    dense_indirect(exact_matrices, n, bake.channel_of_rgb, first_hit, exact_indirect);
+    std::vector<float> patch_area;
+    for (const Patch& p : bake.patches.patches) patch_area.push_back(p.area);
+    comparison["patch_indirect_rel_rms"] =
+        area_weighted_relative_rms(patch_area, indirect, exact_indirect);
+  }
+
   const TransferGrid grid = TransferGrid::from_manifest(bake.manifest);
   ConsoleProgress console(opt.quiet || opt.json);
   const std::optional<FinalGather> gather = read_final_gather(opt.bake, n);
@@ -270,24 +311,69 @@ void run_solve(const SolveOptions& opt) {
       mesh = transfer_to_mesh(tracer, bake.patches.patches, grid, frame.exitance(),
                               TransferSettings{}, &console.progress());
     }
-    write_lit_ply(out / "lit.ply", {mesh.positions, mesh.normals, mesh.radiosity, mesh.triangles});
+    std::vector<float> error_abs, error_rel;
+    std::vector<PlyScalar> scalars;
+    if (opt.compare_exact) {
+      // The same mesh lit through the exact matrix.
+      LitMesh exact_mesh = mesh;
+      std::vector<glm::vec3> reflected(n);
+      for (std::size_t p = 0; p < n; ++p) reflected[p] = first_hit[p] + exact_indirect[p];
+      if (gather) {
+        std::vector<glm::vec3> gathered;
+        gather->irradiance(reflected, gathered);
+        light_vertices(tracer, scene.lights, area, gathered, exact_mesh);
+      } else {
+        std::vector<glm::vec3> exitance(n);
+        for (std::size_t p = 0; p < n; ++p)
+          exitance[p] = bake.patches.patches[p].emission + reflected[p];
+        exact_mesh = transfer_to_mesh(tracer, bake.patches.patches, grid, exitance,
+                                      TransferSettings{}, &console.progress());
+      }
+      error_rel = vertex_relative_errors(mesh.radiosity, exact_mesh.radiosity);
+      for (std::size_t v = 0; v < mesh.radiosity.size(); ++v)
+        error_abs.push_back(glm::length(mesh.radiosity[v] - exact_mesh.radiosity[v]));
+      scalars = {{"error_abs", &error_abs}, {"error_rel", &error_rel}};
+      const VertexErrors ve = vertex_errors(mesh.radiosity, exact_mesh.radiosity);
+      comparison["vertices"] = ve.vertices;
+      comparison["vertex_rel_rms"] = ve.relative_rmse;
+      comparison["vertex_mean_relative"] = ve.mean_relative;
+      comparison["vertex_max_relative"] = ve.max_relative;
+    }
+    write_lit_ply(out / "lit.ply", {mesh.positions, mesh.normals, mesh.radiosity, mesh.triangles},
+                  scalars);
     files.push_back("lit.ply");
     timings["mesh_transfer"] = since(t);
   }
   if (!opt.no_images) {
     t = Clock::now();
     // The camera adds the direct light itself: gather only the indirect.
-    std::vector<glm::vec3> tb(n);
-    for (std::size_t p = 0; p < n; ++p) tb[p] = recorded(p, 2);
-    const PatchGather indirect(bake.patches.patches, tb, grid, &tracer, GatherSettings{});
+    const PatchGather gather_indirect(bake.patches.patches, indirect, grid, &tracer,
+                                      GatherSettings{});
     CameraImageSettings cs;
     cs.width = opt.width;
     cs.height = opt.height;
     cs.samples_per_side = opt.samples;
-    const CameraImages images = render_camera(tracer, indirect, cs, &console.progress());
+    const CameraImages images = render_camera(tracer, gather_indirect, cs, &console.progress());
     write_camera_images(images, out, "camera");
     for (const char* part : {"direct", "indirect", "full"})
       for (const char* ext : {".png", ".exr"}) files.push_back(std::string("camera_") + part + ext);
+    if (opt.compare_exact) {
+      const PatchGather exact_gather(bake.patches.patches, exact_indirect, grid, &tracer,
+                                     GatherSettings{});
+      const CameraImages exact = render_camera(tracer, exact_gather, cs, &console.progress());
+      write_exr(out / "camera_indirect_error.exr",
+                absolute_difference(images.indirect, exact.indirect));
+      write_png(out / "camera_indirect_error.png",
+                relative_error_heat_map(images.indirect, exact.indirect, images.coverage,
+                                        kErrorPictureFullScale));
+      files.push_back("camera_indirect_error.exr");
+      files.push_back("camera_indirect_error.png");
+      const ImageErrors ie =
+          image_errors(images.indirect, exact.indirect, mask_from_coverage(images.coverage));
+      comparison["image_indirect_rel_rms"] = ie.relative_rmse;
+      comparison["image_pixels"] = ie.pixels;
+      comparison["error_picture_full_scale"] = kErrorPictureFullScale;
+    }
     timings["camera_images"] = since(t);
   }
   timings["total"] = since(start);
@@ -316,6 +402,7 @@ void run_solve(const SolveOptions& opt) {
       {"indirect_power", indirect_sum},
       {"out", out.string()},
       {"files", files},
+      {"compare_exact", comparison.empty() ? nlohmann::ordered_json() : comparison},
       {"frame_graph",
        {{"passes", passes},
         {"transient_bytes", frame.transient_bytes()},
@@ -337,6 +424,25 @@ void run_solve(const SolveOptions& opt) {
       "%zu bytes of persistent per-patch buffers\n",
       frame.graph().passes().size(), frame.transient_bytes(), frame.unaliased_transient_bytes(),
       frame.imported_bytes());
+  if (!comparison.empty()) {
+    std::printf(
+        "  compressed against the exact matrix: indirect light relative RMS %.4g per "
+        "patch (area-weighted)",
+        comparison["patch_indirect_rel_rms"].get<double>());
+    if (comparison.contains("vertex_rel_rms"))
+      std::printf(", %.4g per vertex (max relative %.4g)",
+                  comparison["vertex_rel_rms"].get<double>(),
+                  comparison["vertex_max_relative"].get<double>());
+    if (comparison.contains("image_indirect_rel_rms")) {
+      // JSON keeps an infinite ratio as null: the exact picture is black.
+      const auto& image = comparison["image_indirect_rel_rms"];
+      if (image.is_number() && std::isfinite(image.get<double>()))
+        std::printf(", %.4g over the camera's indirect picture", image.get<double>());
+      else
+        std::printf(", none over the camera's indirect picture (black through the exact matrix)");
+    }
+    std::printf("\n");
+  }
   std::printf("  %-22s %10s\n", "step", "time (ms)");
   for (const auto& [k, v] : timings.items())
     std::printf("  %-22s %10.2f\n", k.c_str(), 1e3 * v.get<double>());
@@ -374,6 +480,12 @@ void register_solve(CLI::App& app) {
   cmd->add_flag("--float32", opt->float32,
                 "Compressed C++ product in float32 (default: bfloat16 products with float32 "
                 "sums where the CPU has AVX-512 BF16, ~1e-3 of the largest entry off float32)");
+  cmd->add_flag("--compare-exact", opt->compare_exact,
+                "Also light the frame through the exact matrix (T.npy: bake with "
+                "--dump-matrices) and write what compression changes: per-vertex error_abs "
+                "(|L~ - L|, RGB) and error_rel (relative, largest channel) in lit.ply, "
+                "camera_indirect_error.exr (|I~ - I|) and .png (relative error of the indirect "
+                "picture, colour map 0..10%), and the figures in the summary");
   cmd->add_flag("--no-images", opt->no_images, "Skip the camera pictures");
   cmd->add_flag("--no-mesh", opt->no_mesh, "Skip the lit PLY mesh");
   cmd->add_flag("--json", opt->json, "Print a machine-readable summary with timings per step");

@@ -34,6 +34,7 @@ struct BakeOptions {
   std::string ordering = "auto";
   double kept_fraction = 0.04;
   double error_budget = BakeSettings::kDefaultErrorBudget;
+  double size_limit = BakeSettings::kDefaultSizeLimit;
   std::string gemm = "auto";
   std::string out_of_core = "auto";
   std::string out_of_core_dir;
@@ -47,6 +48,7 @@ struct BakeOptions {
   CLI::Option* samples_per_face_option = nullptr;
   CLI::Option* kept_fraction_option = nullptr;
   CLI::Option* error_budget_option = nullptr;
+  CLI::Option* size_limit_option = nullptr;
 
   void add_to(CLI::App& cmd, bool with_output);
   BakeSettings settings() const;

@@ -138,6 +138,7 @@ ExactTransport bake_exact_transport(const std::string& scene_path, BakeSettings 
   settings.codec = CodecChoice::Dense;
   settings.kept_fraction.reset();
   settings.error_budget.reset();
+  settings.size_limit.reset();
   settings.pictures = false;
   settings.dump_matrices = false;
   Diagnostics diagnostics;

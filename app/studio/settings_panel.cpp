@@ -97,8 +97,9 @@ SettingsPanel::SettingsPanel(QWidget* parent)
   budget_box_->setSingleStep(0.01);
   budget_box_->setValue(BakeSettings::kDefaultErrorBudget);
   budget_box_->setToolTip(
-      tr("Relative error the compressed matrix may have (0.05 = 5%); the codec keeps the "
-         "fewest exact values that meet it"));
+      tr("Relative RMS error of the indirect light the compressed matrix may cause, on the "
+         "worst evaluation light (0.02 = 2%); the codec keeps the fewest exact values that "
+         "meet it"));
 
   auto* form = new QFormLayout(this);
   form->addRow(tr("Grid"), grid_box_);

@@ -15,6 +15,11 @@ void BakeSettings::apply_scene_defaults(const BakeDefaults& d) {
   }
   if (!patches_per_voxel) patches_per_voxel = d.patches_per_voxel.value_or(kDefaultPatchesPerVoxel);
   if (!samples_per_face) samples_per_face = d.samples_per_face.value_or(kDefaultSamplesPerFace);
+  // The scene's budget only where a budget applies: a kept fraction, the
+  // paper's pipeline and the dense matrix each decide the matrix otherwise.
+  if (!error_budget && d.error_budget && !kept_fraction && codec != CodecChoice::Paper &&
+      codec != CodecChoice::Dense)
+    error_budget = d.error_budget;
 }
 
 static void require(bool ok, const char* option, const std::string& what) {
@@ -53,6 +58,15 @@ void BakeSettings::validate() const {
   if (error_budget)
     require(*error_budget > 0.0 && *error_budget < 1.0, "--error-budget",
             "must be between 0 and 1 (exclusive), got " + std::to_string(*error_budget));
+  if (size_limit)
+    require(*size_limit > 0.0 && *size_limit <= 1.0, "--size-limit",
+            "must be a share of the dense float32 RGB matrix above 0 and at most 1, got " +
+                std::to_string(*size_limit));
+  require(!(size_limit &&
+            (kept_fraction || codec == CodecChoice::Paper || codec == CodecChoice::Dense)),
+          "--size-limit",
+          "only bounds the error budget's search (--codec auto or ours without "
+          "--kept-fraction)");
   require(!(kept_fraction && error_budget), "--error-budget",
           "cannot be combined with --kept-fraction: the budget chooses the kept fraction");
   require(!(codec == CodecChoice::Paper && error_budget), "--error-budget",

@@ -59,9 +59,15 @@ struct BakeSettings {
   // `paper`; for ours the smallest fraction of kKeptFractionLadder that meets
   // the error budget.
   std::optional<double> kept_fraction;
-  // Relative Frobenius error ||T~ - T||_F / ||T||_F the compressed matrix may
-  // have (ours). Unset: kDefaultErrorBudget.
+  // Relative RMS error of the indirect light the compressed matrix may cause
+  // (ours): area-weighted over patches and colour channels, on the worst of
+  // the evaluation lights (compress/compression_error.h) that put any
+  // indirect light on the patches. Unset: the scene's bake block, else
+  // kDefaultErrorBudget.
   std::optional<double> error_budget;
+  // Largest size the error budget's search may give the compressed matrix, as
+  // a share of dense float32 RGB (3 N^2 x 4 bytes). Unset: kDefaultSizeLimit.
+  std::optional<double> size_limit;
   // Row/column ordering before block encoding (paper, ours). Unset: the
   // codec's own (paper: the greedy tour, 2 passes; ours: sketch + tour).
   std::optional<OrderingMethod> ordering;
@@ -80,10 +86,13 @@ struct BakeSettings {
   // Dense float RGB of 1 MiB is N = 295 patches: a dense product costs under a
   // millisecond and compression would only add error.
   static constexpr std::size_t kDenseUpToBytes = 1u << 20;
-  // 5% relative Frobenius error: what the paper's pipeline reaches at 4% kept
-  // on our scenes is larger; the budget lets ours keep fewer entries where it
-  // can and more where it must.
-  static constexpr double kDefaultErrorBudget = 0.05;
+  // 2% relative RMS error of the indirect light on the worst evaluation
+  // light: well below what a viewer notices in smooth indirect light, and
+  // what ours reaches on our scenes within kDefaultSizeLimit.
+  static constexpr double kDefaultErrorBudget = 0.02;
+  // 1/8 of dense float32 RGB: compression that saves less than that is not
+  // worth its error next to the exact matrix.
+  static constexpr double kDefaultSizeLimit = 0.125;
 
   // Fills unset values from the scene's bake block, then the defaults, so
   // every optional above except the grid choice has a value afterwards.

@@ -161,11 +161,23 @@ json storage_json(const MatrixStorage& s, std::size_t probe_lights_total) {
   m["encoder"] = c.encoder;
   m["ordering"] = c.ordering;
   m["kept_fraction"] = c.kept_fraction;
+  m["light_weighted"] = c.light_weighted;
+  m["kept_passes"] = c.kept_passes;
+  m["lights_rebalanced"] = c.lights_rebalanced;
   m["error_budget"] = s.error_budget ? json(*s.error_budget) : json();
+  if (s.error_budget) {
+    m["error_budget_metric"] = "errors.indirect_light.rel_rms_max";
+    m["error_budget_met"] = s.error_budget_met;
+    m["error_budget_outcome"] = s.error_budget_outcome;
+    m["size_limit"] = s.size_limit ? json(*s.size_limit) : json();
+    m["size_limit_bytes"] = s.size_limit_bytes;
+  }
   json trials = json::array();
   for (const KeptFractionTrial& t : s.trials)
     trials.push_back({{"kept_fraction", t.kept_fraction},
                       {"rel_frobenius", t.rel_frobenius},
+                      {"light_rel_rms_max", t.light.rel_rms_max},
+                      {"light_rel_rms_mean", t.light.rel_rms_mean},
                       {"bytes", t.bytes}});
   m["kept_fraction_trials"] = trials;
   json quantizers = json::array();

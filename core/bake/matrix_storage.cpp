@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "compress/entry_importance.h"
+#include "compress/light_rebalance.h"
 #include "transport/text_format.h"
 
 namespace bounce {
@@ -11,19 +13,98 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-struct Trial {
-  CompressedMatrix compressed;
-  CompressionErrors errors;
-};
+using Trial = MeasuredCompression;
 
-Trial compress_and_measure(const std::vector<const float*>& exact, std::size_t n,
-                           const CodecSettings& codec, const IndirectLightProbe& probe,
-                           std::vector<float>* abs_error_sum, Progress* progress,
-                           CompressionExecutor* executor) {
-  Trial t;
-  t.compressed = compress_matrix(exact, n, codec, progress, executor);
-  t.errors = measure_compression(exact, t.compressed, probe, abs_error_sum, progress);
-  return t;
+// The smallest kept fraction of the ladder whose light error meets the
+// budget within the size limit; when none does, the largest that fits (the
+// smallest light error the limit allows), said plainly.
+Trial search_kept_fraction(const std::vector<const float*>& exact, std::size_t n,
+                           const IndirectLightProbe& probe, const BakeSettings& settings,
+                           CodecSettings codec, MatrixStorage& s, Progress* progress,
+                           Diagnostics& diagnostics, CompressionExecutor* executor) {
+  const double budget = settings.error_budget.value_or(BakeSettings::kDefaultErrorBudget);
+  const double limit = settings.size_limit.value_or(BakeSettings::kDefaultSizeLimit);
+  s.error_budget = budget;
+  s.size_limit = limit;
+  s.size_limit_bytes =
+      static_cast<std::size_t>(std::floor(limit * static_cast<double>(s.dense_rgb_bytes)));
+  const int channels = static_cast<int>(exact.size());
+  constexpr int kRungs = static_cast<int>(std::size(kKeptFractionLadder));
+  // The rungs that fit: the size of a rung is known before compressing.
+  int top = -1;
+  while (top + 1 < kRungs &&
+         predicted_total_bytes(n, channels, kKeptFractionLadder[top + 1]) <= s.size_limit_bytes)
+    ++top;
+  const bool nothing_fits = top < 0;
+  if (nothing_fits) top = 0;
+  // The light error falls as more entries are kept: bisect on [0, top]. Only
+  // two trials are needed afterwards: the best that met the budget, and the
+  // last one tried (the top rung when none met it). Each keeps its error map,
+  // so the chosen one is not measured twice.
+  int lo = 0, hi = top, best = -1;
+  std::optional<Trial> passed, last;
+  std::vector<float> passed_map, last_map;
+  while (lo <= hi) {
+    const int mid = (lo + hi) / 2;
+    codec.kept_fraction = kKeptFractionLadder[mid];
+    last = compress_for_light(exact, n, codec, probe, &last_map, progress, executor);
+    s.trials.push_back({codec.kept_fraction, last->errors.matrix.rel_frobenius,
+                        last->errors.indirect, last->compressed.total_bytes()});
+    if (budgeted_light_error(last->errors.indirect) <= budget) {
+      best = mid;
+      hi = mid - 1;
+      passed = std::move(last);
+      passed_map.swap(last_map);
+    } else {
+      lo = mid + 1;
+    }
+  }
+  const double mib = 1.0 / (1 << 20);
+  const auto bytes_text = [&](std::size_t bytes) {
+    return text_format("%.1f MiB, %.1fx smaller than dense float32 RGB",
+                       static_cast<double>(bytes) * mib,
+                       static_cast<double>(s.dense_rgb_bytes) / static_cast<double>(bytes));
+  };
+  const std::string limit_text = text_format("the size limit (%g of dense float32 RGB: %.1f MiB)",
+                                             limit, static_cast<double>(s.size_limit_bytes) * mib);
+  s.error_budget_met = best >= 0;
+  if (!s.error_budget_met) {
+    best = top;  // bisection that never passes ends on the top rung
+    passed = std::move(last);
+    passed_map.swap(last_map);
+  }
+  if (!passed) throw Error("compress", "the kept-fraction search compressed nothing");
+  const IndirectLightError& light = passed->errors.indirect;
+  const std::size_t bytes = passed->compressed.total_bytes();
+  if (s.error_budget_met) {
+    s.error_budget_outcome = text_format(
+        "met: kept fraction %g gives a light error of %.3g on the worst of %zu evaluation "
+        "lights (mean %.3g), within the budget %g; %s, within %s",
+        kKeptFractionLadder[best], budgeted_light_error(light), light.lights, light.rel_rms_mean,
+        budget, bytes_text(bytes).c_str(), limit_text.c_str());
+  } else {
+    s.error_budget_outcome = text_format(
+        "NOT met: %s; kept fraction %g, %s, gives a light error of %.3g on the worst of %zu "
+        "evaluation lights (mean %.3g) against the budget %g. Kept that instead; for the "
+        "budget, raise --size-limit or use --codec dense (exact, %.1f MiB)",
+        nothing_fits ? ("no kept fraction fits " + limit_text).c_str()
+                     : ("no kept fraction within " + limit_text + " meets it").c_str(),
+        kKeptFractionLadder[best], bytes_text(bytes).c_str(), budgeted_light_error(light),
+        light.lights, light.rel_rms_mean, budget, static_cast<double>(s.dense_bytes) * mib);
+    diagnostics.warn("compress", "error budget " + s.error_budget_outcome);
+  }
+  if (passed->errors.indirect.lights == 0)
+    diagnostics.warn("compress",
+                     "no evaluation light puts any indirect light on the patches: the light "
+                     "error is zero whatever is kept and the budget chose the smallest kept "
+                     "fraction");
+  s.abs_error_sum = std::move(passed_map);
+  s.decisions.push_back(
+      {text_format("kept fraction: %g", kKeptFractionLadder[best]),
+       text_format("error budget %g on the indirect light (%zu of the %d kept fractions tried): "
+                   "%s",
+                   budget, s.trials.size(), top + 1, s.error_budget_outcome.c_str())});
+  return std::move(*passed);
 }
 
 }  // namespace
@@ -90,59 +171,27 @@ MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t
   CodecSettings codec;
   codec.kind = choice == CodecChoice::Paper ? CodecKind::Paper : CodecKind::Ours;
   codec.ordering = settings.ordering;
+  // Ours spends its bytes where the evaluation lights' light goes.
+  EntryImportance importance;
+  if (codec.kind == CodecKind::Ours) {
+    importance = light_importance(exact, n, probe.first_hit, probe.channel_of_rgb, probe.area);
+    codec.importance = &importance;
+    s.decisions.push_back(
+        {"kept entries and block weights: by the light they carry",
+         text_format("each entry weighted by its row's patch area and by how much light its "
+                     "column carries over the %zu evaluation lights (floor %g of the mean)",
+                     probe.first_hit.size(), static_cast<double>(kColumnWeightFloor))});
+  }
   Trial chosen;
   if (settings.kept_fraction || choice == CodecChoice::Paper) {
     codec.kept_fraction = settings.kept_fraction.value_or(0.04);
     s.decisions.push_back(
         {text_format("kept fraction: %g", codec.kept_fraction),
          settings.kept_fraction ? "requested" : "the published pipeline keeps 4% of the entries"});
-    chosen = compress_and_measure(exact, n, codec, probe, &s.abs_error_sum, progress, executor);
+    chosen = compress_for_light(exact, n, codec, probe, &s.abs_error_sum, progress, executor);
   } else {
-    // The smallest kept fraction of the ladder whose relative Frobenius error
-    // meets the budget. The error falls as more entries are kept, so bisect.
-    const double budget = settings.error_budget.value_or(BakeSettings::kDefaultErrorBudget);
-    s.error_budget = budget;
-    constexpr int kRungs = static_cast<int>(std::size(kKeptFractionLadder));
-    int lo = 0, hi = kRungs - 1, best = -1;
-    // Only two trials are ever needed afterwards: the best that met the
-    // budget, and the last one tried (the top rung when none met it). Each
-    // keeps its error map, so the chosen one is not measured twice.
-    std::optional<Trial> passed, last;
-    std::vector<float> passed_map, last_map;
-    while (lo <= hi) {
-      const int mid = (lo + hi) / 2;
-      codec.kept_fraction = kKeptFractionLadder[mid];
-      last = compress_and_measure(exact, n, codec, probe, &last_map, progress, executor);
-      s.trials.push_back(
-          {codec.kept_fraction, last->errors.matrix.rel_frobenius, last->compressed.total_bytes()});
-      if (last->errors.matrix.rel_frobenius <= budget) {
-        best = mid;
-        hi = mid - 1;
-        passed = std::move(last);
-        passed_map.swap(last_map);
-      } else {
-        lo = mid + 1;
-      }
-    }
-    if (best < 0) {
-      best = kRungs - 1;  // bisection that never passes ends on the top rung
-      diagnostics.warn("compress",
-                       text_format("no kept fraction up to %g meets the error budget %g (relative "
-                                   "Frobenius error %.3g): keeping %g; use --codec dense for an "
-                                   "exact matrix",
-                                   kKeptFractionLadder[best], budget,
-                                   last->errors.matrix.rel_frobenius, kKeptFractionLadder[best]));
-      passed = std::move(last);
-      passed_map.swap(last_map);
-    }
-    chosen = std::move(*passed);
-    s.abs_error_sum = std::move(passed_map);
-    codec.kept_fraction = kKeptFractionLadder[best];
-    s.decisions.push_back(
-        {text_format("kept fraction: %g", codec.kept_fraction),
-         text_format("the smallest of %zu tried whose relative Frobenius error (%.3g) meets the "
-                     "error budget %g",
-                     s.trials.size(), chosen.errors.matrix.rel_frobenius, budget)});
+    chosen =
+        search_kept_fraction(exact, n, probe, settings, codec, s, progress, diagnostics, executor);
   }
   s.errors = chosen.errors;
   s.stored_bytes = chosen.compressed.total_bytes();

@@ -12,6 +12,7 @@
 #include "base/progress.h"
 #include "compress/codec.h"
 #include "compress/compression_error.h"
+#include "compress/light_rebalance.h"
 #include "transport/transport.h"
 
 namespace bounce {
@@ -19,6 +20,7 @@ namespace bounce {
 struct KeptFractionTrial {
   double kept_fraction = 0.0;
   double rel_frobenius = 0.0;
+  IndirectLightError light;  // what the error budget is measured on
   std::size_t bytes = 0;
 };
 
@@ -30,7 +32,16 @@ struct MatrixStorage {
   std::size_t dense_rgb_bytes = 0;        // float32, three channels: the reference of ratios
   std::size_t stored_bytes = 0;           // what the bake keeps of the matrix
   std::vector<KeptFractionTrial> trials;  // ours with an error budget
+  // Ours with an error budget: the budget (relative RMS error of the indirect
+  // light on the worst evaluation light), the size the search may spend, and
+  // whether the chosen matrix meets the budget.
   std::optional<double> error_budget;
+  std::optional<double> size_limit;  // share of dense float32 RGB
+  std::size_t size_limit_bytes = 0;
+  bool error_budget_met = false;
+  // Said plainly: what the search found, and what it did when the budget
+  // could not be met within the size limit.
+  std::string error_budget_outcome;
   std::vector<TransportDecision> decisions;
   // Sum over stored channels of |T~ - T| per entry (patch order); empty when dense.
   std::vector<float> abs_error_sum;
@@ -43,8 +54,11 @@ struct MatrixStorage {
   }
 };
 
-// Kept fractions tried by the error budget, smallest first.
-inline constexpr double kKeptFractionLadder[] = {0.0025, 0.005, 0.01, 0.02, 0.04, 0.08, 0.16, 0.32};
+// Kept fractions tried by the error budget, smallest first. Steps of about
+// 1.5x around the few percent where real scenes meet the budget: each step
+// up costs 8 bytes per entry kept and channel.
+inline constexpr double kKeptFractionLadder[] = {0.0025, 0.005, 0.01, 0.015, 0.02, 0.03, 0.04,
+                                                 0.06,   0.08,  0.12, 0.16,  0.24, 0.32};
 
 // `executor`: where the block encoding of every compression tried runs (a
 // distributed bake's ranks; compress_matrix); nullptr: in this process.

@@ -126,6 +126,9 @@ RebakePlan plan_rebake(const Scene& scene, const BakeSettings& previous, const B
   changed(previous.error_budget != s.error_budget, BakeStage::Compress,
           "error budget: " + optional_text(previous.error_budget) + " -> " +
               optional_text(s.error_budget));
+  changed(
+      previous.size_limit != s.size_limit, BakeStage::Compress,
+      "size limit: " + optional_text(previous.size_limit) + " -> " + optional_text(s.size_limit));
   changed(previous.ordering != s.ordering, BakeStage::Compress,
           "ordering: " + ordering_text(previous.ordering) + " -> " + ordering_text(s.ordering));
   return plan;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <string>
 
 #include "base/error.h"
@@ -48,6 +49,16 @@ std::size_t CompressedMatrix::sparse_bytes() const {
   std::size_t b = 0;
   for (const CsrMatrix& k : kept) b += k.bytes();
   return b;
+}
+
+std::size_t predicted_total_bytes(std::size_t n, int channels, double kept_fraction) {
+  const std::size_t padded = (n + 3) / 4 * 4;
+  const auto kept = static_cast<std::size_t>(
+      std::llround(kept_fraction * static_cast<double>(n) * static_cast<double>(n)));
+  const std::size_t csr =
+      (n + 1) * sizeof(std::uint32_t) + kept * (sizeof(std::uint32_t) + sizeof(float));
+  return static_cast<std::size_t>(channels) * csr + padded / 4 * (padded / 4) * 8 +
+         n * sizeof(std::uint32_t);
 }
 
 const char* codec_name(CodecKind kind) { return kind == CodecKind::Paper ? "paper" : "ours"; }
@@ -109,9 +120,15 @@ void place_block_rows(const BlockEncoding& e, std::size_t first, std::size_t cou
                 blocks.begin() + static_cast<std::ptrdiff_t>(i * image_bytes + first * row_bytes));
 }
 
-CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std::size_t n,
-                                 const CodecSettings& settings, Progress* progress,
-                                 CompressionExecutor* executor) {
+namespace {
+
+// One compression. `keys`: per stored channel, the n x n key that decides
+// which entries are kept (the largest); null: the codec's own (the value, or
+// with an EntryImportance the value times the square root of its weight).
+CompressedMatrix compress_once(const std::vector<const float*>& matrices, std::size_t n,
+                               const CodecSettings& settings,
+                               const std::vector<std::vector<float>>* keys, Progress* progress,
+                               CompressionExecutor* executor) {
   CompressedMatrix m;
   m.n = n;
   m.padded = (n + 3) / 4 * 4;
@@ -133,24 +150,44 @@ CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std:
   auto t = Clock::now();
   std::vector<std::uint8_t> codes(n * n * image_channels, 0);
   std::vector<float> weights(n * n * image_channels, 0.0f);
+  const EntryImportance* importance = paper ? nullptr : settings.importance;
+  if (importance && (importance->row.size() != n || importance->column.size() != matrices.size()))
+    throw Error("compress", "the entry importance does not match the matrices");
+  m.light_weighted = importance != nullptr;
+  std::vector<float> score;
   for (std::size_t c = 0; c < matrices.size(); ++c) {
     const float* a = matrices[c];
-    const float threshold = kept_threshold(a, n, settings.kept_fraction);
-    m.kept.push_back(extract_kept(a, n, threshold));
+    // What decides which entries are kept: the value itself, or the value
+    // times the square root of its squared-error weight (the error an encoded
+    // entry would have is proportional to its value).
+    const float* key = a;
+    if (keys) {
+      key = (*keys)[c].data();
+    } else if (importance) {
+      score.resize(n * n);
+      const std::vector<float>& column = importance->column[c];
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < n; ++j)
+          score[i * n + j] = a[i * n + j] * std::sqrt(importance->row[i] * column[j]);
+      key = score.data();
+    }
+    const float threshold = kept_threshold(key, n, settings.kept_fraction);
+    m.kept.push_back(extract_kept(a, n, threshold, key));
     LogQuantizer q;
     for (std::size_t k = 0; k < n * n; ++k)
-      if (a[k] < threshold) q.vmax = std::max(q.vmax, a[k]);
+      if (key[k] < threshold) q.vmax = std::max(q.vmax, a[k]);
     if (!paper) {
       q.range = fitted_log_range(a, n * n, q.vmax, kOursRangeQuantile);
       q.nearest_at_zero = true;
     }
     m.quantizers.push_back(q);
     for (std::size_t k = 0; k < n * n; ++k) {
-      const bool hole = !(a[k] < threshold);
+      const bool hole = !(key[k] < threshold);
       const std::uint8_t code = hole ? 0 : q.encode(a[k]);
       // A hole's value is replaced by the kept one at decode: any code will
       // do there, so it weighs nothing (ours). The paper encodes it as 0.
-      const float w = hole ? 0.0f : q.weight(code);
+      float w = hole ? 0.0f : q.weight(code);
+      if (importance) w *= importance->weight(c, k / n, k % n);
       // Grey scene with BC1 (paper): the one matrix in R, G and B.
       const std::size_t copies = image_channels == 3 && matrices.size() == 1 ? 3 : 1;
       for (std::size_t r = 0; r < copies; ++r) {
@@ -222,7 +259,59 @@ CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std:
   return m;
 }
 
-void decompress_channel(const CompressedMatrix& m, int c, float* out) {
+// Per stored channel: what each entry's block code decodes to, against the
+// exact value, in units of the light it costs: |decoded - exact| times the
+// square root of the entry's weight. At a kept entry's hole the blocks hold
+// whatever the encoder chose there without looking: that is the error the
+// entry would have if it were not kept.
+std::vector<std::vector<float>> block_error_keys(const CompressedMatrix& m,
+                                                 const std::vector<const float*>& matrices,
+                                                 const EntryImportance& importance) {
+  const std::size_t n = m.n;
+  std::vector<std::vector<float>> keys;
+  std::vector<float> decoded(n * n);
+  for (std::size_t c = 0; c < matrices.size(); ++c) {
+    decode_blocks_of_channel(m, static_cast<int>(c), decoded.data());
+    std::vector<float> key(n * n);
+    const std::vector<float>& column = importance.column[c];
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j) {
+        const std::size_t k = i * n + j;
+        key[k] = std::abs(decoded[k] - matrices[c][k]) * std::sqrt(importance.row[i] * column[j]);
+      }
+    keys.push_back(std::move(key));
+  }
+  return keys;
+}
+
+}  // namespace
+
+CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std::size_t n,
+                                 const CodecSettings& settings, Progress* progress,
+                                 CompressionExecutor* executor) {
+  const int passes = settings.kind == CodecKind::Ours && settings.importance
+                         ? std::max(1, settings.kept_passes)
+                         : 1;
+  CompressedMatrix m = compress_once(matrices, n, settings, nullptr, progress, executor);
+  // Later passes: keep the entries the previous pass's blocks got most
+  // wrong, in light, with the first pass's ordering (the codes barely change).
+  CodecSettings again = settings;
+  again.permutation = m.permutation;
+  for (int pass = 1; pass < passes; ++pass) {
+    const std::vector<std::vector<float>> keys =
+        block_error_keys(m, matrices, *settings.importance);
+    CompressedMatrix next = compress_once(matrices, n, again, &keys, progress, executor);
+    next.ordering = m.ordering;
+    next.seconds_split += m.seconds_split;
+    next.seconds_ordering = m.seconds_ordering;
+    next.seconds_encoding += m.seconds_encoding;
+    m = std::move(next);
+  }
+  m.kept_passes = passes;
+  return m;
+}
+
+void decode_blocks_of_channel(const CompressedMatrix& m, int c, float* out) {
   const std::size_t n = m.n, w = m.padded;
   const bool bc4 = m.format == DdsFormat::kBc4;
   std::vector<std::uint8_t> decoded;
@@ -242,6 +331,11 @@ void decompress_channel(const CompressedMatrix& m, int c, float* out) {
     for (std::size_t j = 0; j < n; ++j)
       out[m.permutation[i] * n + m.permutation[j]] =
           q.decode(decoded[(i * w + j) * stride + offset]);
+}
+
+void decompress_channel(const CompressedMatrix& m, int c, float* out) {
+  decode_blocks_of_channel(m, c, out);
+  const std::size_t n = m.n;
   const CsrMatrix& kept = m.kept[static_cast<std::size_t>(c)];
   for (std::size_t i = 0; i < n; ++i)
     for (std::uint32_t k = kept.row_ptr[i]; k < kept.row_ptr[i + 1]; ++k)

@@ -11,7 +11,11 @@
 //          inverse log step (weights ~ value^2) and ignore the holes left by
 //          kept entries: BC1 weighted for colour scenes, BC4 weighted (same
 //          8 bytes per 4x4 block, one channel at full 8-bit endpoints) for
-//          grey scenes, whose single channel does not need RGB.
+//          grey scenes, whose single channel does not need RGB. Given an
+//          EntryImportance (how much each entry's error shows in the
+//          indirect light), ours keeps the entries whose error would show
+//          most instead of the largest ones, and the encoder weighs every
+//          texel by it too: the bytes go where the light goes.
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -22,6 +26,7 @@
 #include "compress/block_bc1.h"
 #include "compress/block_bc4.h"
 #include "compress/dds.h"
+#include "compress/entry_importance.h"
 #include "compress/log_quantizer.h"
 #include "compress/ordering_permutation.h"
 #include "compress/sparse_split.h"
@@ -41,6 +46,16 @@ struct CodecSettings {
   // bounce bench compress. Not a bake format: the DDS holds one image.
   bool bc4_per_channel = false;
   std::optional<OrderingMethod> ordering;
+  // Ours only: which entries matter to the light (not owned; must outlive
+  // compress_matrix). Null: the largest entries are kept and the encoder
+  // weighs only by value.
+  const EntryImportance* importance = nullptr;
+  // Ours with an importance: compress this many times, each pass after the
+  // first keeping the entries the previous pass's blocks decoded worst
+  // (weighted), with the first pass's ordering. The block error is far from
+  // proportional to the value (a block of similar codes is almost exact, one
+  // of mixed codes is not).
+  int kept_passes = 2;
   // A permutation computed before (CompressedMatrix::permutation of an earlier
   // run on the same matrices, kind, kept fraction and channel count: the
   // codes it was computed on depend on all four), used instead
@@ -65,6 +80,11 @@ struct CompressedMatrix {
   // What was used, for reports.
   std::string codec, encoder, ordering;
   double kept_fraction = 0.0;
+  bool light_weighted = false;  // kept entries and block weights chosen by EntryImportance
+  int kept_passes = 1;          // CodecSettings::kept_passes, as used
+  // The importance weighted each light by its share of an earlier
+  // compression's light error (bake/matrix_storage.h).
+  bool lights_rebalanced = false;
   double seconds_split = 0.0, seconds_ordering = 0.0, seconds_encoding = 0.0;
 
   std::size_t sparse_bytes() const;
@@ -121,6 +141,12 @@ class CompressionExecutor {
   virtual std::string description() const = 0;
 };
 
+// What compress_matrix will spend on `channels` stored channels of n x n at
+// `kept_fraction` with one block image: kept CSR (at most that share of
+// every channel; fewer when a channel has fewer positive entries) + blocks +
+// permutation. An upper bound, exact unless entries tie at the threshold.
+std::size_t predicted_total_bytes(std::size_t n, int channels, double kept_fraction);
+
 // `matrices`: 1 or 3 row-major n x n float32 matrices (T_R, T_G, T_B, or the
 // one matrix of a grey scene).
 CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std::size_t n,
@@ -130,6 +156,9 @@ CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std:
 // Stored channel c back to a dense n x n matrix in patch order (kept entries
 // exact, the rest decoded from the blocks, the permutation undone).
 void decompress_channel(const CompressedMatrix& m, int c, float* out);
+// The same without the kept entries: what the blocks hold everywhere, holes
+// included.
+void decode_blocks_of_channel(const CompressedMatrix& m, int c, float* out);
 
 const char* codec_name(CodecKind kind);
 const char* ordering_name(OrderingMethod method);

@@ -54,8 +54,12 @@ IndirectLightError indirect_light_error(const std::vector<const float*>& exact,
         ref2 += w * y_exact[p] * y_exact[p];
       }
     }
-    if (!(ref2 > 0.0)) continue;  // this light puts no indirect light anywhere
+    if (!(ref2 > 0.0)) {  // this light puts no indirect light anywhere
+      e.per_light.push_back(0.0);
+      continue;
+    }
     const double rel = std::sqrt(err2 / ref2);
+    e.per_light.push_back(rel);
     ++e.lights;
     sum += rel;
     e.rel_rms_max = std::max(e.rel_rms_max, rel);

@@ -25,6 +25,9 @@ struct IndirectLightError {
   std::size_t lights = 0;  // lights with any first-hit light on the patches
   double rel_rms_mean = 0.0;
   double rel_rms_max = 0.0;
+  // Per light of the probe, in its order: the relative RMS error, 0 for a
+  // light with no indirect light.
+  std::vector<double> per_light;
 };
 
 struct CompressionErrors {

@@ -21,7 +21,8 @@ float kept_threshold(const float* matrix, std::size_t n, double fraction) {
   return positive[keep - 1];
 }
 
-CsrMatrix extract_kept(const float* matrix, std::size_t n, float threshold) {
+CsrMatrix extract_kept(const float* matrix, std::size_t n, float threshold, const float* key) {
+  if (!key) key = matrix;
   CsrMatrix m;
   m.n = n;
   m.row_ptr.reserve(n + 1);
@@ -29,7 +30,9 @@ CsrMatrix extract_kept(const float* matrix, std::size_t n, float threshold) {
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < n; ++j) {
       const float v = matrix[i * n + j];
-      if (v > 0.0f && v >= threshold) {
+      // With a key of its own, an entry that is zero may be kept too: a
+      // zero the blocks decode as non-zero is an error like any other.
+      if (key[i * n + j] >= threshold && key[i * n + j] > 0.0f) {
         m.col.push_back(static_cast<std::uint32_t>(j));
         m.value.push_back(v);
       }

@@ -19,10 +19,13 @@ struct CsrMatrix {
 };
 
 // Value above which entries are kept: the (1 - fraction) quantile of the
-// channel's positive entries (ties kept too). fraction in [0, 1].
+// channel's positive entries (ties kept too). fraction in [0, 1]. `matrix`
+// may be any n x n key that decides what is kept (see extract_kept).
 float kept_threshold(const float* matrix, std::size_t n, double fraction);
 
-// Entries >= threshold (and > 0) in CSR form.
-CsrMatrix extract_kept(const float* matrix, std::size_t n, float threshold);
+// Entries >= threshold (and > 0) in CSR form; with `key` (n x n), the entries
+// whose key is >= threshold and > 0, zeros of the matrix included.
+CsrMatrix extract_kept(const float* matrix, std::size_t n, float threshold,
+                       const float* key = nullptr);
 
 }  // namespace bounce

@@ -27,10 +27,16 @@ void put_vec3(std::vector<char>& out, const glm::vec3& v) {
 
 }  // namespace
 
-float write_lit_ply(const std::filesystem::path& path, const PlyMeshView& mesh) {
+float write_lit_ply(const std::filesystem::path& path, const PlyMeshView& mesh,
+                    const std::vector<PlyScalar>& scalars) {
   const std::size_t n = mesh.positions.size();
   if (mesh.normals.size() != n || mesh.radiance.size() != n)
     throw Error(path.string(), "PLY: positions, normals and radiance differ in count");
+  for (const PlyScalar& s : scalars)
+    if (!s.values || s.values->size() != n || s.name.empty() ||
+        s.name.find_first_of(" \n") != std::string::npos)
+      throw Error(path.string(), "PLY: vertex property '" + s.name +
+                                     "' has no valid name or not one value per vertex");
   if (n > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
     throw Error(path.string(), "PLY: too many vertices for int indices");
   for (const glm::uvec3& t : mesh.triangles)
@@ -52,8 +58,9 @@ float write_lit_ply(const std::filesystem::path& path, const PlyMeshView& mesh) 
          << "property float x\nproperty float y\nproperty float z\n"
          << "property float nx\nproperty float ny\nproperty float nz\n"
          << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
-         << "property float radiance_r\nproperty float radiance_g\nproperty float radiance_b\n"
-         << "element face " << mesh.triangles.size() << "\n"
+         << "property float radiance_r\nproperty float radiance_g\nproperty float radiance_b\n";
+  for (const PlyScalar& s : scalars) header << "property float " << s.name << "\n";
+  header << "element face " << mesh.triangles.size() << "\n"
          << "property list uchar int vertex_indices\nend_header\n";
 
   AtomicFile file(path);
@@ -75,6 +82,7 @@ float write_lit_ply(const std::filesystem::path& path, const PlyMeshView& mesh) 
     for (int c = 0; c < 3; ++c)
       buf.push_back(static_cast<char>(ToneMap::srgb8(exposure * mesh.radiance[v][c])));
     put_vec3(buf, mesh.radiance[v]);
+    for (const PlyScalar& s : scalars) put_f32(buf, (*s.values)[v]);
     if (buf.size() >= kChunk * 39) flush();
   }
   for (const glm::uvec3& t : mesh.triangles) {

@@ -24,6 +24,12 @@ struct VertexErrors {
 VertexErrors vertex_errors(const std::vector<glm::vec3>& test,
                            const std::vector<glm::vec3>& reference);
 
+// Per vertex, the largest over channels of the relative error of
+// vertex_errors (same floor): max_relative is the largest of them. Throws
+// bounce::Error when the sizes differ.
+std::vector<float> vertex_relative_errors(const std::vector<glm::vec3>& test,
+                                          const std::vector<glm::vec3>& reference);
+
 // sqrt(max(0, sum (x - y^)^2 - sum var) / sum y^2): the relative RMSE with
 // the Monte Carlo reference's own noise (variance of each mean) removed, as
 // for images (metrics/image_metrics.h). Throws bounce::Error on size mismatch.

@@ -116,6 +116,7 @@ ordered_json report_to_json(const ReportData& report) {
          {"direct_ms", row.direct_ms},
          {"multiply_ms", row.multiply_ms},
          {"matrix_bytes", row.matrix_bytes},
+         {"compression_light_rel_rms_max", row.compression_light_error},
          {"indirect_power", row.indirect_power},
          {"image_full", errors_json(row.full)},
          {"image_indirect", errors_json(row.indirect)},
@@ -175,6 +176,7 @@ ReportData report_from_json(const json& j, const std::string& where) {
       row.direct_ms = jr.at("direct_ms").get<double>();
       row.multiply_ms = jr.at("multiply_ms").get<double>();
       row.matrix_bytes = jr.at("matrix_bytes").get<std::size_t>();
+      row.compression_light_error = jr.value("compression_light_rel_rms_max", 0.0);
       row.indirect_power = jr.value("indirect_power", 0.0);
       row.full = errors_from(jr.at("image_full"));
       row.indirect = errors_from(jr.at("image_indirect"));

@@ -31,6 +31,10 @@ struct ReportRow {
   double bake_seconds = 0.0;
   double direct_ms = 0.0, multiply_ms = 0.0;
   std::size_t matrix_bytes = 0;
+  // The compressed matrix's relative RMS error of the indirect light on the
+  // worst evaluation light, against the exact matrix (what the error budget
+  // bounds); 0 for dense and in reports from before.
+  double compression_light_error = 0.0;
   double indirect_power = 0.0;  // area-weighted, R+G+B, of T b
   ImageErrors full, indirect;
   VertexErrors vertex;

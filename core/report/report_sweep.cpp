@@ -330,6 +330,7 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
           row.seed = opt.seed;
           row.codec = codec.label();
           row.matrix_bytes = storage.stored_bytes;
+          row.compression_light_error = storage.errors.indirect.rel_rms_max;
           row.bake_seconds = shared + transport_seconds + store_seconds +
                              (codec.name == "dense" ? 0.0 : probe_seconds);
           std::shared_ptr<void> keep;

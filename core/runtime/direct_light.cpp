@@ -255,6 +255,25 @@ std::vector<Light> evaluation_lights(const Scene& scene) {
       l.intensity = 1.0f;
       lights.push_back(l);
     }
+  // Suns: a scene open to the sky is lit through its openings, by light that
+  // lands on a few patches (a sunlit floor) and enters T through their
+  // columns alone. A closed scene shadows them entirely; they then carry no
+  // light and drop out of every error figure.
+  const glm::vec3 up = glm::normalize(scene.camera.up);
+  const glm::vec3 side = std::abs(up.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  const glm::vec3 east = glm::normalize(glm::cross(up, side)), north = glm::cross(east, up);
+  k = 0;
+  for (const auto& [elevation_deg, azimuth_deg] : kEvaluationSuns) {
+    const float el = glm::radians(elevation_deg), az = glm::radians(azimuth_deg);
+    const glm::vec3 to_sun =
+        std::sin(el) * up + std::cos(el) * (std::cos(az) * east + std::sin(az) * north);
+    Light l;
+    l.type = Light::Type::Directional;
+    l.name = "evaluation-sun-" + std::to_string(k++);
+    l.direction = -to_sun;
+    l.intensity = 1.0f;
+    lights.push_back(l);
+  }
   return lights;
 }
 

@@ -7,6 +7,7 @@
 // b_c = albedo_c * E_c is the light leaving each patch after the first hit,
 // the vector the multi-bounce matrix multiplies.
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -53,9 +54,14 @@ std::vector<glm::vec3> first_bounce(const PatchSet& patches,
                                     const std::vector<glm::vec3>& irradiance);
 
 // A fixed set of test lights for error figures that do not depend on the
-// scene's own lights: the scene's lights plus four unit point lights at
-// centre + extent * (+-0.2, 0.2, +-0.2). (The bake adds the emissive
+// scene's own lights: the scene's lights, four unit point lights at
+// centre + extent * (+-0.2, 0.2, +-0.2), then one unit sun (directional
+// light) per entry of kEvaluationSuns, elevation above the horizon of the
+// scene camera's up vector and azimuth around it. (The bake adds the emissive
 // triangles, if any, as one more.)
+inline constexpr std::size_t kEvaluationPointLights = 4;
+inline constexpr std::pair<float, float> kEvaluationSuns[] = {
+    {75.0f, 30.0f}, {45.0f, 0.0f}, {45.0f, 90.0f}, {45.0f, 180.0f}, {45.0f, 270.0f}};
 std::vector<Light> evaluation_lights(const Scene& scene);
 
 }  // namespace bounce

@@ -57,6 +57,9 @@ struct BakeDefaults {
   std::optional<int> patches_total;     // target patch count (derives the resolution)
   std::optional<int> patches_per_voxel;
   std::optional<int> samples_per_face;
+  // Relative RMS error of the indirect light the compressed matrix may cause
+  // (BakeSettings::error_budget).
+  std::optional<double> error_budget;
 };
 
 struct Bounds {

@@ -263,13 +263,20 @@ std::optional<int> read_count(const JsonReader& r, const Json& bake, const char*
 
 BakeDefaults read_bake(const JsonReader& r, const Json& value) {
   r.expect_object(value, "bake");
-  r.warn_unknown_keys(value, "bake",
-                      {"voxel", "patches_total", "patches_per_voxel", "samples_per_face"});
+  r.warn_unknown_keys(
+      value, "bake",
+      {"voxel", "patches_total", "patches_per_voxel", "samples_per_face", "error_budget"});
   BakeDefaults d;
   d.voxel_resolution = read_count(r, value, "voxel", kMaxVoxelResolution);
   d.patches_total = read_count(r, value, "patches_total", kMaxPatchesTotal);
   d.patches_per_voxel = read_count(r, value, "patches_per_voxel", kMaxPatchesPerVoxel);
   d.samples_per_face = read_count(r, value, "samples_per_face", kMaxSamplesPerFace);
+  if (const Json* budget = find(value, "error_budget")) {
+    d.error_budget = r.number_f(*budget, "bake.error_budget");
+    if (!(*d.error_budget > 0.0 && *d.error_budget < 1.0))
+      r.fail("bake.error_budget",
+             "must be a relative error between 0 and 1 (exclusive), got " + budget->dump());
+  }
   return d;
 }
 

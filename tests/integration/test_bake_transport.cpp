@@ -4,64 +4,17 @@
 // from .npy) and compared with the exact T.npy, so the error figures of the
 // manifest are recomputed rather than trusted; OpenImageIO must open the DDS.
 #include <OpenImageIO/imageio.h>
-#include <squish.h>
 
 #include <numeric>
 #include <set>
 
 #include "bake/bake_reader.h"
 #include "cli_harness.h"
+#include "decoded_bake.h"
+#include "light_error_check.h"
 
 namespace bounce::itest {
 namespace {
-
-struct Decoded {
-  std::size_t n = 0;
-  std::vector<std::vector<float>> channels;  // dense n x n per stored channel, patch order
-};
-
-// Rebuilds T~ from T.dds, permutation.npy, T_kept_*.npy and the manifest's
-// quantiser parameters.
-Decoded decode_bake(const fs::path& bake, const json& compression) {
-  Decoded d;
-  const auto perm = read_npy_u32(bake / "permutation.npy");
-  d.n = perm.data.size();
-  const auto padded = compression["padded_size"].get<std::size_t>();
-  const bool bc4 = compression["format"] == "BC4";
-  // DDS: 128-byte header, then the blocks.
-  const std::string file = read_text(bake / "T.dds");
-  const std::size_t blocks = padded / 4 * padded / 4;
-  EXPECT_EQ(file.size(), 128 + 8 * blocks);
-  std::vector<squish::u8> rgba(padded * padded * 4);
-  squish::DecompressImage(rgba.data(), static_cast<int>(padded), static_cast<int>(padded),
-                          file.data() + 128, bc4 ? squish::kBc4 : squish::kDxt1);
-  const int stored = compression["stored_channels"].get<int>();
-  for (int c = 0; c < stored; ++c) {
-    const json& q = compression["quantizers"][static_cast<std::size_t>(c)];
-    const double vmax = q["vmax"].get<double>(), range = q["range"].get<double>();
-    std::vector<float> t(d.n * d.n);
-    // One stored channel lives in R (BC1) or in the single BC4 channel,
-    // which libsquish decodes into R as well.
-    const std::size_t offset = stored == 1 ? 0 : static_cast<std::size_t>(c);
-    for (std::size_t i = 0; i < d.n; ++i)
-      for (std::size_t j = 0; j < d.n; ++j) {
-        const int code = rgba[(i * padded + j) * 4 + offset];
-        // Paper 000: code = 255 (ln(v / vmax) + R) / R, code 0 = zero.
-        const double v = code == 0 ? 0.0 : vmax * std::exp(code * range / 255.0 - range);
-        t[perm.data[i] * d.n + perm.data[j]] = static_cast<float>(v);
-      }
-    const std::string base = "T_kept_" + std::to_string(c);
-    const auto row_ptr = read_npy_u32(bake / (base + "_row_ptr.npy"));
-    const auto col = read_npy_u32(bake / (base + "_col.npy"));
-    const auto value = read_npy_f32(bake / (base + "_value.npy"));
-    EXPECT_EQ(row_ptr.data.size(), d.n + 1);
-    for (std::size_t i = 0; i < d.n; ++i)
-      for (std::uint32_t k = row_ptr.data[i]; k < row_ptr.data[i + 1]; ++k)
-        t[i * d.n + col.data[k]] = value.data[k];
-    d.channels.push_back(std::move(t));
-  }
-  return d;
-}
 
 class CompressedBake : public ::testing::TestWithParam<std::string> {
  protected:
@@ -107,9 +60,16 @@ TEST_P(CompressedBake, ManifestErrorsMatchAnIndependentDecodeOfTheFiles) {
   EXPECT_GT(sum, 0.0) << "compression that loses nothing is suspicious";
 }
 
-TEST_P(CompressedBake, KeptEntriesAreExactAndTheLargest) {
+// The paper keeps the largest entries. Ours keeps, per channel, as many
+// entries (zeros included) as the kept fraction says, chosen in a second pass
+// by the error the first pass's blocks had there: exact values, the count
+// right.
+TEST_P(CompressedBake, KeptEntriesAreExactAndThePapersAreTheLargest) {
   const auto n = manifest["counts"]["patches"].get<std::size_t>();
   const int stored = compression["stored_channels"].get<int>();
+  const bool paper = GetParam() == "paper";
+  EXPECT_EQ(compression["light_weighted"].get<bool>(), !paper);
+  EXPECT_EQ(compression["kept_passes"].get<int>(), paper ? 1 : 2);
   for (int c = 0; c < stored; ++c) {
     const std::string base = "T_kept_" + std::to_string(c);
     const auto row_ptr = read_npy_u32(out / (base + "_row_ptr.npy"));
@@ -122,15 +82,37 @@ TEST_P(CompressedBake, KeptEntriesAreExactAndTheLargest) {
       for (std::uint32_t k = row_ptr.data[i]; k < row_ptr.data[i + 1]; ++k) {
         ASSERT_LT(col.data[k], n);
         ASSERT_EQ(value.data[k], t[i * n + col.data[k]]) << "kept entry not exact";
+        ASSERT_FALSE(kept[i * n + col.data[k]]) << "entry kept twice";
         kept[i * n + col.data[k]] = true;
         smallest_kept = std::min(smallest_kept, value.data[k]);
       }
-    for (std::size_t k = 0; k < n * n; ++k) {
-      if (kept[k]) continue;
-      ASSERT_LT(t[k], smallest_kept) << "a larger entry was not kept";
-    }
+    if (paper)
+      for (std::size_t k = 0; k < n * n; ++k) {
+        if (kept[k]) continue;
+        ASSERT_LT(t[k], smallest_kept) << "a larger entry was not kept";
+      }
     const double fraction = static_cast<double>(value.data.size()) / static_cast<double>(n * n);
     EXPECT_NEAR(fraction, compression["kept_fraction"].get<double>(), 0.01);
+  }
+}
+
+// The light error the manifest reports (and the budget was held to) is what
+// T.npy, the decoded T.dds and the light vectors give.
+TEST_P(CompressedBake, ManifestLightErrorMatchesARecomputationFromTheFiles) {
+  const RecomputedLightError r = recompute_light_error_of_bake(out, manifest);
+  const json& li = compression["errors"]["indirect_light"];
+  EXPECT_EQ(li["lights"].get<std::size_t>(), r.lights);
+  EXPECT_GT(r.lights, 4u) << "the scene's light and the four point lights at least";
+  // The decoders differ by float rounding of the log formula (~5e-6 of each
+  // entry), a few 1e-4 of an error of a few percent at most.
+  EXPECT_NEAR(li["rel_rms_mean"].get<double>(), r.mean, 1e-3 * r.mean);
+  EXPECT_NEAR(li["rel_rms_max"].get<double>(), r.max, 1e-3 * r.max);
+  if (compression["error_budget"].is_number()) {
+    EXPECT_EQ(compression["error_budget_metric"], "errors.indirect_light.rel_rms_max");
+    if (compression["error_budget_met"].get<bool>())
+      EXPECT_LE(r.max, compression["error_budget"].get<double>() * (1.0 + 1e-3));
+    else
+      EXPECT_GT(r.max, compression["error_budget"].get<double>() * (1.0 - 1e-3));
   }
 }
 
@@ -228,6 +210,70 @@ TEST(TransportBake, PaperCodecIsThePublishedPipeline) {
   EXPECT_EQ(c["format"], "BC1");
   EXPECT_TRUE(contains(c["encoder"].get<std::string>(), "squish")) << c["encoder"];
   EXPECT_FALSE(fs::exists(out / "T.png")) << "--no-pictures";
+}
+
+// The default budget, 2% relative RMS error of the indirect light on the
+// worst evaluation light, is met by ours on the Cornell box within the size
+// limit, by the smallest kept fraction that meets it; recomputed from the
+// files, not read from the manifest.
+TEST(TransportBake, LightBudgetHoldsOnTheCornellBox) {
+  TempDir tmp;
+  const fs::path out = tmp / "bake";
+  const RunResult r = run({"bake", scene("cornell-box"), "--voxel", "10", "--codec", "ours",
+                           "--dump-matrices", "--no-pictures", "--quiet", "--out", out.string()},
+                          tmp.path());
+  ASSERT_EQ(r.exit_code, 0) << r;
+  const json m = read_manifest(out);
+  const json c = m["compression"];
+  EXPECT_EQ(c["error_budget"].get<double>(), 0.02) << "the default budget";
+  ASSERT_TRUE(c["error_budget_met"].get<bool>()) << c["error_budget_outcome"];
+  EXPECT_TRUE(contains(c["error_budget_outcome"].get<std::string>(), "met")) << c;
+  EXPECT_LE(c["sizes"]["stored_bytes"].get<std::size_t>(),
+            c["size_limit_bytes"].get<std::size_t>());
+  EXPECT_EQ(c["size_limit"].get<double>(), 0.125);
+  // Every trial below the chosen kept fraction missed the budget; the chosen
+  // one's light error is the manifest's.
+  const double kept = c["kept_fraction"].get<double>();
+  bool chosen_tried = false;
+  for (const json& t : c["kept_fraction_trials"]) {
+    if (t["kept_fraction"].get<double>() < kept) {
+      EXPECT_GT(t["light_rel_rms_max"].get<double>(), 0.02) << t;
+    }
+    if (t["kept_fraction"].get<double>() == kept) {
+      chosen_tried = true;
+      EXPECT_EQ(t["light_rel_rms_max"], c["errors"]["indirect_light"]["rel_rms_max"]);
+    }
+  }
+  EXPECT_TRUE(chosen_tried);
+  const RecomputedLightError e = recompute_light_error_of_bake(out, m);
+  EXPECT_LE(e.max, 0.02 * (1.0 + 1e-3));
+  // Both figures are kept: the matrix norm beside the light error.
+  EXPECT_GT(c["errors"]["rel_frobenius"].get<double>(), 0.0);
+}
+
+// A budget no kept fraction within the size limit meets: the bake keeps the
+// largest kept fraction that fits, and says so in a warning and the manifest.
+TEST(TransportBake, UnreachableLightBudgetIsSaidPlainly) {
+  TempDir tmp;
+  const fs::path out = tmp / "bake";
+  const RunResult r =
+      run({"bake", scene("cornell-box"), "--voxel", "5", "--codec", "ours", "--error-budget",
+           "0.0001", "--size-limit", "0.1", "--no-pictures", "--out", out.string()},
+          tmp.path());
+  ASSERT_EQ(r.exit_code, 0) << r;
+  EXPECT_TRUE(contains(r.err, "error budget NOT met")) << r;
+  EXPECT_TRUE(contains(r.err, "--size-limit")) << r;
+  const json c = read_manifest(out)["compression"];
+  EXPECT_FALSE(c["error_budget_met"].get<bool>());
+  EXPECT_TRUE(contains(c["error_budget_outcome"].get<std::string>(), "NOT met")) << c;
+  EXPECT_GT(c["errors"]["indirect_light"]["rel_rms_max"].get<double>(), 0.0001);
+  EXPECT_LE(c["sizes"]["stored_bytes"].get<std::size_t>(),
+            c["size_limit_bytes"].get<std::size_t>());
+  // The largest kept fraction that fits was the one kept: every trial fitted.
+  double largest = 0.0;
+  for (const json& t : c["kept_fraction_trials"])
+    largest = std::max(largest, t["kept_fraction"].get<double>());
+  EXPECT_EQ(c["kept_fraction"].get<double>(), largest);
 }
 
 TEST(TransportBake, GreyFurnaceStoresOneChannelAndMatchesTheAnalyticSeries) {

@@ -1,5 +1,6 @@
 #include <QVTKOpenGLNativeWidget.h>
 #include <QMouseEvent>
+#include <set>
 
 #include "compress/matrix_picture.h"
 #include "patch_view.h"
@@ -144,6 +145,52 @@ TEST_F(PatchView, ClosureAndBalancingScaleColourEachPatch) {
       EXPECT_LT(c[0], 255) << "scaled down, patch " << p;
     }
   }
+}
+
+}  // namespace bounce::render_test
+
+namespace bounce::render_test {
+
+// The indirect-light error on the scene: the figure the view shows for the
+// scene's lights is `bounce solve --compare-exact`'s for the same bake, each
+// patch is coloured from the error map by its own relative error, and a
+// picked patch names its exact and compressed light and the entries behind
+// the difference.
+TEST_F(PatchView, IndirectErrorOnTheSceneMatchesTheCli) {
+  ASSERT_TRUE(view_.can_show_indirect_error()) << "the fixture is compressed, with T.npy";
+  view_.set_colour_by(views::PatchView::ColourBy::IndirectError);
+  view_.set_error_light(0);
+  settle();
+  const double shown = view_.indirect_error_rms();
+  EXPECT_GT(shown, 0.0);
+  const std::filesystem::path out = work_dir("indirect-error");
+  const CommandRun r = run_command(std::string(BOUNCE_CLI) + " solve " + fixture_bake().string() +
+                                   " --compare-exact --multiply cpp --float32 --no-mesh "
+                                   "--no-images --json --quiet --out " +
+                                   out.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  const nlohmann::json summary = nlohmann::json::parse(r.output.substr(r.output.find('{')));
+  const double cli = summary.at("compare_exact").at("patch_indirect_rel_rms").get<double>();
+  // The view multiplies the decoded matrix with sgemv, the CLI runs the
+  // compressed loop: float rounding apart, one figure.
+  EXPECT_NEAR(shown, cli, 1e-3 * cli);
+  EXPECT_TRUE(view_.status_text().contains(QString::number(shown, 'g', 4)))
+      << view_.status_text().toStdString();
+  // The colours come from the error map: not all one colour.
+  std::set<std::array<unsigned char, 3>> colours(view_.patch_colours().begin(),
+                                                 view_.patch_colours().end());
+  EXPECT_GT(colours.size(), 3u);
+  const QImage image = view_.render_image();
+  EXPECT_GT(non_uniform_share(image), 0.01);
+  // Another light, another figure.
+  view_.set_error_light(2);
+  settle();
+  EXPECT_NE(view_.indirect_error_rms(), shown);
+  // Picking a patch keeps the mode and explains it.
+  view_.select_patch(0);
+  settle();
+  EXPECT_TRUE(view_.status_text().contains("patch 0: exact")) << view_.status_text().toStdString();
+  EXPECT_TRUE(view_.status_text().contains("from columns")) << view_.status_text().toStdString();
 }
 
 }  // namespace bounce::render_test

@@ -91,6 +91,7 @@ TEST(ReportData, JsonRoundTripAndErrorsNameTheFile) {
   d.rows[1].seed = 5;
   d.rows[1].layout_indirect_error = 0.125;
   d.rows[1].layout_vertex_error = 0.25;
+  d.rows[1].compression_light_error = 0.0175;
   mark_pareto(d.rows);
   const ReportData back = report_from_json(report_to_json(d), "test");
   EXPECT_EQ(back.scene_name, "box");
@@ -108,6 +109,8 @@ TEST(ReportData, JsonRoundTripAndErrorsNameTheFile) {
   EXPECT_EQ(back.rows[0].seed, 1u);
   EXPECT_EQ(back.rows[1].layout_indirect_error, 0.125);
   EXPECT_EQ(back.rows[1].layout_vertex_error, 0.25);
+  EXPECT_EQ(back.rows[1].compression_light_error, 0.0175);
+  EXPECT_EQ(back.rows[0].compression_light_error, 0.0);
   EXPECT_EQ(back.rows[0].layout_indirect_error, 0.0);
   EXPECT_EQ(back.rows[0].pareto, d.rows[0].pareto);
 

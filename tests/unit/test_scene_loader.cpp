@@ -427,6 +427,9 @@ TEST_F(SceneLoaderInput, AbsurdBakeDefaultsAreFatalNamingTheKey) {
       {R"("patches_per_voxel": -1)", {"bake.patches_per_voxel", "got -1"}},
       {R"("samples_per_face": 2.5)", {"bake.samples_per_face", "non-integer"}},
       {R"("samples_per_face": 18446744073709551615)", {"bake.samples_per_face"}},
+      {R"("error_budget": 0)", {"bake.error_budget", "between 0 and 1"}},
+      {R"("error_budget": 1.5)", {"bake.error_budget", "between 0 and 1"}},
+      {R"("error_budget": "2%")", {"bake.error_budget"}},
   };
   for (std::size_t i = 0; i < std::size(cases); ++i) {
     SCOPED_TRACE(cases[i].first);
@@ -438,12 +441,13 @@ TEST_F(SceneLoaderInput, AbsurdBakeDefaultsAreFatalNamingTheKey) {
   // An integer written as a float is an integer.
   const fs::path ok = write(
       "ok.json",
-      R"({"meshes": [{"file": "tri.obj"}], "bake": {"voxel": 16.0, "patches_total": 4000, "patches_per_voxel": 3, "samples_per_face": 64}})");
+      R"({"meshes": [{"file": "tri.obj"}], "bake": {"voxel": 16.0, "patches_total": 4000, "patches_per_voxel": 3, "samples_per_face": 64, "error_budget": 0.03}})");
   const Scene s = load(ok);
   EXPECT_EQ(s.defaults.voxel_resolution, 16);
   EXPECT_EQ(s.defaults.patches_total, 4000);
   EXPECT_EQ(s.defaults.patches_per_voxel, 3);
   EXPECT_EQ(s.defaults.samples_per_face, 64);
+  EXPECT_NEAR(s.defaults.error_budget.value_or(0.0), 0.03, 1e-7);
 }
 
 TEST_F(SceneLoaderInput, BadLightsAreFatalNamingTheLight) {

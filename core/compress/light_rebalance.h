@@ -1,0 +1,31 @@
+#pragma once
+// Compression measured against the exact matrix, and for ours with an
+// EntryImportance, once more with the lights rebalanced. The importance
+// averages the evaluation lights, while the error budget holds the worst of
+// them: a second compression counts each light by its share of the first's
+// squared light error, and the one whose worst light is better is kept.
+#include <vector>
+
+#include "base/progress.h"
+#include "compress/codec.h"
+#include "compress/compression_error.h"
+
+namespace bounce {
+
+struct MeasuredCompression {
+  CompressedMatrix compressed;
+  CompressionErrors errors;
+};
+
+// The worst evaluation light's relative RMS error: what the budget bounds.
+inline double budgeted_light_error(const IndirectLightError& e) { return e.rel_rms_max; }
+
+// Compresses `exact` (stored channels, n x n each) with `codec` and measures
+// it against `probe`; `abs_error_sum` as measure_compression. With
+// codec.importance (ours), also tries the rebalanced lights (see above).
+MeasuredCompression compress_for_light(const std::vector<const float*>& exact, std::size_t n,
+                                       const CodecSettings& codec, const IndirectLightProbe& probe,
+                                       std::vector<float>* abs_error_sum, Progress* progress,
+                                       CompressionExecutor* executor = nullptr);
+
+}  // namespace bounce
