@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "bake/bake_reader.h"
+#include "bake/final_gather_files.h"
 #include "base/error.h"
 #include "bench_commands.h"
 #include "io/npy.h"
@@ -54,8 +55,9 @@ void run(const RuntimeBenchOptions& opt) {
     for (const Patch& p : b.patches.patches) albedo.push_back(p.albedo);
     classic = std::make_unique<ClassicRadiosity>(std::move(f.data), std::move(albedo), k);
   }
-  const RuntimeBench bench =
-      run_runtime_bench(*b.compressed, b.channel_of_rgb, dense, opt.repeats, classic.get());
+  const std::optional<FinalGather> gather = read_final_gather(opt.bake, b.size());
+  const RuntimeBench bench = run_runtime_bench(*b.compressed, b.channel_of_rgb, dense, opt.repeats,
+                                               classic.get(), gather ? &*gather : nullptr);
   if (opt.json) {
     nlohmann::json entries = nlohmann::json::array();
     for (const RuntimeBenchEntry& e : bench.entries)
@@ -68,12 +70,22 @@ void run(const RuntimeBenchOptions& opt) {
                          {"bytes", e.bytes},
                          {"gb_per_s", e.gb_per_s},
                          {"max_rel_diff", e.max_rel_diff}});
+    nlohmann::json final_gather = nullptr;
+    if (bench.gather.available)
+      final_gather = {{"vertices", bench.gather_points},
+                      {"entries", bench.gather_entries},
+                      {"best_ms", bench.gather.best_ms},
+                      {"median_ms", bench.gather.median_ms},
+                      {"bytes", bench.gather.bytes},
+                      {"gb_per_s", bench.gather.gb_per_s},
+                      {"max_rel_diff", bench.gather.max_rel_diff}};
     std::cout << nlohmann::json{{"bake", opt.bake},
                                 {"patches", bench.n},
                                 {"stored_channels", bench.channels},
                                 {"format", bench.format},
                                 {"read_bandwidth_gb_per_s", bench.stream_gb_per_s},
-                                {"entries", entries}}
+                                {"entries", entries},
+                                {"final_gather", final_gather}}
                      .dump(2)
               << '\n';
     return;
@@ -83,6 +95,8 @@ void run(const RuntimeBenchOptions& opt) {
   std::printf("  %s", runtime_bench_table(bench).c_str());
   if (dense.empty())
     std::printf("  (no dense row: the bake has no T.npy; bake with --dump-matrices)\n");
+  if (!gather)
+    std::printf("  (no final gather row: the bake has none; bake with --final-gather-rays > 0)\n");
   if (!classic)
     std::printf("  (no classic row: the bake has no F.npy; bake with --dump-matrices)\n");
   std::printf(
@@ -100,7 +114,8 @@ void register_bench_runtime(CLI::App& bench) {
       "runtime",
       "Milliseconds per light update of the indirect light T b: compressed on OpenCL and in "
       "C++ (the default loop, bfloat16 where the CPU has it, and float32), against dense "
-      "float32 sgemv and classic K iterations (bake with --dump-matrices for those two), with "
+      "float32 sgemv and classic K iterations (bake with --dump-matrices for those two), and "
+      "the final gather to the lit mesh's vertices (the rest of a light update), with "
       "bytes read, GB/s, the machine's read bandwidth from the same run and the default loop "
       "against the issue's targets");
   cmd->add_option("bake", opt->bake, "Bake folder with a compressed matrix")->required();

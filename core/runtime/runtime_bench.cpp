@@ -45,6 +45,25 @@ double max_rel_diff(const std::vector<glm::vec3>& y, const std::vector<glm::vec3
   return scale > 0.0 ? diff / scale : diff;
 }
 
+// The gather's rows summed one by one in double precision: the reference of
+// its rel diff column (float rounding of the sums is all that may differ).
+std::vector<glm::vec3> gather_in_double(const FinalGather& g, const std::vector<glm::vec3>& b) {
+  std::vector<glm::dvec3> light(g.patches + g.clusters, glm::dvec3(0.0));
+  for (std::size_t p = 0; p < g.patches; ++p) {
+    light[p] = glm::dvec3(b[p]);
+    light[g.patches + g.cluster_of_patch[p]] +=
+        static_cast<double>(g.cluster_share[p]) * glm::dvec3(b[p]);
+  }
+  std::vector<glm::vec3> out(g.points());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    glm::dvec3 e(0.0);
+    for (std::uint64_t k = g.first[i]; k < g.first[i + 1]; ++k)
+      e += static_cast<double>(g.weight[k]) * light[g.source[k]];
+    out[i] = glm::vec3(e);
+  }
+  return out;
+}
+
 }  // namespace
 
 double measure_read_bandwidth(std::size_t bytes, int repeats) {
@@ -82,7 +101,7 @@ double measure_read_bandwidth(std::size_t bytes, int repeats) {
 
 RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 3>& channel_of_rgb,
                                const std::vector<const float*>& dense, int repeats,
-                               const ClassicRadiosity* classic) {
+                               const ClassicRadiosity* classic, const FinalGather* gather) {
   RuntimeBench bench;
   bench.n = m.n;
   bench.channels = m.channels;
@@ -155,6 +174,24 @@ RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 
     e.max_rel_diff = max_rel_diff(out, reference);
     bench.entries.push_back(e);
   }
+  bench.gather.what = "final gather to the vertices";
+  bench.gather.available = gather != nullptr;
+  if (gather) {
+    if (gather->patches != m.n)
+      throw Error("bench runtime", "the final gather is for " + std::to_string(gather->patches) +
+                                       " patches, the matrix for " + std::to_string(m.n));
+    bench.gather_points = gather->points();
+    bench.gather_entries = gather->weight.size();
+    // Per frame it reads the rows (offset, source, weight), the patches'
+    // and clusters' light, and writes a colour per vertex.
+    bench.gather.bytes = gather->first.size() * sizeof(std::uint64_t) +
+                         bench.gather_entries * (sizeof(std::uint32_t) + sizeof(float)) +
+                         (gather->patches + gather->clusters) * sizeof(glm::vec3) +
+                         bench.gather_points * sizeof(glm::vec3);
+    time_product([gather](const auto& x, auto& y) { gather->irradiance(x, y); }, b, bench.repeats,
+                 out, bench.gather);
+    bench.gather.max_rel_diff = max_rel_diff(out, gather_in_double(*gather, b));
+  }
   bench.stream_gb_per_s = measure_read_bandwidth();
   return bench;
 }
@@ -187,6 +224,19 @@ std::string runtime_bench_table(const RuntimeBench& bench) {
   }
   s += text_format("  read bandwidth of this machine (sum over 512 MiB, best of 5): %.1f GB/s\n",
                    bench.stream_gb_per_s);
+  if (bench.gather.available) {
+    const RuntimeBenchEntry& g = bench.gather;
+    const double of_memory = bench.stream_gb_per_s > 0.0 ? g.gb_per_s / bench.stream_gb_per_s : 0.0;
+    s += text_format("final gather, %zu vertices, %zu entries (%.1f per vertex)\n",
+                     bench.gather_points, bench.gather_entries,
+                     bench.gather_points ? static_cast<double>(bench.gather_entries) /
+                                               static_cast<double>(bench.gather_points)
+                                         : 0.0);
+    s += text_format("  %-*s %10.3f %10.3f %10.1f %8.1f %6.0f%%         - %9.2e\n", w,
+                     g.what.c_str(), g.best_ms, g.median_ms,
+                     static_cast<double>(g.bytes) / (1024.0 * 1024.0), g.gb_per_s,
+                     100.0 * of_memory, g.max_rel_diff);
+  }
   // The targets for the default C++ loop: >= 8x dense sgemv, and
   // within 2x of the time its bytes take at the measured bandwidth.
   for (const RuntimeBenchEntry& e : bench.entries) {
@@ -202,6 +252,11 @@ std::string runtime_bench_table(const RuntimeBench& bench) {
           e.best_ms / bound_ms);
     }
     s += "\n";
+    if (bench.gather.available)
+      s += text_format(
+          "  a light update without its direct light: T b %.3f + final gather %.3f = %.3f ms "
+          "(target for the whole update <= 16 ms; `bounce solve` times the direct light)\n",
+          e.best_ms, bench.gather.best_ms, e.best_ms + bench.gather.best_ms);
   }
   return s;
 }

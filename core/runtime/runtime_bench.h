@@ -13,6 +13,7 @@
 
 #include "compress/codec.h"
 #include "runtime/classic_radiosity.h"
+#include "runtime/final_gather.h"
 
 namespace bounce {
 
@@ -39,6 +40,11 @@ struct RuntimeBench {
   int repeats = 0;
   double stream_gb_per_s = 0.0;            // measure_read_bandwidth() of this run
   std::vector<RuntimeBenchEntry> entries;  // OpenCL, C++, dense (if given)
+  // The final gather from the patches' light to the lit mesh's vertices,
+  // the other half of a light update (available: the bake has one); its
+  // rel diff is against a double-precision sum of the same rows.
+  RuntimeBenchEntry gather;
+  std::size_t gather_points = 0, gather_entries = 0;
 };
 
 // Each path: one warm-up, then `repeats` timed products of the same random
@@ -47,10 +53,12 @@ struct RuntimeBench {
 // marked unavailable (with the reason) when OpenCL has no device.
 // `classic`: the K-iteration baseline on the form factors (nullptr: none);
 // its max_rel_diff against the compressed product includes both the
-// compression error and any difference of K.
+// compression error and any difference of K. `gather`: the bake's final
+// gather (nullptr: none), timed on the same patch light.
 RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 3>& channel_of_rgb,
                                const std::vector<const float*>& dense, int repeats,
-                               const ClassicRadiosity* classic = nullptr);
+                               const ClassicRadiosity* classic = nullptr,
+                               const FinalGather* gather = nullptr);
 
 // Read bandwidth in GB/s (1e9 bytes): the best of `repeats` sums over a float
 // array of `bytes`, on all OpenMP threads (a STREAM-like read-only test).
