@@ -59,15 +59,18 @@ PreviewLighting::PreviewLighting(std::shared_ptr<const BakeViewData> data)
   } else {
     throw Error(where, "holds neither a compressed nor a dense transport matrix");
   }
+  // The bake's final gather; its sample sources need each sample's direct
+  // light from the frame.
+  gather_ = read_final_gather(bake.dir, bake.size(), bake.samples.samples.size());
   RuntimeFrameSettings frame_settings;
   frame_settings.record = false;
+  frame_settings.sample_irradiance = gather_ && gather_->samples > 0;
   frame_ = std::make_unique<RuntimeFrame>(*tracer_, bake.samples, bake.patches, multiply_,
                                           frame_settings);
 
   grid_ = TransferGrid::from_manifest(bake.manifest);
   geometry_ = build_transfer_mesh(scene, grid_, TransferSettings{});
   work_ = geometry_;
-  gather_ = read_final_gather(bake.dir, bake.size());
   if (gather_) {
     if (gather_->points() != geometry_.positions.size())
       throw Error((bake.dir / "gather_first.npy").string(),
@@ -97,7 +100,11 @@ PreviewLighting::Solve PreviewLighting::solve(const glm::vec3& light_position) {
     std::vector<glm::vec3> reflected(frame_->indirect().size());
     for (std::size_t p = 0; p < reflected.size(); ++p)
       reflected[p] = frame_->first_hit()[p] + frame_->indirect()[p];
-    gather_->irradiance(reflected, s.vertex_indirect);
+    std::vector<glm::vec3> sample_light;
+    if (gather_->samples > 0)
+      sample_light = sample_exitance(data_->bake.samples, data_->bake.patches,
+                                     frame_->sample_irradiance(), frame_->indirect());
+    gather_->irradiance(reflected, sample_light, s.vertex_indirect);
     for (std::size_t v = 0; v < s.vertex_indirect.size(); ++v)
       s.vertex_indirect[v] *= vertex_albedo_[v];
   } else {

@@ -55,7 +55,8 @@ void run(const RuntimeBenchOptions& opt) {
     for (const Patch& p : b.patches.patches) albedo.push_back(p.albedo);
     classic = std::make_unique<ClassicRadiosity>(std::move(f.data), std::move(albedo), k);
   }
-  const std::optional<FinalGather> gather = read_final_gather(opt.bake, b.size());
+  const std::optional<FinalGather> gather =
+      read_final_gather(opt.bake, b.size(), b.samples.samples.size());
   const RuntimeBench bench = run_runtime_bench(*b.compressed, b.channel_of_rgb, dense, opt.repeats,
                                                classic.get(), gather ? &*gather : nullptr);
   if (opt.json) {

@@ -230,8 +230,13 @@ void run_solve(const SolveOptions& opt) {
   // b and T b are read from the record after the frame (it is written out
   // anyway), so the frame keeps no published copies of them: its only
   // persistent buffers are the record and the exitance.
+  // The bake's final gather, when it made one; sample sources need each
+  // sample's direct light from the frame.
+  const std::optional<FinalGather> gather =
+      read_final_gather(opt.bake, bake.size(), bake.samples.samples.size());
   RuntimeFrameSettings frame_settings;
   frame_settings.publish = false;
+  frame_settings.sample_irradiance = gather && gather->samples > 0;
   RuntimeFrame frame(tracer, bake.samples, bake.patches, multiplier.multiply_into, frame_settings);
   timings["compile_frame_graph"] = since(t);
   frame.solve(scene.lights, area);
@@ -281,7 +286,6 @@ void run_solve(const SolveOptions& opt) {
 
   const TransferGrid grid = TransferGrid::from_manifest(bake.manifest);
   ConsoleProgress console(opt.quiet || opt.json);
-  const std::optional<FinalGather> gather = read_final_gather(opt.bake, n);
   if (!opt.no_mesh) {
     LitMesh mesh;
     if (gather) {
@@ -295,13 +299,16 @@ void run_solve(const SolveOptions& opt) {
                         " vertices, the scene's lit "
                         "mesh has " +
                         std::to_string(mesh.positions.size()) + ": not this scene");
-      std::vector<glm::vec3> reflected(n), gathered;
+      std::vector<glm::vec3> reflected(n), gathered, sample_light;
       for (std::size_t p = 0; p < n; ++p) reflected[p] = recorded(p, 1) + recorded(p, 2);
+      if (gather->samples > 0)
+        sample_light =
+            sample_exitance(bake.samples, bake.patches, frame.sample_irradiance(), indirect);
       // The per-frame part: the sparse product to every vertex, best of 5.
       double product = 1e30;
       for (int rep = 0; rep < 5; ++rep) {
         const auto t0 = Clock::now();
-        gather->irradiance(reflected, gathered);
+        gather->irradiance(reflected, sample_light, gathered);
         product = std::min(product, since(t0));
       }
       timings["final_gather_product"] = product;
@@ -319,8 +326,11 @@ void run_solve(const SolveOptions& opt) {
       std::vector<glm::vec3> reflected(n);
       for (std::size_t p = 0; p < n; ++p) reflected[p] = first_hit[p] + exact_indirect[p];
       if (gather) {
-        std::vector<glm::vec3> gathered;
-        gather->irradiance(reflected, gathered);
+        std::vector<glm::vec3> gathered, sample_light;
+        if (gather->samples > 0)
+          sample_light = sample_exitance(bake.samples, bake.patches, frame.sample_irradiance(),
+                                         exact_indirect);
+        gather->irradiance(reflected, sample_light, gathered);
         light_vertices(tracer, scene.lights, area, gathered, exact_mesh);
       } else {
         std::vector<glm::vec3> exitance(n);

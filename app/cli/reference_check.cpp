@@ -50,7 +50,10 @@ nlohmann::json check_bake_against_reference(const Scene& scene, const BakeResult
   const SurfacePatchLookup lookup(bake.voxels, bake.samples, bake.patch_of_sample);
   build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid, positions, normals, {},
                      &progress)
-      .irradiance(reflected, irradiance);
+      .irradiance(
+          reflected,
+          sample_exitance(bake.samples, bake.patches, light.sample_irradiance, light.indirect),
+          irradiance);
   add_indirect(images, hits, irradiance);
   const double error =
       noise_corrected_relative_rmse(images.indirect, ref.indirect, ref.indirect_variance, mask);

@@ -22,7 +22,8 @@ void write_final_gather(const fs::path& dir, const FinalGather& g) {
   write_npy(dir / "gather_share.npy", g.cluster_share, {g.cluster_share.size()});
 }
 
-std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t patches) {
+std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t patches,
+                                             std::size_t samples) {
   if (!fs::exists(dir / "gather_first.npy")) return std::nullopt;
   // Each file one-dimensional, read whole.
   const auto vector_of = [&dir](const char* name, auto reader) {
@@ -50,6 +51,12 @@ std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t pa
   for (const std::uint32_t c : g.cluster_of_patch)
     clusters = std::max<std::size_t>(clusters, std::size_t{c} + 1);
   g.clusters = clusters;
+  // Sources past the clusters are samples (validate() checks the range).
+  for (const std::uint32_t s : g.source)
+    if (s >= patches + clusters) {
+      g.samples = samples;
+      break;
+    }
   g.validate((dir / "gather_*.npy").string());
   return g;
 }

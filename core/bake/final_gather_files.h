@@ -2,7 +2,8 @@
 // The final gather of a bake's lit-mesh vertices (runtime/final_gather.h) as
 // files of the bake folder (docs/bake-format.md):
 //   gather_first.npy   <u4 [vertices + 1]   row starts
-//   gather_source.npy  <u4 [entries]        patch index, or patches + cluster
+//   gather_source.npy  <u4 [entries]        patch index, or patches + cluster,
+//                                           or patches + clusters + sample
 //   gather_weight.npy  <f4 [entries]        point-to-source form factor
 //   gather_cluster.npy <u4 [patches]        each patch's cluster
 //   gather_share.npy   <f4 [patches]        its share of the cluster's area
@@ -20,7 +21,9 @@ void write_final_gather(const std::filesystem::path& dir, const FinalGather& gat
 
 // nullopt when the folder has no gather (a bake made without one); throws
 // bounce::Error naming the file when the files are there but inconsistent
-// with each other or with `patches`.
-std::optional<FinalGather> read_final_gather(const std::filesystem::path& dir, std::size_t patches);
+// with each other, with `patches` or with `samples` (the bake's sample count,
+// which sample sources index).
+std::optional<FinalGather> read_final_gather(const std::filesystem::path& dir, std::size_t patches,
+                                             std::size_t samples);
 
 }  // namespace bounce

@@ -32,6 +32,12 @@ SurfacePatchLookup::SurfacePatchLookup(const Voxelization& vox, const SampleSet&
 
 std::int32_t SurfacePatchLookup::patch_at(std::uint32_t triangle, bool back,
                                           const glm::vec3& x) const {
+  const std::int32_t s = sample_at(triangle, back, x);
+  return s < 0 ? -1 : patch_of_sample_[static_cast<std::size_t>(s)];
+}
+
+std::int32_t SurfacePatchLookup::sample_at(std::uint32_t triangle, bool back,
+                                           const glm::vec3& x) const {
   const std::uint64_t side = 2ull * triangle + (back ? 1 : 0);
   const float hair = 1e-4f * grid_.cell_size();
   for (int k = 0; k < 7; ++k) {
@@ -59,7 +65,7 @@ std::int32_t SurfacePatchLookup::patch_at(std::uint32_t triangle, bool back,
     // this point's. Such a part stands for nothing here.
     const Sample& s = samples_.samples[best];
     if (std::abs(glm::dot(s.position - x, s.normal)) > kOffSurface * grid_.cell_size()) return -1;
-    return patch_of_sample_[best];
+    return patch_of_sample_[best] < 0 ? -1 : static_cast<std::int32_t>(best);
   }
   return -1;
 }

@@ -30,6 +30,11 @@ class SurfacePatchLookup {
   // -1. A point on a cell face may round into the neighbouring cell: the
   // cells a hair away along each axis are tried as well.
   std::int32_t patch_at(std::uint32_t triangle, bool back, const glm::vec3& x) const;
+  // The sample whose piece holds that point (on the point's own surface), or
+  // -1; patch_at is its patch.
+  std::int32_t sample_at(std::uint32_t triangle, bool back, const glm::vec3& x) const;
+  std::int32_t patch_of(std::uint32_t sample) const { return patch_of_sample_[sample]; }
+  std::size_t sample_count() const { return samples_.samples.size(); }
 
   // A carrying sample farther than this (voxel sizes) from the point's
   // plane stands on another surface: no patch (samples.h).

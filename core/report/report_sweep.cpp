@@ -251,7 +251,9 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
       // Patch values to errors against the reference: gathered to the
       // camera's pixels and the evaluation mesh's vertices. `indirect` is
       // each patch's T b (the nearest-patches transfer spreads it),
-      // `reflected` its b + T b (what a final gather sums).
+      // `reflected` its b + T b (what a final gather sums), `sample_light`
+      // each sample's own b plus its patch's T b (what the gather's sample
+      // sources read).
       struct Measured {
         ImageErrors full, indirect;
         VertexErrors vertex;
@@ -259,16 +261,17 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
         double indirect_level = 0.0, vertex_level = 0.0;
       };
       const auto measure = [&](const std::vector<glm::vec3>& patch_indirect,
-                               const std::vector<glm::vec3>& patch_reflected) {
+                               const std::vector<glm::vec3>& patch_reflected,
+                               const std::vector<glm::vec3>& sample_light) {
         Measured m;
         CameraImages images;
         std::vector<glm::vec3> vertex_light;
         if (final_gather) {
           images = direct_images;
           std::vector<glm::vec3> e;
-          pixel_gather.irradiance(patch_reflected, e);
+          pixel_gather.irradiance(patch_reflected, sample_light, e);
           add_indirect(images, camera_hits, e);
-          vertex_gather.irradiance(patch_reflected, vertex_light);
+          vertex_gather.irradiance(patch_reflected, sample_light, vertex_light);
           for (std::size_t v = 0; v < vertex_light.size(); ++v) vertex_light[v] *= vertex_albedo[v];
         } else {
           const PatchGather gather(bake.patches.patches, patch_indirect, grid, &tracer,
@@ -293,7 +296,14 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
       if (log) log(mode + " patches, target " + std::to_string(target) + ": exact patch values");
       const ExactPatchLight exact =
           exact_patch_indirect(pt, bake.samples, bake.patches, cache, &progress);
-      const Measured layout = measure(exact.indirect, exact.reflected);
+      // Exact values are known per patch: each sample source reads its
+      // patch's, so the layout error stays that of exact patch values.
+      std::vector<glm::vec3> exact_sample_light(bake.samples.samples.size(), glm::vec3(0.0f));
+      for (std::size_t si = 0; si < exact_sample_light.size(); ++si)
+        if (bake.patch_of_sample[si] >= 0)
+          exact_sample_light[si] =
+              exact.reflected[static_cast<std::size_t>(bake.patch_of_sample[si])];
+      const Measured layout = measure(exact.indirect, exact.reflected, exact_sample_light);
       std::vector<glm::vec3> albedo;
       for (const Patch& p : bake.patches.patches) albedo.push_back(p.albedo);
       for (std::size_t bi = 0; bi < bounces.size(); ++bi) {
@@ -349,7 +359,9 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
           std::vector<glm::vec3> reflected(light.indirect.size());
           for (std::size_t p = 0; p < reflected.size(); ++p)
             reflected[p] = light.first_hit[p] + light.indirect[p];
-          const Measured m = measure(light.indirect, reflected);
+          const Measured m = measure(
+              light.indirect, reflected,
+              sample_exitance(bake.samples, bake.patches, light.sample_irradiance, light.indirect));
           row.full = m.full;
           row.indirect = m.indirect;
           row.vertex = m.vertex;

@@ -172,18 +172,23 @@ std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSe
 
 void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const PatchSet& patches,
                        const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights,
-                       int area_strata, std::span<glm::vec3> e) {
+                       int area_strata, std::span<glm::vec3> e, std::span<glm::vec3> sample_e) {
   // Frames only where a point or spot light will use them.
   const bool point_lights = has_point_or_spot_light(lights);
   const std::vector<CarriedPolygonFrame> frames =
       point_lights ? carried_polygon_frames(samples) : std::vector<CarriedPolygonFrame>{};
-  direct_irradiance(tracer, samples, frames, patches, lights, area_lights, area_strata, e);
+  direct_irradiance(tracer, samples, frames, patches, lights, area_lights, area_strata, e,
+                    sample_e);
 }
 
 void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
                        std::span<const CarriedPolygonFrame> frames, const PatchSet& patches,
                        const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights,
-                       int area_strata, std::span<glm::vec3> e) {
+                       int area_strata, std::span<glm::vec3> e, std::span<glm::vec3> sample_e) {
+  if (!sample_e.empty() && sample_e.size() != samples.samples.size())
+    throw Error("direct light", "the per-sample output has " + std::to_string(sample_e.size()) +
+                                    " entries for " + std::to_string(samples.samples.size()) +
+                                    " samples");
   if (e.size() != patches.size())
     throw Error("direct light", "the output has " + std::to_string(e.size()) + " entries for " +
                                     std::to_string(patches.size()) + " patches");
@@ -206,17 +211,19 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
     for (std::uint32_t k = patches.member_first[p]; k < patches.member_first[p + 1]; ++k) {
       const std::uint32_t si = patches.member_samples[k];
       const Sample& s = samples.samples[si];
-      glm::vec3 es(0.0f);  // irradiance at the sample, for what is evaluated there
+      glm::vec3 es(0.0f);             // irradiance at the sample, for what is evaluated there
+      glm::vec3 polygon_power(0.0f);  // integrated over its polygons
       for (std::size_t li = 0; li < lights.size(); ++li) {
         const Light& light = lights[li];
         if (polygons && light.type != Light::Type::Directional)
-          power += point_light_power(tracer, samples, frames, si, light, cones[li], eps);
+          polygon_power += point_light_power(tracer, samples, frames, si, light, cones[li], eps);
         else
           es += from_light(tracer, s.position, s.normal, light, eps);
       }
       for (const AreaLight& light : area_lights)
         es += area_light_irradiance(tracer, s.position, s.normal, light, area_strata, si);
-      power += s.area * es;
+      power += polygon_power + s.area * es;
+      if (!sample_e.empty()) sample_e[si] = s.area > 0.0f ? es + polygon_power / s.area : es;
       area += s.area;
     }
     e[p] = area > 0.0f ? power / area : glm::vec3(0.0f);

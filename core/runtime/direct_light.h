@@ -28,10 +28,14 @@ std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSe
                                          const std::vector<AreaLight>& area = {},
                                          int area_strata = 4);
 // The same into caller-owned memory (e.g. a frame graph's arena), one entry
-// per patch (throws bounce::Error otherwise).
+// per patch (throws bounce::Error otherwise). `sample_irradiance`, when not
+// empty (one entry per sample), receives each member sample's own
+// irradiance, of which a patch's is the area-weighted mean (samples of no
+// patch are left as they are).
 void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const PatchSet& patches,
                        const std::vector<Light>& lights, const std::vector<AreaLight>& area,
-                       int area_strata, std::span<glm::vec3> irradiance);
+                       int area_strata, std::span<glm::vec3> irradiance,
+                       std::span<glm::vec3> sample_irradiance = {});
 // The same with the carried polygons' frames computed beforehand
 // (carried_polygon_frames(samples), one per entry of samples.carried), for
 // callers that light the same samples every frame. Throws bounce::Error when
@@ -39,7 +43,8 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const 
 void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
                        std::span<const CarriedPolygonFrame> frames, const PatchSet& patches,
                        const std::vector<Light>& lights, const std::vector<AreaLight>& area,
-                       int area_strata, std::span<glm::vec3> irradiance);
+                       int area_strata, std::span<glm::vec3> irradiance,
+                       std::span<glm::vec3> sample_irradiance = {});
 
 // Irradiance (per colour channel) at one surface point p with unit normal n
 // (the side that receives), shadow rays included, for callers that shade

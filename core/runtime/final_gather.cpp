@@ -15,14 +15,29 @@ namespace bounce {
 
 void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
                              std::vector<glm::vec3>& out) const {
+  if (samples > 0)
+    throw Error("final gather", "the gather reads samples: their light is needed too");
+  irradiance(patch_exitance, {}, out);
+}
+
+void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
+                             const std::vector<glm::vec3>& sample_exitance,
+                             std::vector<glm::vec3>& out) const {
   if (patch_exitance.size() != patches)
     throw Error("final gather", "light for " + std::to_string(patch_exitance.size()) +
                                     " patches, the gather was made for " + std::to_string(patches));
-  // The patches' light, then each cluster's area-weighted mean.
-  std::vector<glm::vec3> light(patches + clusters, glm::vec3(0.0f));
+  if (samples > 0 && sample_exitance.size() != samples)
+    throw Error("final gather", "light for " + std::to_string(sample_exitance.size()) +
+                                    " samples, the gather was made for " + std::to_string(samples));
+  // The patches' light, then each cluster's area-weighted mean, then the
+  // samples'.
+  std::vector<glm::vec3> light(patches + clusters + samples, glm::vec3(0.0f));
   std::copy(patch_exitance.begin(), patch_exitance.end(), light.begin());
   for (std::size_t p = 0; p < patches; ++p)
     light[patches + cluster_of_patch[p]] += cluster_share[p] * patch_exitance[p];
+  if (samples > 0)
+    std::copy(sample_exitance.begin(), sample_exitance.end(),
+              light.begin() + static_cast<std::ptrdiff_t>(patches + clusters));
   const std::size_t n = points();
   out.resize(n);
   const glm::vec3* b = light.data();
@@ -33,6 +48,21 @@ void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
     for (std::uint64_t k = first[row]; k < first[row + 1]; ++k) e += weight[k] * b[source[k]];
     out[row] = e;
   }
+}
+
+std::vector<glm::vec3> sample_exitance(const SampleSet& samples, const PatchSet& patches,
+                                       const std::vector<glm::vec3>& sample_irradiance,
+                                       const std::vector<glm::vec3>& patch_indirect) {
+  const std::size_t n = samples.samples.size();
+  if (sample_irradiance.size() != n || patch_indirect.size() != patches.size())
+    throw Error("final gather", "one irradiance per sample and one T b per patch expected");
+  std::vector<glm::vec3> out(n, glm::vec3(0.0f));
+  for (std::size_t p = 0; p < patches.size(); ++p)
+    for (std::uint32_t k = patches.member_first[p]; k < patches.member_first[p + 1]; ++k) {
+      const std::uint32_t s = patches.member_samples[k];
+      out[s] = samples.samples[s].albedo * sample_irradiance[s] + patch_indirect[p];
+    }
+  return out;
 }
 
 void FinalGather::validate(const std::string& what) const {
@@ -49,10 +79,10 @@ void FinalGather::validate(const std::string& what) const {
       throw Error(what, "row offsets decrease at point " + std::to_string(i));
     double total = 0.0;
     for (std::uint64_t k = first[i]; k < first[i + 1]; ++k) {
-      if (source[k] >= patches + clusters)
+      if (source[k] >= patches + clusters + samples)
         throw Error(what, "point " + std::to_string(i) + " gathers from source " +
                               std::to_string(source[k]) + " of " +
-                              std::to_string(patches + clusters));
+                              std::to_string(patches + clusters + samples));
       if (!(weight[k] >= 0.0f && weight[k] <= 1.0f))
         throw Error(what, "point " + std::to_string(i) + " has a weight outside [0, 1]");
       total += weight[k];
@@ -147,6 +177,9 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
     throw Error("final gather", "positions and normals differ in count");
   if (settings.rays < 1 || settings.kept < 1 || settings.cluster_voxels < 1)
     throw Error("final gather", "rays, kept patches and cluster size per point must be at least 1");
+  if (settings.sample_kept < 0 ||
+      !(settings.sample_coverage >= 0.0 && settings.sample_coverage <= 1.0))
+    throw Error("final gather", "kept samples must be >= 0 and their coverage in [0, 1]");
   const std::size_t patch_count = patch_list.size();
   FinalGather g;
   g.patches = patch_count;
@@ -155,6 +188,10 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   const std::size_t n = positions.size();
   const auto rays = static_cast<std::size_t>(settings.rays);
   const auto kept = static_cast<std::size_t>(settings.kept);
+  const auto sample_kept = static_cast<std::size_t>(settings.sample_kept);
+  const bool sample_sources = sample_kept > 0 && settings.sample_coverage > 0.0;
+  if (sample_sources) g.samples = lookup.sample_count();
+  const std::size_t sample_base = patch_count + g.clusters;
   const float eps = settings.offset_epsilons * tracer.epsilon();
   const Scene& scene = tracer.scene();
   // Each point turns the lattice by its own angle.
@@ -173,6 +210,7 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   {
     std::vector<std::uint32_t> hits(patch_count, 0), cluster_hits(g.clusters, 0);
     std::vector<std::uint32_t> touched, cluster_touched;
+    std::vector<std::uint32_t> sample_hits(sample_sources ? g.samples : 0, 0), samples_touched;
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t ci = 0; ci < static_cast<std::int64_t>(chunks); ++ci) {
       if (progress && progress->should_stop()) continue;
@@ -180,6 +218,7 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
       for (std::size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
         const glm::vec3 nrm = normals[i];
         touched.clear();
+        samples_touched.clear();
         if (glm::dot(nrm, nrm) > 0.5f) {
           Rng rng(settings.seed, 0xF1A1u ^ (static_cast<std::uint64_t>(i) << 16));
           const CosineLattice::Frame frame(nrm, 2.0f * std::numbers::pi_v<float> * rng.uniform());
@@ -197,15 +236,47 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
               ++backs;
               continue;
             }
-            const std::int32_t p = lookup.patch_at(h.triangle, back, origin + h.t * dir);
-            if (p < 0) {
+            const std::int32_t s = lookup.sample_at(h.triangle, back, origin + h.t * dir);
+            if (s < 0) {
               ++unrepresented;
               continue;
             }
+            const std::int32_t p = lookup.patch_of(static_cast<std::uint32_t>(s));
             ++landed_rays;
             if (hits[static_cast<std::size_t>(p)]++ == 0)
               touched.push_back(static_cast<std::uint32_t>(p));
+            if (sample_sources && sample_hits[static_cast<std::size_t>(s)]++ == 0)
+              samples_touched.push_back(static_cast<std::uint32_t>(s));
           }
+        }
+        const double per_ray = 1.0 / static_cast<double>(rays);
+        std::size_t entries = 0;
+        if (sample_sources) {
+          // The strongest samples first, ties by index; their rays leave
+          // their patch's count.
+          std::sort(samples_touched.begin(), samples_touched.end(),
+                    [&](std::uint32_t a, std::uint32_t b) {
+                      return sample_hits[a] != sample_hits[b] ? sample_hits[a] > sample_hits[b]
+                                                              : a < b;
+                    });
+          std::size_t landed = 0, covered = 0;
+          for (std::uint32_t p : touched) landed += hits[p];
+          for (std::uint32_t s : samples_touched) {
+            if (entries >= sample_kept ||
+                static_cast<double>(covered) >=
+                    settings.sample_coverage * static_cast<double>(landed))
+              break;
+            covered += sample_hits[s];
+            hits[static_cast<std::size_t>(lookup.patch_of(s))] -= sample_hits[s];
+            chunk_patch[c].push_back(static_cast<std::uint32_t>(sample_base + s));
+            chunk_weight[c].push_back(static_cast<float>(per_ray * sample_hits[s]));
+            ++entries;
+          }
+          for (std::uint32_t s : samples_touched) sample_hits[s] = 0;
+          // Patches whose every ray went to their kept samples drop out.
+          touched.erase(std::remove_if(touched.begin(), touched.end(),
+                                       [&](std::uint32_t p) { return hits[p] == 0; }),
+                        touched.end());
         }
         // The strongest `kept` exactly, ties by patch index
         // (deterministic); the rest's hits go to their clusters.
@@ -217,8 +288,7 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
         while (keep < std::min(kept, touched.size()) &&
                static_cast<double>(covered) < settings.coverage * static_cast<double>(landed))
           covered += hits[touched[keep++]];
-        const double per_ray = 1.0 / static_cast<double>(rays);
-        std::size_t entries = keep;
+        entries += keep;
         for (std::size_t k = 0; k < keep; ++k) {
           chunk_patch[c].push_back(touched[k]);
           chunk_weight[c].push_back(static_cast<float>(per_ray * hits[touched[k]]));

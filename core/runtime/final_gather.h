@@ -30,6 +30,14 @@
 // lamp) is not lost: spreading the weak patches' share over the kept ones
 // instead took 15% of the Cornell box's indirect light at 4000 patches. A
 // frame is then a sparse product of a few dozen entries per point.
+//
+// Sample sources (optional): a patch's light is its mean over 1-2 m, but the
+// first-hit light b changes within centimetres (a sun shadow's edge, the lit
+// and the turned-away face of one column in one patch). The samples a point's
+// rays hit most can be kept as sources of their own, carrying the sample's
+// own b plus its patch's T b; the rest of the patch keeps the patch's mean.
+// The frame computes b per sample anyway (the direct light is traced from
+// every sample), so this costs only the extra entries.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -51,6 +59,11 @@ struct FinalGatherSettings {
   // `coverage` of the point's landed rays, at most `kept`.
   int kept = 64;
   double coverage = 0.9;
+  // Samples kept exactly per point before the patches: the strongest, until
+  // they hold `sample_coverage` of the landed rays, at most `sample_kept`
+  // (0: patches only).
+  int sample_kept = 64;
+  double sample_coverage = 0.5;
   // Cluster blocks are this many voxels along each axis.
   int cluster_voxels = 4;
   std::uint64_t seed = 1;
@@ -59,8 +72,9 @@ struct FinalGatherSettings {
 };
 
 // Sparse rows: point i gathers weight[k] * L[source[k]] for k in
-// [first[i], first[i + 1]), where L holds the patches' light followed by the
-// clusters' (source >= patches: cluster source - patches).
+// [first[i], first[i + 1]), where L holds the patches' light, then the
+// clusters' (source - patches), then the samples' (source - patches -
+// clusters; only when `samples` > 0).
 struct FinalGather {
   std::vector<std::uint64_t> first;  // points + 1
   std::vector<std::uint32_t> source;
@@ -70,6 +84,8 @@ struct FinalGather {
   std::vector<std::uint32_t> cluster_of_patch;
   std::vector<float> cluster_share;
   std::size_t clusters = 0;
+  // Sample sources: the sample count of the bake (0: the rows read no sample).
+  std::size_t samples = 0;
   int rays = 0;
   // Where the rays went (at build time): onto a patch, out of the scene,
   // onto the back of a one-sided triangle, onto surface no patch stands for.
@@ -77,13 +93,24 @@ struct FinalGather {
 
   std::size_t points() const { return first.empty() ? 0 : first.size() - 1; }
   // E at every point from the light leaving each patch (size `patches`).
-  // Throws bounce::Error when sizes differ.
+  // Throws bounce::Error when sizes differ, or when the rows read samples.
   void irradiance(const std::vector<glm::vec3>& patch_exitance, std::vector<glm::vec3>& out) const;
+  // The same when the rows read samples: `sample_exitance` (size `samples`)
+  // is sample_exitance() of the frame. Without sample sources it is ignored.
+  void irradiance(const std::vector<glm::vec3>& patch_exitance,
+                  const std::vector<glm::vec3>& sample_exitance, std::vector<glm::vec3>& out) const;
   // Checks the rows: monotone offsets, sources in range, finite weights in
   // [0, 1], row totals at most 1 (+ rounding), clusters' shares. Throws
   // bounce::Error naming `what` and the first bad row.
   void validate(const std::string& what) const;
 };
+
+// The light a sample source carries: the sample's own first-hit light
+// albedo_s E_s (E_s: its direct irradiance, `sample_irradiance`) plus its
+// patch's multi-bounce T b (`patch_indirect`); 0 for left-out samples.
+std::vector<glm::vec3> sample_exitance(const SampleSet& samples, const PatchSet& patches,
+                                       const std::vector<glm::vec3>& sample_irradiance,
+                                       const std::vector<glm::vec3>& patch_indirect);
 
 // Where the vertices of a lit mesh gather from: each moved 5% of the way to
 // the centroid of a face using it. A vertex on the line where two walls meet

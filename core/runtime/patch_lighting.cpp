@@ -12,7 +12,9 @@ PatchLighting light_patches(const RayTracer& tracer, const SampleSet& samples,
   using Clock = std::chrono::steady_clock;
   PatchLighting l;
   auto t = Clock::now();
-  l.irradiance = direct_irradiance(tracer, samples, patches, lights, area);
+  l.irradiance.assign(patches.size(), glm::vec3(0.0f));
+  l.sample_irradiance.assign(samples.samples.size(), glm::vec3(0.0f));
+  direct_irradiance(tracer, samples, patches, lights, area, 4, l.irradiance, l.sample_irradiance);
   l.first_hit = first_bounce(patches, l.irradiance);
   l.seconds_direct = std::chrono::duration<double>(Clock::now() - t).count();
   t = Clock::now();

@@ -47,8 +47,11 @@ double max_rel_diff(const std::vector<glm::vec3>& y, const std::vector<glm::vec3
 
 // The gather's rows summed one by one in double precision: the reference of
 // its rel diff column (float rounding of the sums is all that may differ).
-std::vector<glm::vec3> gather_in_double(const FinalGather& g, const std::vector<glm::vec3>& b) {
-  std::vector<glm::dvec3> light(g.patches + g.clusters, glm::dvec3(0.0));
+std::vector<glm::vec3> gather_in_double(const FinalGather& g, const std::vector<glm::vec3>& b,
+                                        const std::vector<glm::vec3>& sample_light) {
+  std::vector<glm::dvec3> light(g.patches + g.clusters + g.samples, glm::dvec3(0.0));
+  for (std::size_t s = 0; s < g.samples; ++s)
+    light[g.patches + g.clusters + s] = glm::dvec3(sample_light[s]);
   for (std::size_t p = 0; p < g.patches; ++p) {
     light[p] = glm::dvec3(b[p]);
     light[g.patches + g.cluster_of_patch[p]] +=
@@ -188,9 +191,14 @@ RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 
                          bench.gather_entries * (sizeof(std::uint32_t) + sizeof(float)) +
                          (gather->patches + gather->clusters) * sizeof(glm::vec3) +
                          bench.gather_points * sizeof(glm::vec3);
-    time_product([gather](const auto& x, auto& y) { gather->irradiance(x, y); }, b, bench.repeats,
-                 out, bench.gather);
-    bench.gather.max_rel_diff = max_rel_diff(out, gather_in_double(*gather, b));
+    // Sample sources read a light of their own each frame.
+    std::vector<glm::vec3> sample_light(gather->samples);
+    for (glm::vec3& v : sample_light) v = glm::vec3(u(rng), u(rng), u(rng));
+    bench.gather.bytes += gather->samples * sizeof(glm::vec3);
+    time_product(
+        [gather, &sample_light](const auto& x, auto& y) { gather->irradiance(x, sample_light, y); },
+        b, bench.repeats, out, bench.gather);
+    bench.gather.max_rel_diff = max_rel_diff(out, gather_in_double(*gather, b, sample_light));
   }
   bench.stream_gb_per_s = measure_read_bandwidth();
   return bench;

@@ -77,6 +77,8 @@ void RuntimeFrame::build() {
     indirect_.assign(n_, glm::vec3(0.0f));
   }
   if (settings_.record) record_.assign(n_ * 9, 0.0f);
+  if (settings_.sample_irradiance)
+    sample_irradiance_.assign(samples_.samples.size(), glm::vec3(0.0f));
 
   const auto lights = graph_.add_imported("lights", nullptr, 0);
   const auto transport = graph_.add_imported("T", nullptr, 0);
@@ -92,10 +94,15 @@ void RuntimeFrame::build() {
     return std::span<glm::vec3>(c.get<glm::vec3>(id), n);
   };
 
-  add_timed_pass("direct light", {lights}, {e}, [this, e, span](const FrameGraph::Context& c) {
-    direct_irradiance(tracer_, samples_, frames_, patches_, *lights_, *area_, settings_.area_strata,
-                      span(c, e));
-  });
+  std::vector<FrameGraph::ResourceId> direct_writes{e};
+  if (settings_.sample_irradiance)
+    direct_writes.push_back(graph_.add_imported("E per sample", sample_irradiance_.data(),
+                                                sample_irradiance_.size() * sizeof(glm::vec3)));
+  add_timed_pass("direct light", {lights}, direct_writes,
+                 [this, e, span](const FrameGraph::Context& c) {
+                   direct_irradiance(tracer_, samples_, frames_, patches_, *lights_, *area_,
+                                     settings_.area_strata, span(c, e), sample_irradiance_);
+                 });
   add_timed_pass("first hit", {e}, {b}, [this, e, b, span](const FrameGraph::Context& c) {
     const auto irradiance = span(c, e);
     const auto first_hit = span(c, b);

@@ -52,6 +52,9 @@ struct RuntimeFrameSettings {
   // persistent per-patch buffers); off: those stay empty, and b and T b are
   // in record() (when settings.record) and exitance().
   bool publish = true;
+  // Keep each sample's direct irradiance (sample_irradiance()), for a final
+  // gather with sample sources.
+  bool sample_irradiance = false;
   // FrameGraph::set_poison_dead_transients: NaN into every dead transient's
   // range after each pass (tests: proves no pass reads a dead or overwritten
   // buffer).
@@ -83,6 +86,8 @@ class RuntimeFrame {
   const std::vector<glm::vec3>& first_hit() const { return first_hit_; }
   const std::vector<glm::vec3>& indirect() const { return indirect_; }
   const std::vector<glm::vec3>& exitance() const { return exitance_; }
+  // Empty unless settings.sample_irradiance.
+  const std::vector<glm::vec3>& sample_irradiance() const { return sample_irradiance_; }
   // Per patch: E (r, g, b), b, T b; empty unless settings.record.
   const std::vector<float>& record() const { return record_; }
 
@@ -113,7 +118,7 @@ class RuntimeFrame {
   // The current frame's lights, set by solve() for the direct-light pass.
   const std::vector<Light>* lights_ = nullptr;
   const std::vector<AreaLight>* area_ = nullptr;
-  std::vector<glm::vec3> first_hit_, indirect_, exitance_;
+  std::vector<glm::vec3> first_hit_, indirect_, exitance_, sample_irradiance_;
   std::vector<float> record_;
   std::vector<double> pass_seconds_;
   FrameGraph graph_;

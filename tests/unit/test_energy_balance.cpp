@@ -267,9 +267,10 @@ TEST(Closure, EmptyCornellBoxIndirectOverDirectPerWallMatchesThePathTracer) {
   const RayTracer tracer(scene);
   const std::vector<AreaLight> area = area_lights(scene);
   const std::size_t n = r.patches.size();
-  const std::vector<glm::vec3> b =
-      first_bounce(r.patches, direct_irradiance(tracer, r.samples, r.patches, {}, area, 8));
-  std::vector<glm::vec3> reflected(n);
+  std::vector<glm::vec3> irradiance(n), sample_irradiance(r.samples.samples.size());
+  direct_irradiance(tracer, r.samples, r.patches, {}, area, 8, irradiance, sample_irradiance);
+  const std::vector<glm::vec3> b = first_bounce(r.patches, irradiance);
+  std::vector<glm::vec3> reflected(n), indirect(n);
   for (std::size_t p = 0; p < n; ++p) {
     glm::vec3 tb(0.0f);
     for (int c = 0; c < 3; ++c) {
@@ -277,7 +278,10 @@ TEST(Closure, EmptyCornellBoxIndirectOverDirectPerWallMatchesThePathTracer) {
       for (std::size_t q = 0; q < n; ++q) tb[c] += t[p * n + q] * b[q][c];
     }
     reflected[p] = b[p] + tb;
+    indirect[p] = tb;
   }
+  const std::vector<glm::vec3> sample_light =
+      sample_exitance(r.samples, r.patches, sample_irradiance, indirect);
   // Points on a 5 x 5 grid over each wall's central half, a hair off it.
   struct Wall {
     const char* name;
@@ -315,7 +319,7 @@ TEST(Closure, EmptyCornellBoxIndirectOverDirectPerWallMatchesThePathTracer) {
     fs.rays = 2048;
     std::vector<glm::vec3> gathered;
     build_final_gather(tracer, lookup, r.patches.patches, r.voxels.grid, points, normals, fs)
-        .irradiance(reflected, gathered);
+        .irradiance(reflected, sample_light, gathered);
     const PointReference ref = pt.estimate_points(ref_points);
     glm::dvec3 bounce_direct(0.0), bounce_indirect(0.0), ref_direct(0.0), ref_indirect(0.0),
         ref_var(0.0);

@@ -52,6 +52,8 @@ TEST(FinalGather, WeightsFacingALargeSquareSumToItsExactFormFactor) {
       // Every ray lands on the top square, facing down.
       if (g.source[k] < g.patches) {
         EXPECT_LT(bake.patches.patches[g.source[k]].normal.z, -0.9f);
+      } else if (g.source[k] >= g.patches + g.clusters) {
+        EXPECT_LT(bake.samples.samples[g.source[k] - g.patches - g.clusters].normal.z, -0.9f);
       }
     }
     const double exact = point_to_polygon_form_factor(points[i], normals[i], top, 4);
@@ -79,17 +81,20 @@ TEST(FinalGather, ConcaveCornerGetsItsLightFromTheWallBesideIt) {
   const RayTracer tracer(scene);
   const glm::vec3 x(0.5f, 0.0f, 0.02f), n(0.0f, 1.0f, 0.0f);
 
-  // Patch light after at least one reflection: b + T b.
-  const std::vector<glm::vec3> irradiance =
-      direct_irradiance(tracer, bake.samples, bake.patches, scene.lights);
+  // Patch light after at least one reflection: b + T b; the samples' own.
+  std::vector<glm::vec3> irradiance(bake.patches.size()),
+      sample_irradiance(bake.samples.samples.size());
+  direct_irradiance(tracer, bake.samples, bake.patches, scene.lights, {}, 4, irradiance,
+                    sample_irradiance);
   const std::vector<glm::vec3> b = first_bounce(bake.patches, irradiance);
   const std::size_t np = bake.patches.size();
   const auto& t = bake.transport.channels[0].t;
-  std::vector<glm::vec3> reflected(np);
+  std::vector<glm::vec3> reflected(np), indirect(np);
   for (std::size_t p = 0; p < np; ++p) {
     glm::vec3 tb(0.0f);
     for (std::size_t q = 0; q < np; ++q) tb += t[p * np + q] * b[q];
     reflected[p] = b[p] + tb;
+    indirect[p] = tb;
   }
   const SurfacePatchLookup lookup(bake.voxels, bake.samples, bake.patch_of_sample);
   FinalGatherSettings fs;
@@ -97,7 +102,8 @@ TEST(FinalGather, ConcaveCornerGetsItsLightFromTheWallBesideIt) {
   const FinalGather g =
       build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid, {x}, {n}, fs);
   std::vector<glm::vec3> e;
-  g.irradiance(reflected, e);
+  g.irradiance(reflected, sample_exitance(bake.samples, bake.patches, sample_irradiance, indirect),
+               e);
   const double gathered = e[0].r;
 
   // The patch the point lies in: its own indirect irradiance, (T b) / albedo.
@@ -123,6 +129,63 @@ TEST(FinalGather, ConcaveCornerGetsItsLightFromTheWallBesideIt) {
   // The reference's noise plus the bake's own (patch light is constant over
   // each patch of a 3-voxel grid; the gather's rays are stratified): 10%.
   EXPECT_NEAR(gathered, reference, 4.0 * sigma + 0.1 * reference);
+}
+
+TEST(FinalGather, SampleSourcesSplitThePatchesRaysAndKeepTheirLight) {
+  // The same rays with and without sample sources: each point's total is
+  // the same, and when every sample carries its own patch's light the two
+  // gathers give the same irradiance (the sample entries only move rays
+  // from a patch to its samples). With each sample's own direct light, a
+  // point near the lit wall of a corner reads the wall's own samples.
+  Scene scene = test_scenes::perpendicular_squares();
+  scene.lights.push_back({Light::Type::Directional, "sun", glm::vec3(0.0f),
+                          glm::vec3(0.0f, 0.0f, -1.0f), glm::vec3(1.0f), 1.0f});
+  const BakeResult bake = bake_of(scene, 3);
+  const RayTracer tracer(scene);
+  const SurfacePatchLookup lookup(bake.voxels, bake.samples, bake.patch_of_sample);
+  std::vector<glm::vec3> points, normals;
+  for (int i = 0; i < 5; ++i) {
+    points.emplace_back(0.1f + 0.2f * static_cast<float>(i), 0.0f, 0.05f);
+    normals.emplace_back(0.0f, 1.0f, 0.0f);
+  }
+  // Every patch kept exactly (no cluster remainder, whose membership would
+  // differ between the two), so that only the sample entries differ.
+  FinalGatherSettings with_samples;
+  ASSERT_GT(with_samples.sample_kept, 0);
+  with_samples.kept = 100000;
+  with_samples.coverage = 1.0;
+  FinalGatherSettings patches_only = with_samples;
+  patches_only.sample_kept = 0;
+  const FinalGather a = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
+                                           points, normals, patches_only);
+  const FinalGather b = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
+                                           points, normals, with_samples);
+  a.validate("patches only");
+  b.validate("with samples");
+  EXPECT_EQ(a.samples, 0u);
+  EXPECT_EQ(b.samples, bake.samples.samples.size());
+  std::size_t sample_entries = 0;
+  for (std::uint32_t src : b.source) sample_entries += src >= b.patches + b.clusters ? 1 : 0;
+  EXPECT_GT(sample_entries, 0u);
+  // Patch light: a ramp over the patches, so that a misplaced ray shows.
+  std::vector<glm::vec3> patch_light(bake.patches.size()),
+      sample_light(bake.samples.samples.size());
+  for (std::size_t p = 0; p < patch_light.size(); ++p)
+    patch_light[p] = glm::vec3(1.0f + static_cast<float>(p), 1.0f, 0.5f);
+  for (std::size_t p = 0; p < patch_light.size(); ++p)
+    for (std::uint32_t k = bake.patches.member_first[p]; k < bake.patches.member_first[p + 1]; ++k)
+      sample_light[bake.patches.member_samples[k]] = patch_light[p];
+  std::vector<glm::vec3> ea, eb;
+  a.irradiance(patch_light, ea);
+  b.irradiance(patch_light, sample_light, eb);
+  EXPECT_THROW(b.irradiance(patch_light, ea), Error);  // sample sources need sample light
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    double ta = 0.0, tb = 0.0;
+    for (std::uint64_t k = a.first[i]; k < a.first[i + 1]; ++k) ta += a.weight[k];
+    for (std::uint64_t k = b.first[i]; k < b.first[i + 1]; ++k) tb += b.weight[k];
+    EXPECT_NEAR(ta, tb, 1e-5) << i;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(ea[i][c], eb[i][c], 1e-5 * (1.0 + ea[i][c])) << i;
+  }
 }
 
 }  // namespace

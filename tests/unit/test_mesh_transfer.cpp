@@ -270,7 +270,13 @@ TEST(MeshTransfer, FinalGatherSeesNoLightThroughAWallThinnerThanAVoxel) {
       build_final_gather(tracer, lookup, s.bake.patches.patches, s.bake.voxels.grid,
                          gather_points_of_vertices(m.positions, m.triangles), m.normals, {});
   g.validate("slab gather");
-  g.irradiance(s.light, m.radiosity);
+  // Each sample source carries its patch's light.
+  std::vector<glm::vec3> sample_light(s.bake.samples.samples.size(), glm::vec3(0.0f));
+  for (std::size_t p = 0; p < s.bake.patches.size(); ++p)
+    for (std::uint32_t k = s.bake.patches.member_first[p]; k < s.bake.patches.member_first[p + 1];
+         ++k)
+      sample_light[s.bake.patches.member_samples[k]] = s.light[p];
+  g.irradiance(s.light, sample_light, m.radiosity);
   const SlabLevels l = slab_levels(m);
   std::printf(
       "final gather, thin slab: far side max %.2e over %zu, floor under it max %.2e over "
