@@ -31,6 +31,15 @@ BakeResult bake_of(const Scene& scene, int voxel) {
   return Baker(scene, s, d).run(progress);
 }
 
+// A floor (y = 0) and a wall (z = 0) meeting at a right angle, the wall lit
+// evenly by a directional light grazing the floor.
+Scene corner_lit_along_the_floor() {
+  Scene scene = test_scenes::perpendicular_squares();
+  scene.lights.push_back({Light::Type::Directional, "sun", glm::vec3(0.0f),
+                          glm::vec3(0.0f, 0.0f, -1.0f), glm::vec3(1.0f), 1.0f});
+  return scene;
+}
+
 TEST(FinalGather, WeightsFacingALargeSquareSumToItsExactFormFactor) {
   const Scene scene = test_scenes::parallel_squares();
   const BakeResult bake = bake_of(scene, 4);
@@ -74,9 +83,7 @@ TEST(FinalGather, ConcaveCornerGetsItsLightFromTheWallBesideIt) {
   // coarse patch it lies in does on average. The gather must give the
   // reference's indirect light there within its noise, and more than the
   // patch-constant value.
-  Scene scene = test_scenes::perpendicular_squares();
-  scene.lights.push_back({Light::Type::Directional, "sun", glm::vec3(0.0f),
-                          glm::vec3(0.0f, 0.0f, -1.0f), glm::vec3(1.0f), 1.0f});
+  const Scene scene = corner_lit_along_the_floor();
   const BakeResult bake = bake_of(scene, 3);
   const RayTracer tracer(scene);
   const glm::vec3 x(0.5f, 0.0f, 0.02f), n(0.0f, 1.0f, 0.0f);
@@ -135,11 +142,8 @@ TEST(FinalGather, SampleSourcesSplitThePatchesRaysAndKeepTheirLight) {
   // The same rays with and without sample sources: each point's total is
   // the same, and when every sample carries its own patch's light the two
   // gathers give the same irradiance (the sample entries only move rays
-  // from a patch to its samples). With each sample's own direct light, a
-  // point near the lit wall of a corner reads the wall's own samples.
-  Scene scene = test_scenes::perpendicular_squares();
-  scene.lights.push_back({Light::Type::Directional, "sun", glm::vec3(0.0f),
-                          glm::vec3(0.0f, 0.0f, -1.0f), glm::vec3(1.0f), 1.0f});
+  // from a patch to its samples).
+  const Scene scene = corner_lit_along_the_floor();
   const BakeResult bake = bake_of(scene, 3);
   const RayTracer tracer(scene);
   const SurfacePatchLookup lookup(bake.voxels, bake.samples, bake.patch_of_sample);
