@@ -32,26 +32,14 @@ LightTemporalRadiosity::LightTemporalRadiosity(const CompressedTransportTables& 
     throw Error("light temporal radiosity", "the change scale must be positive");
   const std::size_t padded = tables_.padded;
   column_sums_ = compressed_column_abs_sums(tables_);
+  column_blocks_ = blocks_by_column(tables_);
   kept_ = kept_by_column(tables_);
   b_stored_.assign(4 * padded, 0.0f);
   scaled_.assign(4 * padded, 0.0f);
   previous_.assign(4 * padded, 0.0f);
   mass_.assign(tables_.block_rows, 0.0);
   y_stored_.assign(3 * padded, 0.0f);
-  estimate_.assign(tables_.n, glm::vec3(0.0f));
   offset0_ = unit_double(hash32(settings_.seed ^ 0x5bd1e995u));
-}
-
-void LightTemporalRadiosity::gather(std::span<const glm::vec3> b, float* stored) const {
-  if (b.size() != tables_.n)
-    throw Error("light temporal radiosity", "b has " + std::to_string(b.size()) + " entries for " +
-                                                std::to_string(tables_.n) + " patches");
-  for (std::size_t i = 0; i < tables_.n; ++i) {
-    const glm::vec3& v = b[tables_.permutation[i]];
-    stored[4 * i] = v.x;
-    stored[4 * i + 1] = v.y;
-    stored[4 * i + 2] = v.z;
-  }
 }
 
 void LightTemporalRadiosity::estimate(std::span<const glm::vec3> b, std::uint32_t frame,
@@ -60,14 +48,27 @@ void LightTemporalRadiosity::estimate(std::span<const glm::vec3> b, std::uint32_
     throw Error("light temporal radiosity", "the output has " + std::to_string(out.size()) +
                                                 " entries for " + std::to_string(tables_.n) +
                                                 " patches");
-  gather(b, b_stored_.data());
-  const std::size_t nb = tables_.block_rows;
-  for (std::size_t J = 0; J < nb; ++J) {
-    double m = 0.0;
-    for (std::size_t q = 4 * J; q < 4 * J + 4; ++q)
-      for (std::size_t k = 0; k < 3; ++k)
-        m += static_cast<double>(column_sums_[3 * q + k]) * std::abs(b_stored_[4 * q + k]);
-    mass_[J] = m;
+  estimate_stored(b, frame);
+  const float(*y)[3] = reinterpret_cast<const float(*)[3]>(y_stored_.data());
+  for (std::size_t i = 0; i < tables_.n; ++i)
+    out[tables_.permutation[i]] = glm::vec3(y[i][0], y[i][1], y[i][2]);
+}
+
+void LightTemporalRadiosity::estimate_stored(std::span<const glm::vec3> b, std::uint32_t frame) {
+  if (b.size() != tables_.n)
+    throw Error("light temporal radiosity", "b has " + std::to_string(b.size()) + " entries for " +
+                                                std::to_string(tables_.n) + " patches");
+  // One pass: b into stored order and the mass of each block column.
+  std::fill(mass_.begin(), mass_.end(), 0.0);
+  for (std::size_t i = 0; i < tables_.n; ++i) {
+    const glm::vec3& v = b[tables_.permutation[i]];
+    float* stored = &b_stored_[4 * i];
+    stored[0] = v.x;
+    stored[1] = v.y;
+    stored[2] = v.z;
+    const float* c = &column_sums_[3 * i];
+    mass_[i / 4] +=
+        static_cast<double>(c[0] * std::abs(v.x) + c[1] * std::abs(v.y) + c[2] * std::abs(v.z));
   }
   const double u = settings_.stratify_frames
                        ? std::fmod(offset0_ + kGolden * static_cast<double>(frame), 1.0)
@@ -81,12 +82,22 @@ void LightTemporalRadiosity::estimate(std::span<const glm::vec3> b, std::uint32_
     for (std::size_t i = 4 * q0; i < 4 * q0 + 16; ++i) scaled_[i] = b_stored_[i] * scale;
   }
   float(*y)[3] = reinterpret_cast<float(*)[3]>(y_stored_.data());
-  multiply_block_columns(tables_, scaled_.data(), draw_.items, y);
+  multiply_block_columns(tables_, column_blocks_.data(), scaled_.data(), draw_.items, y);
   last_kept_ = add_kept_columns(kept_, scaled_.data(), draw_.items, y);
   for (std::uint32_t J : draw_.items)
     std::fill_n(scaled_.begin() + 16 * static_cast<std::ptrdiff_t>(J), 16, 0.0f);
+}
+
+double LightTemporalRadiosity::stored_change() const {
+  double change = 0.0, total = 0.0;
   for (std::size_t i = 0; i < tables_.n; ++i)
-    out[tables_.permutation[i]] = glm::vec3(y[i][0], y[i][1], y[i][2]);
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double c = column_sums_[3 * i + k];
+      change += c * std::abs(static_cast<double>(b_stored_[4 * i + k]) - previous_[4 * i + k]);
+      total += c * std::abs(b_stored_[4 * i + k]);
+    }
+  if (total > 0.0) return change / total;
+  return change > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
 }
 
 double LightTemporalRadiosity::light_change(std::span<const glm::vec3> b) const {
@@ -113,17 +124,22 @@ void LightTemporalRadiosity::step(std::span<const glm::vec3> b, std::span<glm::v
     throw Error("light temporal radiosity", "the history has " + std::to_string(history.size()) +
                                                 " entries for " + std::to_string(tables_.n) +
                                                 " patches");
-  last_change_ = light_change(b);
+  estimate_stored(b, frame_);
+  last_change_ = has_previous_ ? stored_change() : 0.0;
   history_frames_ =
       history_frames_after_change(history_frames_, last_change_, settings_.history.change_scale);
-  estimate(b, frame_, estimate_);
   const float w = history_weight(history_frames_);
-  for (std::size_t p = 0; p < tables_.n; ++p)
-    history[p] = w * history[p] + (1.0f - w) * estimate_[p];
+  const float(*y)[3] = reinterpret_cast<const float(*)[3]>(y_stored_.data());
+  for (std::size_t i = 0; i < tables_.n; ++i) {
+    glm::vec3& h = history[tables_.permutation[i]];
+    h = w * h + (1.0f - w) * glm::vec3(y[i][0], y[i][1], y[i][2]);
+  }
   last_weight_ = w;
   history_frames_ =
       std::min(history_frames_ + 1.0, static_cast<double>(settings_.history.max_frames));
-  std::copy(b_stored_.begin(), b_stored_.end(), previous_.begin());
+  // The next gather rewrites every stored column of b_stored_ (padding
+  // stays 0 in both).
+  previous_.swap(b_stored_);
   has_previous_ = true;
   ++frame_;
 }
@@ -151,8 +167,8 @@ std::size_t LightTemporalRadiosity::own_bytes() const {
          (column_sums_.size() + b_stored_.size() + scaled_.size() + previous_.size() +
           y_stored_.size()) *
              sizeof(float) +
-         mass_.size() * sizeof(double) + estimate_.size() * sizeof(glm::vec3) +
-         draw_.items.capacity() * sizeof(std::uint32_t) + draw_.scale.capacity() * sizeof(double);
+         mass_.size() * sizeof(double) + draw_.items.capacity() * sizeof(std::uint32_t) +
+         draw_.scale.capacity() * sizeof(double);
 }
 
 }  // namespace bounce

@@ -25,10 +25,11 @@
 //
 // Cost per frame: O(n) to gather b and the masses, then S block columns
 // times nb block rows of 8-byte blocks and the kept entries of those
-// columns: about S / nb of the product's block reads. Memory: the blocks
-// and palettes are the caller's (shared with the runtime's product); this
-// object holds the kept entries by column (as large as the tables' by-row
-// ones, which it does not read) and O(n) buffers.
+// columns: about S / nb of the product's block reads, each block column one
+// sequential run. Memory: the palettes are the caller's (shared with the
+// runtime's product); this object holds the blocks and the kept entries by
+// column (as large as the tables' by-row ones, which it does not read) and
+// O(n) buffers.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -85,13 +86,14 @@ class LightTemporalRadiosity {
   // This object's own buffers (not the shared tables, not the history),
   // the by-column kept entries included.
   std::size_t own_bytes() const;
-  // What it reads of the shared tables: blocks and palettes (the kept
-  // entries it reads from its own by-column copy).
+  // What it reads of the shared tables: the palettes (the blocks and kept
+  // entries it reads from its own by-column copies).
   std::size_t table_bytes_read() const;
 
  private:
   const CompressedTransportTables& tables_;
   LightTemporalSettings settings_;
+  std::vector<std::uint8_t> column_blocks_;  // blocks_by_column(tables_)
   KeptColumns kept_;
   std::vector<float> column_sums_;  // 3 per stored column
   std::vector<float> b_stored_;     // 4 per stored column, padded
@@ -99,7 +101,6 @@ class LightTemporalRadiosity {
   std::vector<float> previous_;     // b_stored_ of the previous step
   std::vector<double> mass_;        // per block column
   std::vector<float> y_stored_;     // 3 per stored row
-  std::vector<glm::vec3> estimate_;
   SystematicDraw draw_;
   std::size_t last_kept_ = 0;
   bool has_previous_ = false;
@@ -109,7 +110,10 @@ class LightTemporalRadiosity {
   std::uint32_t frame_ = 0;
   double offset0_ = 0.0;
 
-  void gather(std::span<const glm::vec3> b, float* stored) const;
+  // The estimate into y_stored_ (stored order), b left in b_stored_.
+  void estimate_stored(std::span<const glm::vec3> b, std::uint32_t frame);
+  // The change between b_stored_ and previous_.
+  double stored_change() const;
 };
 
 }  // namespace bounce

@@ -150,8 +150,9 @@ TEST(CompressedColumns, ProductAndColumnSumsMatchTheDecompressedMatrix) {
   std::iota(all.begin(), all.end(), 0u);
   std::vector<float> y(3 * t.padded);
   const KeptColumns kept = kept_by_column(t);
+  const std::vector<std::uint8_t> blocks = blocks_by_column(t);
   EXPECT_EQ(kept.row.size(), t.corrections());
-  multiply_block_columns(t, x.data(), all, reinterpret_cast<float(*)[3]>(y.data()));
+  multiply_block_columns(t, blocks.data(), x.data(), all, reinterpret_cast<float(*)[3]>(y.data()));
   EXPECT_EQ(add_kept_columns(kept, x.data(), all, reinterpret_cast<float(*)[3]>(y.data())),
             t.corrections());
   const std::vector<glm::dvec3> ref = product(c, b);
@@ -165,7 +166,7 @@ TEST(CompressedColumns, ProductAndColumnSumsMatchTheDecompressedMatrix) {
   for (std::uint32_t J : some)
     for (std::size_t i = 4 * J; i < 4 * J + 4 && i < n; ++i)
       restricted[t.permutation[i]] = b[t.permutation[i]];
-  multiply_block_columns(t, x.data(), some, reinterpret_cast<float(*)[3]>(y.data()));
+  multiply_block_columns(t, blocks.data(), x.data(), some, reinterpret_cast<float(*)[3]>(y.data()));
   add_kept_columns(kept, x.data(), some, reinterpret_cast<float(*)[3]>(y.data()));
   const std::vector<glm::dvec3> part = product(c, restricted);
   for (std::size_t i = 0; i < n; ++i)
