@@ -53,7 +53,7 @@ struct DynamicBenchOptions {
   bool quiet = false;
   // Temporal radiosity with importance on the light (needs the bake's
   // compressed matrix).
-  int block_columns = 16;
+  int block_columns = 12;
   double change_scale = 0.25;
   int max_history = 64;
   int moving_frames = 32;  // 0: no moving light

@@ -360,6 +360,7 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
               in, s, refs);
       row.persistent_bytes = tables + vec;
       row.transient_bytes = graph_transient_bytes(n, ch, true, false);
+      row.bytes_per_frame = temporal.bytes_per_frame();
     } catch (const Error& e) {
       row.available = false;
       row.note = e.what();
@@ -409,6 +410,7 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
             in, s, refs);
     row.persistent_bytes = tables + vec;
     row.transient_bytes = graph_transient_bytes(n, ch, true, true);
+    row.bytes_per_frame = temporal.bytes_per_frame();
     out.methods.push_back(row);
   }
   {

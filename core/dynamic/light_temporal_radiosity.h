@@ -45,7 +45,7 @@
 namespace bounce {
 
 struct LightTemporalSettings {
-  int block_columns = 16;  // S, draws per frame (a block column may be drawn more than once)
+  int block_columns = 12;  // S, draws per frame (a block column may be drawn more than once)
   AdaptiveHistorySettings history;
   bool stratify_frames = true;  // golden-ratio offsets; false: independent frames
   std::uint32_t seed = 1;
