@@ -118,7 +118,7 @@ void run(const DynamicBenchOptions& opt) {
   if (opt.block_columns < 1 || opt.block_columns > 1 << 20)
     throw Error("--block-columns", "must be between 1 and 1048576");
   if (!(opt.change_scale > 0.0 && opt.change_scale <= 1e6))
-    throw Error("--change-scale", "must be positive");
+    throw Error("--change-scale", "must be positive and at most 1e6");
   if (opt.max_history < 0 || opt.max_history > 1 << 20)
     throw Error("--max-history", "must be between 0 and 1048576");
   if (opt.moving_frames < 0 || opt.moving_frames > 4096)
