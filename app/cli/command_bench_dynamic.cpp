@@ -9,6 +9,7 @@
 // (runtime/camera_image.h) and compares it with the full product's (SSIM,
 // relative RMSE) and with the path-traced reference (core/reference, cached).
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -26,6 +27,7 @@
 #include "reference/reference_cache.h"
 #include "runtime/area_lights.h"
 #include "runtime/camera_image.h"
+#include "runtime/compressed_transport.h"
 #include "runtime/direct_light.h"
 #include "runtime/patch_gather.h"
 #include "scene/scene_loader.h"
@@ -42,13 +44,64 @@ struct DynamicBenchOptions {
   int light = 0, jump_to = 1;
   int bounces = 16;
   bool no_local = false;
+  bool no_classic = false;
   bool json = false;
   std::string scene;  // empty: the manifest's scene path
   int width = 96, height = 72;
   bool no_images = false;
   int reference_samples = 256;  // 0: no reference
   bool quiet = false;
+  // Temporal radiosity with importance on the light (needs the bake's
+  // compressed matrix).
+  int block_columns = 12;
+  double change_scale = 0.25;
+  int max_history = 64;
+  int moving_frames = 32;  // 0: no moving light
 };
+
+// The point light that moves: the bake's first point light, else the
+// scene's, else one at the top of the middle of the scene; it circles in the
+// horizontal plane (y up) with a radius of 0.15 of the bounds' diagonal, one
+// turn over the path.
+std::vector<std::vector<glm::vec3>> moving_point_light(const LoadedBake& b, const Scene& scene,
+                                                       const RayTracer& tracer, int frames) {
+  Light light;
+  bool found = false;
+  for (const auto& l : b.manifest.at("scene").value("lights", nlohmann::json::array()))
+    if (l.value("type", "") == "point") {
+      const auto p = l.at("position"), c = l.at("color");
+      light.position = glm::vec3(p[0].get<float>(), p[1].get<float>(), p[2].get<float>());
+      light.color = glm::vec3(c[0].get<float>(), c[1].get<float>(), c[2].get<float>());
+      light.intensity = l.at("intensity").get<float>();
+      found = true;
+      break;
+    }
+  const Bounds bounds = scene.bounds();
+  if (!found)
+    for (const Light& l : scene.lights)
+      if (l.type == Light::Type::Point) {
+        light = l;
+        found = true;
+        break;
+      }
+  if (!found) {
+    light.position = 0.5f * (bounds.lo + bounds.hi);
+    light.position.y = bounds.lo.y + 0.8f * (bounds.hi.y - bounds.lo.y);
+    light.intensity = glm::dot(bounds.hi - bounds.lo, bounds.hi - bounds.lo);
+  }
+  light.type = Light::Type::Point;
+  light.name = "moving";
+  const float radius = 0.15f * glm::length(bounds.hi - bounds.lo);
+  std::vector<std::vector<glm::vec3>> path;
+  for (int f = 0; f < frames; ++f) {
+    const float angle = 6.28318530718f * static_cast<float>(f) / static_cast<float>(frames);
+    Light moved = light;
+    moved.position += radius * glm::vec3(std::cos(angle), 0.0f, std::sin(angle));
+    path.push_back(
+        first_bounce(b.patches, direct_irradiance(tracer, b.samples, b.patches, {moved})));
+  }
+  return path;
+}
 
 void run(const DynamicBenchOptions& opt) {
   if (opt.samples < 1 || opt.samples > 1 << 20)
@@ -62,6 +115,14 @@ void run(const DynamicBenchOptions& opt) {
                 "must be between 16 and 4096 (SSIM compares pixels at least 5 from the border)");
   if (opt.reference_samples < 0 || opt.reference_samples > 1 << 16)
     throw Error("--reference-samples", "must be between 0 and 65536");
+  if (opt.block_columns < 1 || opt.block_columns > 1 << 20)
+    throw Error("--block-columns", "must be between 1 and 1048576");
+  if (!(opt.change_scale > 0.0 && opt.change_scale <= 1e6))
+    throw Error("--change-scale", "must be positive and at most 1e6");
+  if (opt.max_history < 0 || opt.max_history > 1 << 20)
+    throw Error("--max-history", "must be between 0 and 1048576");
+  if (opt.moving_frames < 0 || opt.moving_frames > 4096)
+    throw Error("--moving-frames", "must be between 0 and 4096");
   const LoadedBake b = BakeReader::read(opt.bake, true);
   if (b.dense.empty())
     throw Error(opt.bake, "holds no exact transport matrix T.npy: bake with --dump-matrices");
@@ -123,6 +184,8 @@ void run(const DynamicBenchOptions& opt) {
       const PatchGather gather(*patches, indirect, grid, t, GatherSettings{});
       return render_camera(*t, gather, cs).indirect;
     };
+    if (opt.moving_frames > 0)
+      in.moving_light = moving_point_light(b, *scene, *tracer, opt.moving_frames);
     const std::vector<AreaLight> area = area_lights(*scene);
     in.scene_light = first_bounce(
         b.patches, direct_irradiance(*tracer, b.samples, b.patches, scene->lights, area));
@@ -150,11 +213,21 @@ void run(const DynamicBenchOptions& opt) {
                   "(use --no-images)");
   }
 
+  std::unique_ptr<CompressedTransport> compressed;
+  if (b.compressed) {
+    compressed = std::make_unique<CompressedTransport>(*b.compressed, b.channel_of_rgb);
+    in.compressed = compressed.get();
+  }
+
   DynamicBenchSettings settings;
+  settings.light_temporal.block_columns = opt.block_columns;
+  settings.light_temporal.history.change_scale = opt.change_scale;
+  settings.light_temporal.history.max_frames = opt.max_history;
   settings.temporal.samples_per_patch = opt.samples;
   settings.temporal.history_weight = opt.weight;
   settings.repeats = opt.repeats;
   settings.local_matrix = !opt.no_local;
+  settings.classic = !opt.no_classic;
   const DynamicBench bench = run_dynamic_bench(in, settings);
 
   if (opt.json) {
@@ -167,13 +240,19 @@ void run(const DynamicBenchOptions& opt) {
                          {"error_after_1_4_16_64", r.error},
                          {"ghosting_frames", r.ghosting_frames},
                          {"persistent_bytes", r.persistent_bytes},
-                         {"transient_bytes", r.transient_bytes}});
+                         {"transient_bytes", r.transient_bytes},
+                         {"bytes_per_frame", r.bytes_per_frame}});
     for (std::size_t i = 0; i < bench.methods.size(); ++i) {
       const DynamicMethodRow& r = bench.methods[i];
       if (r.images) {
         methods[i]["image_ssim_after_1_4_16_64"] = r.image_ssim;
         methods[i]["image_relative_rmse_after_1_4_16_64"] = r.image_error;
+        methods[i]["image_ssim_after_jump_1_4"] = r.jump_ssim;
       }
+      if (r.moving)
+        methods[i]["moving_light"] = {{"ms_per_frame", r.moving_ms},
+                                      {"mean_error", r.moving_error},
+                                      {"last_image_ssim", r.moving_ssim}};
       if (r.against_reference) {
         methods[i]["reference_relative_rmse"] = r.reference_error;
         methods[i]["reference_ssim"] = r.reference_ssim;
@@ -249,6 +328,8 @@ void register_bench_dynamic(CLI::App& bench) {
   cmd->add_option("--bounces", opt->bounces, "K of the classic baseline")->capture_default_str();
   cmd->add_flag("--no-local", opt->no_local,
                 "Skip the local-matrix rows (they factorise T twice by LU)");
+  cmd->add_flag("--no-classic", opt->no_classic,
+                "Skip the classic row (K products with F per frame, the slowest row)");
   cmd->add_option("--scene", opt->scene,
                   "The scene the bake was made from, if it moved (default: the path in the "
                   "bake's manifest)");
@@ -261,6 +342,21 @@ void register_bench_dynamic(CLI::App& bench) {
       ->capture_default_str();
   cmd->add_flag("--no-images", opt->no_images,
                 "Compare per-patch light only: no camera pictures, no reference");
+  cmd->add_option("--block-columns", opt->block_columns,
+                  "Light-importance temporal radiosity: block columns (4 patches each) drawn "
+                  "per frame")
+      ->capture_default_str();
+  cmd->add_option("--change-scale", opt->change_scale,
+                  "Light-importance temporal radiosity: a relative light change this large "
+                  "drops the history")
+      ->capture_default_str();
+  cmd->add_option("--max-history", opt->max_history,
+                  "Light-importance temporal radiosity: most frames the history averages")
+      ->capture_default_str();
+  cmd->add_option("--moving-frames", opt->moving_frames,
+                  "Frames of the moving point light's path (one circle; 0: none; needs the "
+                  "scene)")
+      ->capture_default_str();
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress bars");
   cmd->add_flag("--json", opt->json, "Machine-readable output");
   cmd->callback([opt]() { run(*opt); });

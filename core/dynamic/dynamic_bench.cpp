@@ -7,6 +7,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <string>
 
 #include "base/error.h"
 #include "dynamic/frame_graph.h"
@@ -55,9 +56,20 @@ struct FrameMethod {
 // product's camera picture of the first light) the pictures at the same
 // marks are compared with it, and with a reference the picture after
 // in.reference_frames frames of the scene's lights with the path tracer's.
+// What every method is compared with: the full product of each light, and
+// its pictures.
+struct References {
+  std::vector<glm::vec3> light, jumped;
+  std::vector<std::vector<glm::vec3>> moving;
+  const RgbFloatImage* image = nullptr;      // of `light`
+  RgbFloatImage jumped_image, moving_image;  // of `jumped`, of the last moving light
+};
+
 void measure(DynamicMethodRow& row, const FrameMethod& m, const DynamicBenchInput& in,
-             const DynamicBenchSettings& s, const std::vector<glm::vec3>& ref0,
-             const std::vector<glm::vec3>& ref1, const RgbFloatImage* full_image) {
+             const DynamicBenchSettings& s, const References& refs) {
+  const std::vector<glm::vec3>& ref0 = refs.light;
+  const std::vector<glm::vec3>& ref1 = refs.jumped;
+  const RgbFloatImage* full_image = refs.image;
   std::vector<glm::vec3> out;
   m.reset();
   std::size_t next = 0;
@@ -88,13 +100,35 @@ void measure(DynamicMethodRow& row, const FrameMethod& m, const DynamicBenchInpu
   std::vector<glm::vec3> previous;
   for (int f = 0; f < s.ghosting_limit; ++f) {
     m.frame(in.jumped_light, out);
+    if (full_image && (f == 0 || f == 3))
+      row.jump_ssim[f == 0 ? 0 : 1] =
+          image_errors(in.render_indirect(out), refs.jumped_image, in.image_mask).ssim;
+    if (f >= 3 && row.ghosting_frames >= 0) break;
+    if (row.ghosting_frames >= 0) continue;
     if (relative_rms(out, ref1, in.area) <= threshold) {
       row.ghosting_frames = f;  // frames before the first good one
-      break;
+      continue;
     }
     // A method without history repeats itself: it will never get closer.
-    if (out == previous) break;
+    if (out == previous && f >= 3) break;
     previous = out;
+  }
+  if (!in.moving_light.empty()) {
+    m.reset();
+    row.moving = true;
+    double ms = 0.0, error = 0.0;
+    for (std::size_t f = 0; f < in.moving_light.size(); ++f) {
+      const auto start = Clock::now();
+      m.frame(in.moving_light[f], out);
+      ms += ms_since(start);
+      error += relative_rms(out, refs.moving[f], in.area);
+    }
+    const auto frames = static_cast<double>(in.moving_light.size());
+    row.moving_ms = ms / frames;
+    row.moving_error = error / frames;
+    if (full_image)
+      row.moving_ssim =
+          image_errors(in.render_indirect(out), refs.moving_image, in.image_mask).ssim;
   }
   m.reset();
   m.frame(in.light, out);  // warm-up
@@ -108,6 +142,19 @@ void measure(DynamicMethodRow& row, const FrameMethod& m, const DynamicBenchInpu
 
 std::size_t matrix_bytes(std::size_t n, std::size_t channels) {
   return channels * n * n * sizeof(float);
+}
+
+// What the runtime's compressed product holds: the tables, the block
+// records its AVX-512 loops read besides the blocks (10 bytes per block),
+// and its stored-order b and y.
+std::size_t compressed_product_bytes(const CompressedTransport& ct) {
+  const CompressedTransportTables& t = ct.tables();
+  const std::string loop = ct.block_loop();
+  const std::size_t nb = t.block_rows;
+  std::size_t records = 0;
+  if (loop == "avx512-bf16") records = (nb + 7) / 8 * nb * sizeof(Bc1BlockGroup);
+  if (loop == "avx512") records = (nb + 1) / 2 * nb * sizeof(Bc1BlockPair);
+  return t.bytes() + records + t.padded * (3 + 4 + 3) * sizeof(float);
 }
 
 std::size_t graph_transient_bytes(std::size_t n, int channels, bool temporal, bool alias) {
@@ -182,9 +229,16 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
   const int ch = static_cast<int>(channels);
   const std::size_t vec = n * sizeof(glm::vec3);
 
-  std::vector<glm::vec3> ref0, ref1;
+  References refs;
+  std::vector<glm::vec3>& ref0 = refs.light;
   dense_indirect(in.transport, n, in.channel_of_rgb, in.light, ref0);
-  dense_indirect(in.transport, n, in.channel_of_rgb, in.jumped_light, ref1);
+  dense_indirect(in.transport, n, in.channel_of_rgb, in.jumped_light, refs.jumped);
+  for (const std::vector<glm::vec3>& b : in.moving_light) {
+    if (b.size() != n)
+      throw Error("bench dynamic", "a moving light does not match the patch count");
+    refs.moving.emplace_back();
+    dense_indirect(in.transport, n, in.channel_of_rgb, b, refs.moving.back());
+  }
   if (!in.scene_light.empty() && in.scene_light.size() != n)
     throw Error("bench dynamic", "the scene's light vector does not match the patch count");
   RgbFloatImage full_picture;
@@ -192,6 +246,9 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
   if (in.render_indirect) {
     full_picture = in.render_indirect(ref0);
     full_image = &full_picture;
+    refs.image = full_image;
+    refs.jumped_image = in.render_indirect(refs.jumped);
+    if (!refs.moving.empty()) refs.moving_image = in.render_indirect(refs.moving.back());
     out.image_width = full_picture.width;
     out.image_height = full_picture.height;
     if (in.reference_indirect.width > 0) {
@@ -216,10 +273,54 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
              [&](const std::vector<glm::vec3>& b, std::vector<glm::vec3>& y) {
                dense_indirect(in.transport, n, in.channel_of_rgb, b, y);
              }},
-            in, s, ref0, ref1, full_image);
+            in, s, refs);
     row.persistent_bytes = matrix_bytes(n, channels);
     row.transient_bytes = graph_transient_bytes(n, ch, false, false);
+    row.bytes_per_frame = matrix_bytes(n, channels) + 2 * vec;
     out.methods.push_back(row);
+  }
+
+  if (in.compressed) {
+    const CompressedTransport& ct = *in.compressed;
+    if (ct.size() != n) throw Error("bench dynamic", "the compressed matrix's size differs");
+    {
+      DynamicMethodRow row;
+      row.method = "compressed product (C++)";
+      row.note = ct.block_loop();
+      measure(row,
+              {[] {}, [&](const std::vector<glm::vec3>& b,
+                          std::vector<glm::vec3>& y) { ct.multiply(b, y); }},
+              in, s, refs);
+      row.persistent_bytes = compressed_product_bytes(ct);
+      row.transient_bytes = graph_transient_bytes(n, ch, false, false);
+      row.bytes_per_frame = ct.bytes_per_product();
+      out.methods.push_back(row);
+    }
+    {
+      DynamicMethodRow row;
+      row.method = "temporal, light importance, compressed T";
+      LightTemporalRadiosity light(ct.tables(), s.light_temporal);
+      std::vector<glm::vec3> history(n, glm::vec3(0.0f));
+      measure(row,
+              {[&] { light.reset(); },
+               [&](const std::vector<glm::vec3>& b, std::vector<glm::vec3>& y) {
+                 light.step(b, history);
+                 y = history;
+               }},
+              in, s, refs);
+      char note[160];
+      std::snprintf(note, sizeof note, "S = %d of %zu block columns, %zu drawn, %zu kept entries",
+                    s.light_temporal.block_columns, ct.tables().block_rows,
+                    light.last_block_columns(), light.last_kept_entries());
+      row.note = note;
+      // What it needs of the tables (blocks, palettes; shared with the
+      // runtime's product), its kept entries by column, O(n) buffers, the
+      // history.
+      row.persistent_bytes = light.table_bytes_read() + light.own_bytes() + vec;
+      row.transient_bytes = graph_transient_bytes(n, ch, true, false);
+      row.bytes_per_frame = light.last_bytes_read();
+      out.methods.push_back(row);
+    }
   }
 
   TemporalRadiosity temporal(in.transport, n, in.channel_of_rgb, s.temporal);
@@ -238,9 +339,10 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
                temporal.step(b, history);
                y = history;
              }},
-            in, s, ref0, ref1, full_image);
+            in, s, refs);
     row.persistent_bytes = tables + vec;
     row.transient_bytes = graph_transient_bytes(n, ch, true, false);
+    row.bytes_per_frame = temporal.bytes_per_frame();
     out.methods.push_back(row);
   }
   {
@@ -255,9 +357,10 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
                  cl.step(b);
                  cl.read_history(y);
                }},
-              in, s, ref0, ref1, full_image);
+              in, s, refs);
       row.persistent_bytes = tables + vec;
       row.transient_bytes = graph_transient_bytes(n, ch, true, false);
+      row.bytes_per_frame = temporal.bytes_per_frame();
     } catch (const Error& e) {
       row.available = false;
       row.note = e.what();
@@ -304,15 +407,19 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
                temporal.advance_frame();
                y = applied;
              }},
-            in, s, ref0, ref1, full_image);
+            in, s, refs);
     row.persistent_bytes = tables + vec;
     row.transient_bytes = graph_transient_bytes(n, ch, true, true);
+    row.bytes_per_frame = temporal.bytes_per_frame();
     out.methods.push_back(row);
   }
   {
     DynamicMethodRow row;
     row.method = "classic, K = " + std::to_string(in.classic_bounces) + " iterations on F";
-    if (!in.form_factors) {
+    if (!s.classic) {
+      row.available = false;
+      row.note = "skipped (--no-classic)";
+    } else if (!in.form_factors) {
       row.available = false;
       row.note = "the bake has no F.npy (bake with --dump-matrices)";
     } else {
@@ -321,7 +428,7 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
       measure(row,
               {[] {}, [&](const std::vector<glm::vec3>& b,
                           std::vector<glm::vec3>& y) { classic.multiply(b, y); }},
-              in, s, ref0, ref1, full_image);
+              in, s, refs);
       row.persistent_bytes = n * n * sizeof(float) + n * sizeof(glm::vec3);
       row.transient_bytes = 2 * n * sizeof(float) + 2 * vec;  // v, w; E, B
     }
@@ -344,9 +451,9 @@ DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSe
 std::string dynamic_bench_table(const DynamicBench& b) {
   std::string s;
   char line[512];
-  std::snprintf(line, sizeof line, "%-42s %10s %9s %9s %9s %9s %8s %11s %11s\n", "method",
+  std::snprintf(line, sizeof line, "%-42s %10s %9s %9s %9s %9s %8s %11s %11s %9s\n", "method",
                 "ms/frame", "err@1", "err@4", "err@16", "err@64", "ghost", "persist MB",
-                "transient MB");
+                "transient MB", "MB read");
   s += line;
   for (const DynamicMethodRow& r : b.methods) {
     if (!r.available) {
@@ -359,11 +466,25 @@ std::string dynamic_bench_table(const DynamicBench& b) {
       std::snprintf(ghost, sizeof ghost, "never");
     else
       std::snprintf(ghost, sizeof ghost, "%d", r.ghosting_frames);
-    std::snprintf(line, sizeof line, "%-42s %10.3f %9.2e %9.2e %9.2e %9.2e %8s %11.3f %11.4f\n",
-                  r.method.c_str(), r.ms_per_frame, r.error[0], r.error[1], r.error[2], r.error[3],
-                  ghost, static_cast<double>(r.persistent_bytes) / 1e6,
-                  static_cast<double>(r.transient_bytes) / 1e6);
+    std::snprintf(
+        line, sizeof line, "%-42s %10.3f %9.2e %9.2e %9.2e %9.2e %8s %11.3f %11.4f %9.3f\n",
+        r.method.c_str(), r.ms_per_frame, r.error[0], r.error[1], r.error[2], r.error[3], ghost,
+        static_cast<double>(r.persistent_bytes) / 1e6, static_cast<double>(r.transient_bytes) / 1e6,
+        static_cast<double>(r.bytes_per_frame) / 1e6);
     s += line;
+  }
+  for (const DynamicMethodRow& r : b.methods)
+    if (r.available && r.note.rfind("S = ", 0) == 0) s += "  (" + r.method + ": " + r.note + ")\n";
+  if (std::any_of(b.methods.begin(), b.methods.end(),
+                  [](const DynamicMethodRow& r) { return r.moving; })) {
+    s += "\nmoving light: mean ms per frame along the path, mean patch error against each "
+         "frame's full product, last frame's picture SSIM\n";
+    for (const DynamicMethodRow& r : b.methods) {
+      if (!r.available || !r.moving) continue;
+      std::snprintf(line, sizeof line, "%-42s %10.3f %9.2e %8.4f\n", r.method.c_str(), r.moving_ms,
+                    r.moving_error, r.moving_ssim);
+      s += line;
+    }
   }
   if (!b.local.empty()) {
     s += "\nlocal matrix (stored channel 0, against T by LU of the same F):\n";
@@ -386,9 +507,9 @@ std::string dynamic_bench_table(const DynamicBench& b) {
                                             "against the path-traced reference"
                                           : "");
     s += line;
-    std::snprintf(line, sizeof line, "%-42s %7s %7s %7s %7s %9s %9s %9s %9s %9s %8s\n", "method",
-                  "SSIM@1", "SSIM@4", "SSIM@16", "SSIM@64", "rel@1", "rel@4", "rel@16", "rel@64",
-                  "ref err", "ref SSIM");
+    std::snprintf(line, sizeof line, "%-42s %7s %7s %7s %7s %9s %9s %9s %9s %7s %7s %9s %8s\n",
+                  "method", "SSIM@1", "SSIM@4", "SSIM@16", "SSIM@64", "rel@1", "rel@4", "rel@16",
+                  "rel@64", "jump@1", "jump@4", "ref err", "ref SSIM");
     s += line;
     for (const DynamicMethodRow& r : b.methods) {
       if (!r.available || !r.images) continue;
@@ -396,10 +517,11 @@ std::string dynamic_bench_table(const DynamicBench& b) {
       if (r.against_reference)
         std::snprintf(reference, sizeof reference, "%9.3f %8.4f", r.reference_error,
                       r.reference_ssim);
-      std::snprintf(line, sizeof line, "%-42s %7.4f %7.4f %7.4f %7.4f %9.2e %9.2e %9.2e %9.2e %s\n",
+      std::snprintf(line, sizeof line,
+                    "%-42s %7.4f %7.4f %7.4f %7.4f %9.2e %9.2e %9.2e %9.2e %7.4f %7.4f %s\n",
                     r.method.c_str(), r.image_ssim[0], r.image_ssim[1], r.image_ssim[2],
                     r.image_ssim[3], r.image_error[0], r.image_error[1], r.image_error[2],
-                    r.image_error[3], reference);
+                    r.image_error[3], r.jump_ssim[0], r.jump_ssim[1], reference);
       s += line;
     }
     if (b.reference_noise > 0.0) {

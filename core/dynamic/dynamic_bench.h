@@ -25,8 +25,10 @@
 
 #include <glm/glm.hpp>
 
+#include "dynamic/light_temporal_radiosity.h"
 #include "dynamic/temporal_radiosity.h"
 #include "io/exr_writer.h"
+#include "runtime/compressed_transport.h"
 
 namespace bounce {
 
@@ -51,13 +53,24 @@ struct DynamicBenchInput {
   std::vector<glm::vec3> scene_light;
   RgbFloatImage reference_indirect, reference_variance;
   int reference_frames = 64;  // frames of scene_light before the comparison
+
+  // Optional: the bake's compressed matrix as the runtime multiplies it.
+  // Adds the compressed product (the baseline a light update must beat) and
+  // temporal radiosity with importance on the light, read from its tables.
+  const CompressedTransport* compressed = nullptr;
+  // Optional: b of a moving light, one per frame; every method runs the
+  // path once (timed per frame, error against the full product of each
+  // frame's light).
+  std::vector<std::vector<glm::vec3>> moving_light;
 };
 
 struct DynamicBenchSettings {
   TemporalSettings temporal;
+  LightTemporalSettings light_temporal;
   int repeats = 10;           // timed frames (after one warm-up)
   int ghosting_limit = 1000;  // frames searched for the end of ghosting
   bool local_matrix = true;   // time the LU recomputation (seconds for big n)
+  bool classic = true;        // the classic row (K sgemv on F per frame: slow)
 };
 
 struct DynamicMethodRow {
@@ -68,6 +81,15 @@ struct DynamicMethodRow {
   std::array<double, 4> error{};  // after 1, 4, 16, 64 frames
   int ghosting_frames = 0;        // -1: not ended within the limit
   std::size_t persistent_bytes = 0, transient_bytes = 0;
+  std::size_t bytes_per_frame = 0;  // what one frame reads (matrix or tables, b)
+  // With moving_light: mean ms per frame along the path, the mean over its
+  // frames of the patch error against that frame's full product, and the
+  // last frame's picture SSIM against the full product's.
+  bool moving = false;
+  double moving_ms = 0.0, moving_error = 0.0, moving_ssim = 0.0;
+  // With render_indirect: the picture 1 and 4 frames after the light
+  // jumped, SSIM against the full product's of the new light (ghosting).
+  std::array<double, 2> jump_ssim{};
   // With render_indirect: the camera's indirect picture after 1, 4, 16, 64
   // frames against the full product's (mean SSIM, relative RMSE).
   bool images = false;
