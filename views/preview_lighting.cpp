@@ -70,7 +70,7 @@ PreviewLighting::PreviewLighting(std::shared_ptr<const BakeViewData> data)
   gather_ = read_final_gather(bake.dir, bake.size());
   if (gather_) {
     if (gather_->points() != geometry_.positions.size())
-      throw Error((bake.dir / "gather_first.npy").string(),
+      throw Error((bake.dir / bake_file::kGatherFirst).string(),
                   "holds " + std::to_string(gather_->points()) +
                       " vertices, the scene's lit mesh "
                       "has " +

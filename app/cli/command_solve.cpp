@@ -290,7 +290,7 @@ void run_solve(const SolveOptions& opt) {
       // gather), plus its emission.
       mesh = build_transfer_mesh(scene, grid, TransferSettings{}, &console.progress());
       if (mesh.positions.size() != gather->points())
-        throw Error((fs::path(opt.bake) / "gather_first.npy").string(),
+        throw Error((fs::path(opt.bake) / bake_file::kGatherFirst).string(),
                     "holds " + std::to_string(gather->points()) +
                         " vertices, the scene's lit "
                         "mesh has " +

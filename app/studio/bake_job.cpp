@@ -45,8 +45,4 @@ void export_bake(const BakeJobResult& job, const fs::path& folder) {
   write_bake(folder, *job.scene, *job.result, *job.diagnostics);
 }
 
-bool is_bake_folder(const fs::path& path) {
-  return fs::is_directory(path) && fs::exists(path / "manifest.json");
-}
-
 }  // namespace bounce::studio
