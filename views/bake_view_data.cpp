@@ -2,9 +2,8 @@
 
 #include <cmath>
 
-#include "base/diagnostics.h"
+#include "bounce/scene.h"
 #include "io/npy.h"
-#include "scene/scene_loader.h"
 
 namespace bounce::views {
 

@@ -2,11 +2,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bake/bake.h"
-#include "bake/bake_reader.h"
-#include "base/diagnostics.h"
-#include "base/error.h"
-#include "scene/scene_loader.h"
+#include "bounce/bake.h"
+#include "bounce/bake_folder.h"
+#include "bounce/scene.h"
 
 namespace bounce::cli {
 

@@ -8,9 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "bake/bake_format.h"  // is_bake_folder
-#include "bake/bake_settings.h"
-#include "base/progress.h"
+#include "bounce/bake.h"
+#include "bounce/bake_folder.h"
 #include "compress/compression_error.h"
 
 namespace bounce::cli {

@@ -1,7 +1,7 @@
 #include "bake_job.h"
 
-#include "bake/bake_writer.h"
-#include "scene/scene_loader.h"
+#include "bounce/bake.h"
+#include "bounce/scene.h"
 
 namespace bounce::studio {
 

@@ -7,11 +7,9 @@
 #include <memory>
 #include <vector>
 
-#include "bake/bake.h"
-#include "bake/bake_format.h"  // is_bake_folder: a bake folder rather than a scene
 #include "bake_view_data.h"
-#include "base/diagnostics.h"
-#include "base/progress.h"
+#include "bounce/bake.h"
+#include "bounce/bake_folder.h"
 
 namespace bounce::studio {
 
