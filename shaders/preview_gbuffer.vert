@@ -1,5 +1,5 @@
 #version 330 core
-// G-buffer pass (paper 002, section 1): view-space position and normal
+// G-buffer pass of the preview (docs/studio.md): view-space position and normal
 // (V_vcs = M_mv V, N_vcs = (M_mv^-1)^T N; the view matrix is rigid, so its
 // rotation part is its own inverse transpose), plus what the lighting pass
 // needs per pixel: albedo, emission and the indirect light the runtime

@@ -1,5 +1,5 @@
 #version 330 core
-// Screen-space ambient occlusion as in paper 002, section 2. For the point
+// Screen-space ambient occlusion (docs/studio.md, the preview). For the point
 // P (view space, from G_pos) with normal N (from G_norm): the tangent-space
 // hemisphere kernel S_t (z >= 0) is turned into view space by
 // M_tbn = (T B N), T from the per-pixel random vector V_r by Gram-Schmidt,

@@ -2,18 +2,14 @@
 
 #include <cmath>
 
-#include "base/diagnostics.h"
+#include "bounce/scene.h"
 #include "io/npy.h"
-#include "scene/scene_loader.h"
 
 namespace bounce::views {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-// Column count of voxels.npy (docs/bake-format.md).
-constexpr std::size_t kVoxelColumns = 9;
 
 void require_shape(const fs::path& file, const std::vector<std::size_t>& shape,
                    std::size_t columns) {
@@ -41,37 +37,33 @@ std::shared_ptr<const BakeViewData> load_bake_view_data(const fs::path& dir,
   const nlohmann::json& m = data->bake.manifest;
   data->cell_size = m.at("grid").at("cell_size").get<float>();
 
-  const fs::path voxel_file = dir / "voxels.npy";
+  namespace vc = voxel_column;
+  const fs::path voxel_file = dir / bake_file::kVoxels;
   const NpyArray<float> v = read_npy_f32(voxel_file);
-  require_shape(voxel_file, v.shape, kVoxelColumns);
+  require_shape(voxel_file, v.shape, vc::kCount);
   data->voxels.reserve(v.shape[0]);
   for (std::size_t k = 0; k < v.shape[0]; ++k) {
-    const float* r = &v.data[k * kVoxelColumns];
+    const float* r = &v.data[k * vc::kCount];
     const auto whole = [&](std::size_t c) { return int_column(voxel_file, k, c, r[c]); };
-    data->voxels.push_back({glm::ivec3(whole(0), whole(1), whole(2)), glm::vec3(r[3], r[4], r[5]),
-                            r[6], whole(7), whole(8)});
+    const std::size_t cell = vc::kCell, centre = vc::kCentre;
+    data->voxels.push_back({glm::ivec3(whole(cell), whole(cell + 1), whole(cell + 2)),
+                            glm::vec3(r[centre], r[centre + 1], r[centre + 2]), r[vc::kArea],
+                            whole(vc::kSamples), whole(vc::kPatches)});
   }
 
-  const fs::path f_file = dir / "F.npy";
-  if (fs::exists(f_file)) {
-    NpyArray<float> f = read_npy_f32(f_file);
-    const std::size_t n = data->patch_count();
-    if (f.shape.size() != 2 || f.shape[0] != n || f.shape[1] != n)
-      throw Error(f_file.string(), "expected " + std::to_string(n) + " x " + std::to_string(n) +
-                                       " form factors, one row per patch");
-    data->form_factors = std::move(f.data);
-  }
+  if (auto f = read_form_factors(dir, data->patch_count())) data->form_factors = std::move(*f);
 
-  const fs::path closure_file = dir / "closure.npy";
+  const fs::path closure_file = dir / bake_file::kClosure;
   if (fs::exists(closure_file)) {
     const NpyArray<float> c = read_npy_f32(closure_file);
-    require_shape(closure_file, c.shape, 2);
+    require_shape(closure_file, c.shape, closure_column::kCount);
     if (c.shape[0] != data->patch_count())
       throw Error(closure_file.string(), "expected one row per patch (" +
                                              std::to_string(data->patch_count()) + "), found " +
                                              std::to_string(c.shape[0]));
     for (std::size_t p = 0; p < c.shape[0]; ++p) {
-      const float closure = c.data[2 * p], scale = c.data[2 * p + 1];
+      const float* row = &c.data[closure_column::kCount * p];
+      const float closure = row[closure_column::kClosure], scale = row[closure_column::kRowScale];
       if (!(closure >= 0.0f && closure <= 1.0f) || !(scale >= 0.0f) || !std::isfinite(scale))
         throw Error(closure_file.string(), "row " + std::to_string(p) +
                                                ": closure must lie in [0, 1] and the row "

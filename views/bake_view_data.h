@@ -9,8 +9,8 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/bake_reader.h"
-#include "scene/scene.h"
+#include "bounce/bake_folder.h"
+#include "bounce/scene.h"
 
 namespace bounce::views {
 

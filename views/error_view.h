@@ -1,9 +1,10 @@
 #pragma once
 // View 4: compression error. |T~ - T| per entry (sum over stored channels)
 // and per 4x4 block of the stored (reordered) matrix as heatmaps, a
-// histogram of the per-entry error, the matrix error figures of paper 000
-// (measured by the core's measure_compression against T.npy), and the 16
-// values of a clicked block before (exact) and after (decoded) compression.
+// histogram of the per-entry error, the matrix error figures (mean, max and
+// sum of |error|, measured by the core's measure_compression against T.npy),
+// and the 16 values of a clicked block before (exact) and after (decoded)
+// compression.
 // A codec and ordering switch re-compresses the bake's exact T.npy with the
 // core's compression stage (store_matrices, at the bake's kept fraction) on a
 // worker thread, so codecs can be compared on the same matrix.

@@ -2,10 +2,9 @@
 
 #include <chrono>
 
-#include "bake/final_gather_files.h"
-#include "base/error.h"
-#include "runtime/compressed_transport.h"
-#include "runtime/dense_transport.h"
+#include "bounce/bake_folder.h"
+#include "bounce/relight.h"
+#include "bounce/scene.h"
 #include "runtime/patch_gather.h"
 
 namespace bounce::views {
@@ -40,40 +39,19 @@ PreviewLighting::PreviewLighting(std::shared_ptr<const BakeViewData> data)
   // The product `bounce solve --multiply auto` picks on a machine without a
   // GPU: the compressed matrix in C++, or the dense one for a dense bake.
   const LoadedBake& bake = data_->bake;
-  if (bake.compressed) {
-    auto cpp = std::make_shared<CompressedTransport>(*bake.compressed, bake.channel_of_rgb);
-    multiply_name_ = std::string("compressed, C++ (") + cpp->block_loop() + ")";
-    multiply_ = [cpp](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
-      cpp->multiply(in, out);
-    };
-    multiplier_ = cpp;
-  } else if (!bake.dense.empty()) {
-    std::vector<const float*> dense;
-    for (const auto& t : bake.dense) dense.push_back(t.data());
-    const std::size_t n = bake.size();
-    const auto map = bake.channel_of_rgb;
-    multiply_ = [dense, n, map](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
-      dense_indirect(dense, n, map, in, out);
-    };
-    multiply_name_ = "dense float32 (OpenBLAS sgemv)";
-  } else {
-    throw Error(where, "holds neither a compressed nor a dense transport matrix");
-  }
-  // The bake's final gather; its sample sources need each sample's direct
-  // light from the frame.
-  gather_ = read_final_gather(bake.dir, bake.size(), bake.samples.samples.size());
-  RuntimeFrameSettings frame_settings;
-  frame_settings.record = false;
-  frame_settings.sample_irradiance = gather_ && gather_->samples > 0;
-  frame_ = std::make_unique<RuntimeFrame>(*tracer_, bake.samples, bake.patches, multiply_,
-                                          frame_settings);
+  RelighterSettings relight;
+  relight.multiply = MultiplyChoice::kAutoCpu;
+  relight.frame.record = false;
+  relighter_ = std::make_unique<Relighter>(*tracer_, bake.samples, bake.patches,
+                                           stored_transport(bake), relight);
 
+  gather_ = read_final_gather(bake.dir, bake.size(), bake.samples.samples.size());
   grid_ = TransferGrid::from_manifest(bake.manifest);
   geometry_ = build_transfer_mesh(scene, grid_, TransferSettings{});
   work_ = geometry_;
   if (gather_) {
     if (gather_->points() != geometry_.positions.size())
-      throw Error((bake.dir / "gather_first.npy").string(),
+      throw Error((bake.dir / bake_file::kGatherFirst).string(),
                   "holds " + std::to_string(gather_->points()) +
                       " vertices, the scene's lit mesh "
                       "has " +
@@ -90,28 +68,21 @@ PreviewLighting::Solve PreviewLighting::solve(const glm::vec3& light_position) {
   s.light_position = light_position;
   lights_.front().position = light_position;
   auto t = Clock::now();
-  frame_->solve(lights_);
+  relighter_->light(lights_);
   s.frame_seconds = since(t);
   t = Clock::now();
   if (gather_) {
     // The bake's final gather: each vertex sums the reflected light b + T b
     // of the patches it sees, reflected with its own albedo (the shaders add
     // the direct light themselves).
-    std::vector<glm::vec3> reflected(frame_->indirect().size());
-    for (std::size_t p = 0; p < reflected.size(); ++p)
-      reflected[p] = frame_->first_hit()[p] + frame_->indirect()[p];
-    std::vector<glm::vec3> sample_light;
-    if (gather_->samples > 0)
-      sample_light = sample_exitance(data_->bake.samples, data_->bake.patches,
-                                     frame_->sample_irradiance(), frame_->indirect());
-    gather_->irradiance(reflected, sample_light, s.vertex_indirect);
+    relighter_->gather(*gather_, s.vertex_indirect);
     for (std::size_t v = 0; v < s.vertex_indirect.size(); ++v)
       s.vertex_indirect[v] *= vertex_albedo_[v];
   } else {
     // Without one, the nearest patches' T b (the camera of `bounce solve`
     // does the same).
-    const PatchGather gather(data_->bake.patches.patches, frame_->indirect(), grid_, tracer_.get(),
-                             GatherSettings{});
+    const PatchGather gather(data_->bake.patches.patches, relighter_->frame().indirect(), grid_,
+                             tracer_.get(), GatherSettings{});
     relight(work_, gather);
     s.vertex_indirect = work_.radiosity;
   }

@@ -23,11 +23,7 @@
 #include <glm/glm.hpp>
 
 #include "bake_view_data.h"
-#include "raytrace/ray_tracer.h"
-#include "runtime/final_gather.h"
-#include "runtime/mesh_transfer.h"
-#include "runtime/patch_lighting.h"
-#include "runtime/runtime_frame.h"
+#include "bounce/relight.h"
 
 namespace bounce::views {
 
@@ -54,16 +50,13 @@ class PreviewLighting {
   const LitMesh& mesh() const { return geometry_; }
   const Scene& scene() const { return *data_->scene; }
   const Light& light() const { return light_; }  // at its scene position
-  const std::string& multiply_name() const { return multiply_name_; }
+  const std::string& multiply_name() const { return relighter_->multiply_name(); }
   std::size_t patch_count() const { return data_->patch_count(); }
 
  private:
   std::shared_ptr<const BakeViewData> data_;
   std::unique_ptr<RayTracer> tracer_;
-  std::shared_ptr<void> multiplier_;  // keeps the compressed product alive
-  IndirectMultiply multiply_;
-  std::string multiply_name_;
-  std::unique_ptr<RuntimeFrame> frame_;
+  std::unique_ptr<Relighter> relighter_;
   TransferGrid grid_;
   LitMesh geometry_;  // read by the UI thread, never written after construction
   LitMesh work_;      // relit by solve()

@@ -314,7 +314,8 @@ void PreviewWidget::initializeGL() {
   glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_COMPARE_MODE, GL_NONE);
   glGenFramebuffers(1, &shadow_fbo_);
 
-  // V_r per pixel (paper 002): (2 rnd - 1, 2 rnd - 1, 0), tiled 4 x 4.
+  // V_r per pixel (the SSAO rotation, docs/studio.md): (2 rnd - 1, 2 rnd - 1, 0),
+  // tiled 4 x 4.
   std::mt19937 random(20022u);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   std::vector<float> noise;

@@ -1,10 +1,10 @@
 #pragma once
-// View 5, the live preview (issue 6 section 2.5): the scene in OpenGL 3.3
+// View 5, the live preview (docs/studio.md): the scene in OpenGL 3.3
 // core with
 //   1. a shadow cube map of the light (distance to the light per texel),
 //   2. a G-buffer (view-space position and normal, albedo, emission, and the
 //      runtime solve's indirect light per vertex, interpolated),
-//   3. SSAO as in paper 002 (hemisphere kernel of 32 samples rotated per
+//   3. SSAO (hemisphere kernel of 32 samples rotated per
 //      pixel by a tiled 4 x 4 noise texture, depth test with bias delta),
 //   4. a 4 x 4 box blur of the occlusion map,
 //   5. the composite: direct light with percentage-closer filtering, the
@@ -54,7 +54,7 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   // A solve faster than this runs on the UI thread (a 60 Hz frame is 16.7
   // ms: half of it is left for the solve, the rest for drawing).
   static constexpr double kUiSolveBudget = 0.008;
-  static constexpr int kAoSamples = 32;  // paper 002: m >= 32
+  static constexpr int kAoSamples = 32;  // the SSAO kernel size (docs/studio.md: m = 32)
   static constexpr int kShadowSize = 512;
 
   explicit PreviewWidget(QWidget* parent = nullptr);

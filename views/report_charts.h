@@ -1,5 +1,5 @@
 #pragma once
-// The plots of `bounce report` (issue 5 §3) as VTK charts, drawn from the
+// The plots of `bounce report` as VTK charts, drawn from the
 // core's report rows (report/report_data.h): error against run time with the
 // Pareto front, error against memory, and virtual patches against the voxel
 // baseline by patch count (the paper's Table 3 comparison). The same chart

@@ -1,5 +1,5 @@
 #pragma once
-// The studio's report tab (issue 6 §2.6): the error-against-run-time chart
+// The studio's report tab: the error-against-run-time chart
 // of a report (report/report_data.h; the same VTK chart as `bounce report`'s
 // error_vs_runtime.png). Clicking a point selects its row; the main window
 // loads that row's bake settings into the settings panel. The sweep itself is

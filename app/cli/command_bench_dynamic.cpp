@@ -142,13 +142,8 @@ void run(const DynamicBenchOptions& opt) {
   in.light = b.probe.first_hit[static_cast<std::size_t>(opt.light)];
   in.jumped_light = b.probe.first_hit[static_cast<std::size_t>(opt.jump_to)];
   in.classic_bounces = opt.bounces;
-  NpyArray<float> f;
-  const auto f_path = std::filesystem::path(opt.bake) / "F.npy";
-  if (std::filesystem::exists(f_path)) {
-    f = read_npy_f32(f_path);
-    if (f.data.size() != in.n * in.n) throw Error(f_path.string(), "is not N x N");
-    in.form_factors = f.data.data();
-  }
+  const std::optional<std::vector<float>> f = read_form_factors(opt.bake, in.n);
+  if (f) in.form_factors = f->data();
   // The pictures: the scene as baked, its camera, the gather `bounce solve`
   // uses; the reference under the scene's own lights.
   std::unique_ptr<Scene> scene;

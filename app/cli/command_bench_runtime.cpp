@@ -47,13 +47,11 @@ void run(const RuntimeBenchOptions& opt) {
   std::vector<const float*> dense;
   for (const auto& t : b.dense) dense.push_back(t.data());
   std::unique_ptr<ClassicRadiosity> classic;
-  const auto f_path = std::filesystem::path(opt.bake) / "F.npy";
   const int k = opt.bounces > 0 ? opt.bounces : bake_bounces(b.manifest);
-  if (std::filesystem::exists(f_path)) {
-    NpyArray<float> f = read_npy_f32(f_path);
+  if (std::optional<std::vector<float>> f = read_form_factors(opt.bake, b.size())) {
     std::vector<glm::vec3> albedo;
     for (const Patch& p : b.patches.patches) albedo.push_back(p.albedo);
-    classic = std::make_unique<ClassicRadiosity>(std::move(f.data), std::move(albedo), k);
+    classic = std::make_unique<ClassicRadiosity>(std::move(*f), std::move(albedo), k);
   }
   const std::optional<FinalGather> gather =
       read_final_gather(opt.bake, b.size(), b.samples.samples.size());

@@ -17,11 +17,10 @@
 #include <sstream>
 #include <string>
 
-#include "bake/bake_reader.h"
-#include "bake/final_gather_files.h"
-#include "base/error.h"
+#include "bounce/bake_folder.h"
+#include "bounce/relight.h"
+#include "bounce/scene.h"
 #include "commands.h"
-#include "compute/opencl_context.h"
 #include "console_progress.h"
 #include "io/npy.h"
 #include "io/ply_writer.h"
@@ -29,16 +28,7 @@
 #include "metrics/image_metrics.h"
 #include "metrics/patch_light_error.h"
 #include "metrics/vertex_metrics.h"
-#include "raytrace/ray_tracer.h"
-#include "runtime/camera_image.h"
-#include "runtime/compressed_transport.h"
-#include "runtime/compressed_transport_cl.h"
 #include "runtime/dense_transport.h"
-#include "runtime/final_gather.h"
-#include "runtime/mesh_transfer.h"
-#include "runtime/patch_lighting.h"
-#include "runtime/runtime_frame.h"
-#include "scene/scene_loader.h"
 
 namespace bounce::cli {
 
@@ -56,7 +46,7 @@ struct SolveOptions {
   int width = 640, height = 480, samples = 1;
   bool no_images = false, no_mesh = false;
   bool json = false, quiet = false;
-  bool float32 = false;  // the C++ product in float32 instead of the default bfloat16 loop
+  bool float32 = false;  // the C++ product in float32 instead of the measured choice of loop
   bool compare_exact = false;
 };
 
@@ -90,85 +80,6 @@ void move_light(Scene& scene, const std::string& spec) {
   }
   throw Error("--light", "the scene has no light named '" + name +
                              "' (its lights: " + (names.empty() ? "none" : names) + ")");
-}
-
-// The product T b as asked: compressed on OpenCL or in C++, or dense.
-struct Multiplier {
-  std::string what;
-  IndirectMultiply multiply;
-  IndirectMultiplySpan multiply_into;  // the same, into the frame graph's arena
-  std::shared_ptr<void> keep_alive;
-  std::vector<const float*> dense;
-};
-
-Multiplier make_multiplier(const LoadedBake& b, const std::string& choice, bool float32,
-                           Diagnostics& diag) {
-  Multiplier m;
-  const bool compressed = b.compressed.has_value();
-  if (choice == "dense" || (!compressed && choice == "auto")) {
-    if (b.dense.empty())
-      throw Error(b.dir.string(),
-                  "holds no dense T.npy (bake with --codec dense or "
-                  "--dump-matrices for --multiply dense)");
-    for (const auto& t : b.dense) m.dense.push_back(t.data());
-    const std::size_t n = b.size();
-    const auto map = b.channel_of_rgb;
-    const auto dense = m.dense;
-    m.multiply = [dense, n, map](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
-      dense_indirect(dense, n, map, in, out);
-    };
-    m.multiply_into = [dense, n, map](std::span<const glm::vec3> in, std::span<glm::vec3> out) {
-      dense_indirect(dense, n, map, in, out);
-    };
-    m.what = "dense float32 (OpenBLAS sgemv)";
-    return m;
-  }
-  if (!compressed)
-    throw Error(b.dir.string(), "holds no compressed matrix (T.dds) for --multiply " + choice);
-  // auto: OpenCL only on a GPU. On a CPU device (PoCL here) the kernel
-  // shares the cores with the C++ path and loses to it (bench runtime).
-  bool opencl = choice == "opencl";
-  if (choice == "auto") {
-    try {
-      cl_device_type type = 0;
-      clGetDeviceInfo(OpenClContext::shared().device(), CL_DEVICE_TYPE, sizeof(type), &type,
-                      nullptr);
-      opencl = (type & CL_DEVICE_TYPE_GPU) != 0;
-    } catch (const Error&) {
-      opencl = false;  // no OpenCL at all: the C++ path
-    }
-  }
-  if (opencl) {
-    try {
-      auto cl = std::make_shared<ClCompressedTransport>(*b.compressed, b.channel_of_rgb);
-      m.what = "compressed, OpenCL on " + cl->device_name();
-      m.multiply = [cl](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
-        cl->multiply(in, out);
-      };
-      m.multiply_into = [cl](std::span<const glm::vec3> in, std::span<glm::vec3> out) {
-        cl->multiply(in, out);
-      };
-      m.keep_alive = cl;
-      return m;
-    } catch (const Error& e) {
-      if (choice == "opencl") throw;
-      diag.warn("solve", std::string("OpenCL failed, using the C++ path: ") + e.what());
-    }
-  }
-  // The default C++ loop is bfloat16 where the CPU has it (~1.4x faster than
-  // float32 on this machine, its rounding ~170x below the compression error;
-  // docs/benchmarks.md, runtime); --float32 opts out.
-  auto cpp = std::make_shared<CompressedTransport>(
-      *b.compressed, b.channel_of_rgb, float32 ? BlockLoop::kFloat32 : BlockLoop::kFastest);
-  m.what = std::string("compressed, C++ (") + cpp->block_loop() + ")";
-  m.multiply = [cpp](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
-    cpp->multiply(in, out);
-  };
-  m.multiply_into = [cpp](std::span<const glm::vec3> in, std::span<glm::vec3> out) {
-    cpp->multiply(in, out);
-  };
-  m.keep_alive = cpp;
-  return m;
 }
 
 void run_solve(const SolveOptions& opt) {
@@ -221,25 +132,23 @@ void run_solve(const SolveOptions& opt) {
   const RayTracer tracer(scene);
   timings["load_scene"] = since(t);
 
-  t = Clock::now();
-  const Multiplier multiplier = make_multiplier(bake, opt.multiply, opt.float32, diag);
-  timings["prepare_multiply"] = since(t);
-
   const std::vector<AreaLight> area = area_lights(scene);
-  t = Clock::now();
   // b and T b are read from the record after the frame (it is written out
   // anyway), so the frame keeps no published copies of them: its only
-  // persistent buffers are the record and the exitance.
-  // The bake's final gather, when it made one; sample sources need each
-  // sample's direct light from the frame.
+  // persistent buffers are the record and the exitance. --float32 opts out
+  // of the measured choice of the C++ loop.
+  RelighterSettings relight;
+  relight.multiply = multiply_choice_from_name(opt.multiply).value_or(MultiplyChoice::kAuto);
+  relight.loop = opt.float32 ? CppLoop::kFloat32 : CppLoop::kMeasured;
+  relight.frame.publish = false;
+  Relighter relighter(tracer, bake.samples, bake.patches, stored_transport(bake), relight, &diag);
+  timings["prepare_multiply"] = relighter.multiply_seconds();
+  timings["compile_frame_graph"] = relighter.compile_seconds();
+  relighter.light(scene.lights, area);
+  const RuntimeFrame& frame = relighter.frame();
+  // The bake's final gather, when it made one.
   const std::optional<FinalGather> gather =
       read_final_gather(opt.bake, bake.size(), bake.samples.samples.size());
-  RuntimeFrameSettings frame_settings;
-  frame_settings.publish = false;
-  frame_settings.sample_irradiance = gather && gather->samples > 0;
-  RuntimeFrame frame(tracer, bake.samples, bake.patches, multiplier.multiply_into, frame_settings);
-  timings["compile_frame_graph"] = since(t);
-  frame.solve(scene.lights, area);
   // Pass times, grouped as before the graph: direct light + first hit (and
   // recording them), then the product (applying it and recording it).
   double seconds_direct = 0.0, seconds_indirect = 0.0;
@@ -294,13 +203,13 @@ void run_solve(const SolveOptions& opt) {
       // gather), plus its emission.
       mesh = build_transfer_mesh(scene, grid, TransferSettings{}, &console.progress());
       if (mesh.positions.size() != gather->points())
-        throw Error((fs::path(opt.bake) / "gather_first.npy").string(),
+        throw Error((fs::path(opt.bake) / bake_file::kGatherFirst).string(),
                     "holds " + std::to_string(gather->points()) +
                         " vertices, the scene's lit "
                         "mesh has " +
                         std::to_string(mesh.positions.size()) + ": not this scene");
-      std::vector<glm::vec3> reflected(n), gathered, sample_light;
-      for (std::size_t p = 0; p < n; ++p) reflected[p] = recorded(p, 1) + recorded(p, 2);
+      std::vector<glm::vec3> reflected, gathered, sample_light;
+      relighter.reflected(reflected);
       if (gather->samples > 0)
         sample_light =
             sample_exitance(bake.samples, bake.patches, frame.sample_irradiance(), indirect);
@@ -404,7 +313,7 @@ void run_solve(const SolveOptions& opt) {
       {"bake", opt.bake},
       {"scene", scene.name},
       {"patches", n},
-      {"multiply", multiplier.what},
+      {"multiply", relighter.multiply_name()},
       {"transfer", gather ? "final gather" : "nearest patches"},
       {"lights", lights},
       {"area_light_triangles", area.size()},
@@ -424,7 +333,7 @@ void run_solve(const SolveOptions& opt) {
     return;
   }
   std::printf("\nSolve of '%s' (%zu patches) with %s\n", scene.name.c_str(), n,
-              multiplier.what.c_str());
+              relighter.multiply_name().c_str());
   std::printf(
       "  light leaving the patches (area-weighted sum over R, G, B): first hit %.4g, "
       "indirect %.4g (%.1f%% of the first hit)\n",
@@ -489,7 +398,8 @@ void register_solve(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--float32", opt->float32,
                 "Compressed C++ product in float32 (default: bfloat16 products with float32 "
-                "sums where the CPU has AVX-512 BF16, ~1e-3 of the largest entry off float32)");
+                "sums where the CPU has AVX-512 BF16 and a short measurement at load finds "
+                "them faster, ~1e-3 of the largest entry off float32)");
   cmd->add_flag("--compare-exact", opt->compare_exact,
                 "Also light the frame through the exact matrix (T.npy: bake with "
                 "--dump-matrices) and write what compression changes: per-vertex error_abs "

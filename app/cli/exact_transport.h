@@ -2,15 +2,14 @@
 // The exact multi-bounce matrix and the indirect-light probe that
 // `bounce bench compress` compresses and measures against, from either
 //   * a scene: baked here with the dense codec (exact T kept, no pictures), or
-//   * a bake folder written by `bounce bake`: T.npy (present when the bake was
-//     dense or made with --dump-matrices), lights_first_hit.npy, the area
-//     column of patches.npy and transport.channel_of_rgb of manifest.json.
+//   * a bake folder written by `bounce bake` that holds T.npy (the bake was
+//     dense or made with --dump-matrices), read with the one bake reader.
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include "bake/bake_settings.h"
-#include "base/progress.h"
+#include "bounce/bake.h"
+#include "bounce/bake_folder.h"
 #include "compress/compression_error.h"
 
 namespace bounce::cli {
@@ -26,11 +25,9 @@ struct ExactTransport {
   std::vector<const float*> matrices() const;
 };
 
-// True when `path` is a folder holding a bake's manifest.json.
-bool is_bake_folder(const std::filesystem::path& path);
-
-// Reads a bake folder; throws bounce::Error naming the missing or malformed
-// file (T.npy missing: says to bake with --dump-matrices).
+// Reads a bake folder with the one bake reader (bake/bake_reader.h); throws
+// bounce::Error naming the missing or malformed file (T.npy missing: says to
+// bake with --dump-matrices).
 ExactTransport read_bake_folder(const std::filesystem::path& folder);
 
 // Loads and bakes a scene with `settings` (the codec forced to dense, no

@@ -3,11 +3,9 @@
 #include <chrono>
 #include <cstdio>
 
+#include "bounce/relight.h"
 #include "metrics/image_metrics.h"
-#include "raytrace/ray_tracer.h"
 #include "reference/reference_cache.h"
-#include "runtime/camera_image.h"
-#include "runtime/final_gather.h"
 
 namespace bounce::cli {
 
@@ -27,11 +25,16 @@ nlohmann::json check_bake_against_reference(const Scene& scene, const BakeResult
   const double reference_seconds = std::chrono::duration<double>(Clock::now() - t).count();
   const std::vector<std::uint8_t> mask = mask_from_coverage(ref.coverage);
 
-  std::shared_ptr<void> keep;
-  const IndirectMultiply multiply = baked_multiply(bake.transport, bake.storage, keep);
-  const PatchLighting light =
-      light_patches(tracer, bake.samples, bake.patches, scene.lights, area_lights(scene), multiply);
-  const double update_ms = 1e3 * (light.seconds_direct + light.seconds_indirect);
+  // The product bounce solve picks on a CPU, one frame of the scene's lights.
+  RelighterSettings relight;
+  relight.multiply = MultiplyChoice::kAutoCpu;
+  relight.frame.record = false;
+  Relighter relighter(tracer, bake.samples, bake.patches,
+                      stored_transport(bake.transport, bake.storage), relight);
+  relighter.light(scene.lights, area_lights(scene));
+  double update_seconds = 0.0;
+  for (const double s : relighter.frame().pass_seconds()) update_seconds += s;
+  const double update_ms = 1e3 * update_seconds;
   // Each pixel's indirect light by the final gather from the patches it sees
   // (runtime/final_gather.h), as bounce solve shows it.
   CameraImageSettings cs;
@@ -40,20 +43,15 @@ nlohmann::json check_bake_against_reference(const Scene& scene, const BakeResult
   cs.samples_per_side = 2;
   std::vector<CameraHit> hits;
   CameraImages images = render_camera_direct(tracer, cs, hits, &progress);
-  std::vector<glm::vec3> positions, normals, reflected(bake.patches.size()), irradiance;
+  std::vector<glm::vec3> positions, normals, irradiance;
   for (const CameraHit& h : hits) {
     positions.push_back(h.position);
     normals.push_back(h.normal);
   }
-  for (std::size_t p = 0; p < reflected.size(); ++p)
-    reflected[p] = light.first_hit[p] + light.indirect[p];
   const SurfacePatchLookup lookup(bake.voxels, bake.samples, bake.patch_of_sample);
-  build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid, positions, normals, {},
-                     &progress)
-      .irradiance(
-          reflected,
-          sample_exitance(bake.samples, bake.patches, light.sample_irradiance, light.indirect),
-          irradiance);
+  relighter.gather(build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
+                                      positions, normals, {}, &progress),
+                   irradiance);
   add_indirect(images, hits, irradiance);
   const double error =
       noise_corrected_relative_rmse(images.indirect, ref.indirect, ref.indirect_variance, mask);

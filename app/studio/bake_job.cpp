@@ -1,7 +1,7 @@
 #include "bake_job.h"
 
-#include "bake/bake_writer.h"
-#include "scene/scene_loader.h"
+#include "bounce/bake.h"
+#include "bounce/scene.h"
 
 namespace bounce::studio {
 
@@ -43,10 +43,6 @@ BakeJobResult run_bake_job(const fs::path& scene_path, const BakeSettings& setti
 void export_bake(const BakeJobResult& job, const fs::path& folder) {
   if (!job.result) throw Error(folder.string(), "nothing to export: bake a scene first");
   write_bake(folder, *job.scene, *job.result, *job.diagnostics);
-}
-
-bool is_bake_folder(const fs::path& path) {
-  return fs::is_directory(path) && fs::exists(path / "manifest.json");
 }
 
 }  // namespace bounce::studio

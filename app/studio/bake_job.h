@@ -7,10 +7,9 @@
 #include <memory>
 #include <vector>
 
-#include "bake/bake.h"
 #include "bake_view_data.h"
-#include "base/diagnostics.h"
-#include "base/progress.h"
+#include "bounce/bake.h"
+#include "bounce/bake_folder.h"
 
 namespace bounce::studio {
 
@@ -34,8 +33,5 @@ BakeJobResult run_bake_job(const std::filesystem::path& scene_path, const BakeSe
 
 // Exports a finished bake: the same folder format as `bounce bake --out`.
 void export_bake(const BakeJobResult& job, const std::filesystem::path& folder);
-
-// True if `path` is a bake folder (it holds a manifest.json) rather than a scene.
-bool is_bake_folder(const std::filesystem::path& path);
 
 }  // namespace bounce::studio

@@ -1,5 +1,6 @@
 #include "bake/bake_pictures.h"
 
+#include "bake/bake_format.h"
 #include "compress/matrix_picture.h"
 #include "io/png_writer.h"
 
@@ -19,20 +20,22 @@ std::vector<WrittenPicture> write_matrix_pictures(const std::filesystem::path& d
       r.transport.channels.size() == 1 ? "T" : "T (mean of the stored channels)";
   const std::string size = std::to_string(n) + " x " + std::to_string(n);
   settings.title = what + ", patch order, " + size;
-  write_png(dir / "T.png", matrix_picture(mean.data(), n, settings));
-  written.push_back({"T.png", "picture: multi-bounce matrix, patch order, log colour map"});
+  write_png(dir / bake_file::kPictureTransport, matrix_picture(mean.data(), n, settings));
+  written.push_back(
+      {bake_file::kPictureTransport, "picture: multi-bounce matrix, patch order, log colour map"});
   if (!r.storage.compressed) return written;
 
   const Permutation& perm = r.storage.compressed->permutation;
   const std::string order = ", reordered (" + r.storage.compressed->ordering + ")";
   settings.title = what + order;
-  write_png(dir / "T_reordered.png", matrix_picture(mean.data(), n, settings, &perm));
+  write_png(dir / bake_file::kPictureReordered, matrix_picture(mean.data(), n, settings, &perm));
   written.push_back(
-      {"T_reordered.png", "picture: multi-bounce matrix after the codec's reordering"});
+      {bake_file::kPictureReordered, "picture: multi-bounce matrix after the codec's reordering"});
   settings.title = "|T~ - T| per entry" + order;
-  write_png(dir / "T_error.png",
+  write_png(dir / bake_file::kPictureError,
             matrix_picture(r.storage.abs_error_sum.data(), n, settings, &perm));
-  written.push_back({"T_error.png", "picture: |compressed - exact| per entry, reordered"});
+  written.push_back(
+      {bake_file::kPictureError, "picture: |compressed - exact| per entry, reordered"});
 
   // Blocks live in the reordered (stored) matrix.
   std::vector<float> stored(n * n);
@@ -43,9 +46,9 @@ std::vector<WrittenPicture> write_matrix_pictures(const std::filesystem::path& d
   const std::vector<float> sums = block_error_sums(stored.data(), n, blocks);
   settings.title = "|T~ - T| per 4x4 block of T.dds (" + r.storage.codec + ", " +
                    r.storage.compressed->encoder + ")";
-  write_png(dir / "T_error_blocks.png", matrix_picture(sums.data(), blocks, settings));
-  written.push_back(
-      {"T_error_blocks.png", "picture: |compressed - exact| summed per 4x4 block of T.dds"});
+  write_png(dir / bake_file::kPictureErrorBlocks, matrix_picture(sums.data(), blocks, settings));
+  written.push_back({bake_file::kPictureErrorBlocks,
+                     "picture: |compressed - exact| summed per 4x4 block of T.dds"});
   return written;
 }
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "bake/bake_writer.h"
+#include "bake/bake_format.h"
 #include "base/checked_size.h"
 #include "compress/dds.h"
 #include "io/npy.h"
@@ -36,20 +36,24 @@ void require_shape(const fs::path& file, const std::vector<std::size_t>& shape,
 // the samples). Only what the direct light reads comes back: the polygons and
 // their areas, not the triangle parts they came from.
 void read_carried_polygons(const fs::path& dir, SampleSet& samples) {
-  const fs::path pf = dir / "carried_polygons.npy", af = dir / "carried_area.npy",
-                 vf = dir / "carried_vertices.npy";
+  const fs::path pf = dir / bake_file::kCarriedPolygons, af = dir / bake_file::kCarriedArea,
+                 vf = dir / bake_file::kCarriedVertices;
   if (!fs::exists(pf) && !fs::exists(af) && !fs::exists(vf)) return;
   const NpyArray<std::uint32_t> p = read_npy_u32(pf);
-  if (p.shape.size() != 2 || p.shape[1] != 3) throw ReadError(pf.string(), "must have 3 columns");
+  constexpr std::size_t kPolygonColumns = carried_polygon_column::kCount;
+  if (p.shape.size() != 2 || p.shape[1] != kPolygonColumns)
+    throw ReadError(pf.string(), "must have " + std::to_string(kPolygonColumns) + " columns");
   const std::size_t count = p.shape[0];
   const NpyArray<float> a = read_npy_f32(af);
   require_shape(af, a.shape, {count});
   const NpyArray<float> v = read_npy_f32(vf);
-  if (v.shape.size() != 2 || v.shape[1] != 3) throw ReadError(vf.string(), "must have 3 columns");
+  if (v.shape.size() != 2 || v.shape[1] != kBakeVectorComponents)
+    throw ReadError(vf.string(), "must have " + std::to_string(kBakeVectorComponents) + " columns");
   const std::size_t vertices = v.shape[0], sample_count = samples.samples.size();
   samples.carried_vertices.resize(vertices);
   for (std::size_t k = 0; k < vertices; ++k) {
-    const glm::vec3 x(v.data[3 * k], v.data[3 * k + 1], v.data[3 * k + 2]);
+    const float* r = &v.data[kBakeVectorComponents * k];
+    const glm::vec3 x(r[0], r[1], r[2]);
     if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
       throw ReadError(vf.string(), "vertex " + std::to_string(k) + " is not finite");
     samples.carried_vertices[k] = x;
@@ -58,8 +62,10 @@ void read_carried_polygons(const fs::path& dir, SampleSet& samples) {
   samples.carried_first.assign(sample_count + 1, 0);
   std::uint32_t previous = 0;
   for (std::size_t c = 0; c < count; ++c) {
-    const std::uint32_t sample = p.data[3 * c], first = p.data[3 * c + 1],
-                        corners = p.data[3 * c + 2];
+    const std::uint32_t* row = &p.data[kPolygonColumns * c];
+    const std::uint32_t sample = row[carried_polygon_column::kSample],
+                        first = row[carried_polygon_column::kFirstVertex],
+                        corners = row[carried_polygon_column::kVertexCount];
     const std::string polygon = "polygon " + std::to_string(c);
     if (sample >= sample_count || sample < previous)
       throw ReadError(pf.string(), polygon + " names sample " + std::to_string(sample) +
@@ -80,10 +86,10 @@ void read_carried_polygons(const fs::path& dir, SampleSet& samples) {
 }
 
 json read_manifest(const fs::path& dir) {
-  const fs::path path = dir / "manifest.json";
+  const fs::path path = dir / bake_file::kManifest;
   if (!fs::exists(path)) throw ReadError(dir.string(), "is not a bake folder (no manifest.json)");
   json m = read_manifest_json(path);
-  if (!m.is_object() || m.value("format", "") != "bounce-bake")
+  if (!m.is_object() || m.value("format", "") != kBakeFormatName)
     throw ReadError(path.string(), "is not a Bounce bake manifest");
   const int version = m.value("format_version", 0);
   if (version != kBakeFormatVersion)
@@ -116,41 +122,47 @@ std::uint32_t index_column(const fs::path& file, std::size_t row, std::size_t co
 
 // Patches and their member samples from patches.npy and samples.npy.
 void read_patches(const fs::path& dir, std::size_t n, LoadedBake& b) {
-  const fs::path pf = dir / "patches.npy", sf = dir / "samples.npy";
+  namespace pc = patch_column;
+  namespace sc = sample_column;
+  const fs::path pf = dir / bake_file::kPatches, sf = dir / bake_file::kSamples;
   const NpyArray<float> p = read_npy_f32(pf);
-  require_shape(pf, p.shape, {n, 15});
+  require_shape(pf, p.shape, {n, pc::kCount});
   require_finite(pf, p);
   const NpyArray<float> s = read_npy_f32(sf);
-  if (s.shape.size() != 2 || s.shape[1] != 13) throw ReadError(sf.string(), "must have 13 columns");
+  if (s.shape.size() != 2 || s.shape[1] != sc::kCount)
+    throw ReadError(sf.string(), "must have " + std::to_string(sc::kCount) + " columns");
   require_finite(sf, s);
   const std::size_t count = s.shape[0];
   if (count > std::numeric_limits<std::uint32_t>::max())
     throw ReadError(sf.string(), "has " + std::to_string(count) + " samples, more than 2^32 - 1");
+  const auto vec3_at = [](const float* r, std::size_t c) {
+    return glm::vec3(r[c], r[c + 1], r[c + 2]);
+  };
   for (std::size_t i = 0; i < n; ++i) {
-    const float* r = &p.data[i * 15];
+    const float* r = &p.data[i * pc::kCount];
     Patch patch{};
-    patch.position = {r[0], r[1], r[2]};
-    patch.normal = {r[3], r[4], r[5]};
-    patch.area = r[6];
-    patch.albedo = {r[7], r[8], r[9]};
-    patch.voxel = index_column(pf, i, 10, r[10]);
-    patch.mesh = index_column(pf, i, 11, r[11]);
-    patch.emission = {r[12], r[13], r[14]};
+    patch.position = vec3_at(r, pc::kPosition);
+    patch.normal = vec3_at(r, pc::kNormal);
+    patch.area = r[pc::kArea];
+    patch.albedo = vec3_at(r, pc::kAlbedo);
+    patch.voxel = index_column(pf, i, pc::kVoxel, r[pc::kVoxel]);
+    patch.mesh = index_column(pf, i, pc::kMesh, r[pc::kMesh]);
+    patch.emission = vec3_at(r, pc::kEmission);
     b.patches.patches.push_back(patch);
   }
   std::vector<std::vector<std::uint32_t>> members(n);
   b.samples.samples.reserve(count);
   for (std::size_t k = 0; k < count; ++k) {
-    const float* r = &s.data[k * 13];
+    const float* r = &s.data[k * sc::kCount];
     Sample sample{};
-    sample.position = {r[0], r[1], r[2]};
-    sample.normal = {r[3], r[4], r[5]};
-    sample.area = r[6];
-    sample.albedo = {r[7], r[8], r[9]};
-    sample.voxel = index_column(sf, k, 10, r[10]);
-    sample.triangle = index_column(sf, k, 12, r[12]);
+    sample.position = vec3_at(r, sc::kPosition);
+    sample.normal = vec3_at(r, sc::kNormal);
+    sample.area = r[sc::kArea];
+    sample.albedo = vec3_at(r, sc::kAlbedo);
+    sample.voxel = index_column(sf, k, sc::kVoxel, r[sc::kVoxel]);
+    sample.triangle = index_column(sf, k, sc::kTriangle, r[sc::kTriangle]);
     b.samples.samples.push_back(sample);
-    const float patch = r[11];
+    const float patch = r[sc::kPatch];
     if (patch < 0.0f) continue;  // its patch was left out
     if (patch >= static_cast<float>(n) || patch != std::floor(patch))
       throw ReadError(sf.string(), "sample " + std::to_string(k) + " names patch " +
@@ -183,9 +195,9 @@ std::vector<T> read_vector(const fs::path& file, NpyArray<T> (*read)(const fs::p
 // against n, and every row start and column index against its range, so
 // that the runtime can index with them unchecked.
 CsrMatrix read_kept(const fs::path& dir, int ch, std::size_t n) {
-  const std::string base = "T_kept_" + std::to_string(ch);
-  const fs::path rp = dir / (base + "_row_ptr.npy"), cp = dir / (base + "_col.npy"),
-                 vp = dir / (base + "_value.npy");
+  const fs::path rp = dir / bake_file::kept(ch, bake_file::KeptPart::kRowPtr),
+                 cp = dir / bake_file::kept(ch, bake_file::KeptPart::kCol),
+                 vp = dir / bake_file::kept(ch, bake_file::KeptPart::kValue);
   CsrMatrix k;
   k.n = n;
   k.row_ptr = read_vector(rp, read_npy_u32, n + 1);
@@ -209,7 +221,7 @@ CsrMatrix read_kept(const fs::path& dir, int ch, std::size_t n) {
 }
 
 CompressedMatrix read_compressed(const fs::path& dir, const json& c, std::size_t n) {
-  const std::string manifest = (dir / "manifest.json").string();
+  const std::string manifest = (dir / bake_file::kManifest).string();
   CompressedMatrix m;
   m.n = n;
   m.padded = c.at("padded_size").get<std::size_t>();
@@ -225,14 +237,14 @@ CompressedMatrix read_compressed(const fs::path& dir, const json& c, std::size_t
   m.encoder = c.value("encoder", "");
   m.ordering = c.value("ordering", "");
   m.kept_fraction = c.value("kept_fraction", 0.0);
-  const DdsImage dds = read_dds(dir / "T.dds");
+  const DdsImage dds = read_dds(dir / bake_file::kCompressedTransport);
   if (dds.width != m.padded || dds.height != m.padded)
-    throw ReadError((dir / "T.dds").string(),
+    throw ReadError((dir / bake_file::kCompressedTransport).string(),
                     "is " + std::to_string(dds.width) + " x " + std::to_string(dds.height) +
                         ", the manifest says " + std::to_string(m.padded));
   m.format = dds.format;
   m.blocks = dds.blocks;
-  const fs::path pf = dir / "permutation.npy";
+  const fs::path pf = dir / bake_file::kPermutation;
   NpyArray<std::uint32_t> perm = read_npy_u32(pf);
   require_shape(pf, perm.shape, {n});
   m.permutation = std::move(perm.data);
@@ -273,13 +285,27 @@ json read_manifest_json(const fs::path& path) {
   }
 }
 
+bool is_bake_folder(const fs::path& path) {
+  std::error_code ec;
+  return fs::is_directory(path, ec) && fs::is_regular_file(path / bake_file::kManifest, ec);
+}
+
+std::optional<std::vector<float>> read_form_factors(const fs::path& dir, std::size_t n) {
+  const fs::path file = dir / bake_file::kFormFactors;
+  std::error_code ec;
+  if (!fs::exists(file, ec)) return std::nullopt;
+  NpyArray<float> f = read_npy_f32(file);
+  require_shape(file, f.shape, {n, n});
+  return std::move(f.data);
+}
+
 LoadedBake BakeReader::read(const fs::path& dir, Dense dense) {
   // A manifest with missing or mistyped entries is a damaged bake: say so,
   // naming the file, rather than letting a JSON exception escape.
   try {
     return read_checked(dir, dense);
   } catch (const nlohmann::json::exception& e) {
-    throw ReadError((dir / "manifest.json").string(),
+    throw ReadError((dir / bake_file::kManifest).string(),
                     std::string("lacks an entry or has one of the wrong type: ") + e.what());
   }
 }
@@ -288,7 +314,7 @@ LoadedBake BakeReader::read_checked(const fs::path& dir, Dense dense) {
   LoadedBake b;
   b.dir = dir;
   b.manifest = read_manifest(dir);
-  const fs::path manifest_path = dir / "manifest.json";
+  const fs::path manifest_path = dir / bake_file::kManifest;
   // Every array below is checked against this count, and through it
   // against the files' sizes, so a manifest cannot ask for more memory than
   // the bake's files hold; with 0 patches, shapes such as (lights, 0, 3)
@@ -311,7 +337,7 @@ LoadedBake BakeReader::read_checked(const fs::path& dir, Dense dense) {
                                                   std::to_string(b.stored_channels));
   const json& c = b.manifest.at("compression");
   if (c.contains("stored_channels")) b.compressed = read_compressed(dir, c, n);
-  const fs::path tf = dir / "T.npy";
+  const fs::path tf = dir / bake_file::kDenseTransport;
   const bool want_dense =
       dense == Dense::kRead || (dense == Dense::kIfNotCompressed && !b.compressed);
   if (want_dense && fs::exists(tf)) {
@@ -326,7 +352,7 @@ LoadedBake BakeReader::read_checked(const fs::path& dir, Dense dense) {
     throw ReadError(dir.string(), dense != Dense::kSkip
                                       ? "holds no transport matrix (T.dds or T.npy)"
                                       : "holds no compressed transport matrix (T.dds)");
-  const fs::path lf = dir / "lights_first_hit.npy";
+  const fs::path lf = dir / bake_file::kLightsFirstHit;
   const NpyArray<float> lights = read_npy_f32(lf);
   if (lights.shape.size() != 3 || lights.shape[1] != n || lights.shape[2] != 3)
     throw ReadError(lf.string(), "must have shape (lights, " + std::to_string(n) + ", 3)");

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bake/bake_format.h"
 #include "compress/codec.h"
 #include "compress/compression_error.h"
 #include "patches/patch_set.h"
@@ -69,5 +70,12 @@ inline constexpr std::size_t kMaxManifestBytes = std::size_t(16) << 20;
 // BakeReader::ReadError naming the file when it is missing, not a regular
 // file, larger than kMaxManifestBytes or not JSON. Checks nothing else.
 nlohmann::json read_manifest_json(const std::filesystem::path& path);
+
+// The form factors F.npy (n x n, row = source) of the bake in `dir`, when it
+// holds them (a bake made with --dump-matrices); nullopt when the file is
+// absent. Throws BakeReader::ReadError naming the file when it is not n x n
+// float32. `n` is the bake's patch count (LoadedBake::size()).
+std::optional<std::vector<float>> read_form_factors(const std::filesystem::path& dir,
+                                                    std::size_t n);
 
 }  // namespace bounce

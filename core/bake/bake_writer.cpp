@@ -20,10 +20,9 @@ namespace {
 
 json vec(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
 
-// Column layouts, documented in docs/bake-format.md.
-constexpr std::size_t kPatchColumns = 15;
-constexpr std::size_t kVoxelColumns = 9;
-constexpr std::size_t kSampleColumns = 13;
+constexpr std::size_t kPatchColumns = patch_column::kCount;
+constexpr std::size_t kVoxelColumns = voxel_column::kCount;
+constexpr std::size_t kSampleColumns = sample_column::kCount;
 
 std::vector<float> patch_rows(const BakeResult& r) {
   std::vector<float> rows;
@@ -85,11 +84,11 @@ void write_carried_polygons(const fs::path& dir, const SampleSet& samples) {
                         {static_cast<std::uint32_t>(k), piece.first_vertex, piece.vertex_count});
         areas.push_back(piece.area);
       }
-  write_npy(dir / "carried_polygons.npy", std::span<const std::uint32_t>(polygons),
-            {areas.size(), 3});
-  write_npy(dir / "carried_area.npy", std::span<const float>(areas), {areas.size()});
-  write_npy(dir / "carried_vertices.npy", std::span<const float>(vertices),
-            {samples.carried_vertices.size(), 3});
+  write_npy(dir / bake_file::kCarriedPolygons, std::span<const std::uint32_t>(polygons),
+            {areas.size(), carried_polygon_column::kCount});
+  write_npy(dir / bake_file::kCarriedArea, std::span<const float>(areas), {areas.size()});
+  write_npy(dir / bake_file::kCarriedVertices, std::span<const float>(vertices),
+            {samples.carried_vertices.size(), kBakeVectorComponents});
 }
 
 std::string rgb_label(const std::vector<int>& rgb) {
@@ -210,7 +209,7 @@ void write_dense_transport(const fs::path& path, const TransportResult& t) {
 
 json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& diagnostics) {
   json m;
-  m["format"] = "bounce-bake";
+  m["format"] = kBakeFormatName;
   m["format_version"] = kBakeFormatVersion;
   json lights = json::array();
   for (const Light& l : scene.lights)
@@ -412,51 +411,53 @@ json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const Bake
         {{"name", name}, {"bytes", fs::file_size(dir.path() / name)}, {"content", what}});
   };
   const std::size_t n = r.patches.size();
-  write_npy(dir.path() / "patches.npy", patch_rows(r), {n, kPatchColumns});
-  record("patches.npy",
-         "float32 [patches x 15]: position xyz, normal xyz, area, albedo rgb, "
-         "voxel index, mesh index, emission rgb");
-  write_npy(dir.path() / "voxels.npy", voxel_rows(r), {r.voxels.voxels.size(), kVoxelColumns});
-  record("voxels.npy",
-         "float32 [occupied voxels x 9]: cell ijk, centre xyz, surface area, "
-         "sample count, patch count");
-  write_npy(dir.path() / "samples.npy", sample_rows(r), {r.samples.samples.size(), kSampleColumns});
-  record("samples.npy",
-         "float32 [samples x 13]: position xyz, normal xyz, area, albedo rgb, "
-         "voxel index, patch index (-1 = left out), triangle index");
+  write_npy(dir.path() / bake_file::kPatches, patch_rows(r), {n, kPatchColumns});
+  record(bake_file::kPatches, "float32 [patches x " + std::to_string(kPatchColumns) +
+                                  "]: position xyz, normal xyz, area, albedo rgb, "
+                                  "voxel index, mesh index, emission rgb");
+  write_npy(dir.path() / bake_file::kVoxels, voxel_rows(r),
+            {r.voxels.voxels.size(), kVoxelColumns});
+  record(bake_file::kVoxels, "float32 [occupied voxels x " + std::to_string(kVoxelColumns) +
+                                 "]: cell ijk, centre xyz, surface area, "
+                                 "sample count, patch count");
+  write_npy(dir.path() / bake_file::kSamples, sample_rows(r),
+            {r.samples.samples.size(), kSampleColumns});
+  record(bake_file::kSamples, "float32 [samples x " + std::to_string(kSampleColumns) +
+                                  "]: position xyz, normal xyz, area, albedo rgb, "
+                                  "voxel index, patch index (-1 = left out), triangle index");
   write_carried_polygons(dir.path(), r.samples);
-  record("carried_polygons.npy",
+  record(bake_file::kCarriedPolygons,
          "uint32 [polygons x 3]: sample index, first vertex, vertex count of each planar "
          "polygon of surface a sample stands for, in sample order");
-  record("carried_area.npy", "float32 [polygons]: the area each polygon stands for");
-  record("carried_vertices.npy", "float32 [vertices x 3]: the polygons' vertices xyz");
+  record(bake_file::kCarriedArea, "float32 [polygons]: the area each polygon stands for");
+  record(bake_file::kCarriedVertices, "float32 [vertices x 3]: the polygons' vertices xyz");
   if (r.closure.closure.size() == n && r.balance.row_scale.size() == n) {
     std::vector<float> rows;
     rows.reserve(2 * n);
     for (std::size_t p = 0; p < n; ++p)
       rows.insert(rows.end(), {r.closure.closure[p], r.balance.row_scale[p]});
-    write_npy(dir.path() / "closure.npy", rows, {n, 2});
-    record("closure.npy",
+    write_npy(dir.path() / bake_file::kClosure, rows, {n, closure_column::kCount});
+    record(bake_file::kClosure,
            "float32 [patches x 2]: closure (share of the patch's light that lands on sampled "
            "surface, the row sum F is balanced to), row scale the balancing applied (balanced / "
            "raw row sum)");
   }
   if (r.vertex_gather.points() > 0) {
     write_final_gather(dir.path(), r.vertex_gather);
-    record("gather_first.npy", "uint32 [lit-mesh vertices + 1]: final gather row starts");
-    record("gather_source.npy",
+    record(bake_file::kGatherFirst, "uint32 [lit-mesh vertices + 1]: final gather row starts");
+    record(bake_file::kGatherSource,
            "uint32 [entries]: patch each entry gathers from, or patches + cluster index");
-    record("gather_weight.npy", "float32 [entries]: vertex-to-patch (or cluster) form factor");
-    record("gather_cluster.npy", "uint32 [patches]: cluster of each patch");
-    record("gather_share.npy", "float32 [patches]: each patch's share of its cluster's area");
+    record(bake_file::kGatherWeight, "float32 [entries]: vertex-to-patch (or cluster) form factor");
+    record(bake_file::kGatherCluster, "uint32 [patches]: cluster of each patch");
+    record(bake_file::kGatherShare, "float32 [patches]: each patch's share of its cluster's area");
   }
   if (r.settings.dump_matrices) {
-    write_npy(dir.path() / "F.npy", r.form_factors.values, {n, n});
-    record("F.npy", "float32 [patches x patches]: form factors, row = source");
+    write_npy(dir.path() / bake_file::kFormFactors, r.form_factors.values, {n, n});
+    record(bake_file::kFormFactors, "float32 [patches x patches]: form factors, row = source");
   }
   if (!r.storage.compressed || r.settings.dump_matrices) {
-    write_dense_transport(dir.path() / "T.npy", r.transport);
-    record("T.npy",
+    write_dense_transport(dir.path() / bake_file::kDenseTransport, r.transport);
+    record(bake_file::kDenseTransport,
            "float32 [stored channels x patches x patches]: multi-bounce matrix, exact; "
            "channel_of_rgb in the manifest maps R, G, B to its channels");
   }
@@ -464,8 +465,9 @@ json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const Bake
     std::vector<float> b;
     for (const auto& light : r.probe.first_hit)
       for (const glm::vec3& v : light) b.insert(b.end(), {v.r, v.g, v.b});
-    write_npy(dir.path() / "lights_first_hit.npy", b, {r.probe.first_hit.size(), n, 3});
-    record("lights_first_hit.npy",
+    write_npy(dir.path() / bake_file::kLightsFirstHit, b,
+              {r.probe.first_hit.size(), n, kBakeVectorComponents});
+    record(bake_file::kLightsFirstHit,
            "float32 [evaluation lights x patches x 3]: light leaving each patch after the first "
            "hit (albedo x direct irradiance) for the scene's lights and four unit test lights; "
            "the indirect-light error is measured with these");
@@ -473,24 +475,29 @@ json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const Bake
   if (r.storage.compressed) {
     const CompressedMatrix& c = *r.storage.compressed;
     const auto side = static_cast<std::uint32_t>(c.padded);
-    write_dds(dir.path() / "T.dds", c.format, side, side, c.blocks);
-    record("T.dds", std::string(c.format == DdsFormat::kBc4 ? "BC4" : "BC1") +
-                        " [padded x padded]: log codes of the reordered matrix (row/column k = "
-                        "patch permutation[k]); see compression.quantizers");
-    write_npy(dir.path() / "permutation.npy", c.permutation, {n});
-    record("permutation.npy", "uint32 [patches]: stored row/column k holds patch permutation[k]");
+    write_dds(dir.path() / bake_file::kCompressedTransport, c.format, side, side, c.blocks);
+    record(bake_file::kCompressedTransport,
+           std::string(c.format == DdsFormat::kBc4 ? "BC4" : "BC1") +
+               " [padded x padded]: log codes of the reordered matrix (row/column k = "
+               "patch permutation[k]); see compression.quantizers");
+    write_npy(dir.path() / bake_file::kPermutation, c.permutation, {n});
+    record(bake_file::kPermutation,
+           "uint32 [patches]: stored row/column k holds patch permutation[k]");
     for (std::size_t ch = 0; ch < c.kept.size(); ++ch) {
       const CsrMatrix& k = c.kept[ch];
-      const std::string base = "T_kept_" + std::to_string(ch);
-      write_npy(dir.path() / (base + "_row_ptr.npy"), k.row_ptr, {k.row_ptr.size()});
-      record(base + "_row_ptr.npy",
+      const int channel = static_cast<int>(ch);
+      const std::string row_ptr = bake_file::kept(channel, bake_file::KeptPart::kRowPtr),
+                        col = bake_file::kept(channel, bake_file::KeptPart::kCol),
+                        value = bake_file::kept(channel, bake_file::KeptPart::kValue);
+      write_npy(dir.path() / row_ptr, k.row_ptr, {k.row_ptr.size()});
+      record(row_ptr,
              "uint32 [patches + 1]: CSR row starts of the exactly kept "
              "entries of stored channel " +
                  std::to_string(ch));
-      write_npy(dir.path() / (base + "_col.npy"), k.col, {k.col.size()});
-      record(base + "_col.npy", "uint32 [kept]: CSR column (patch order)");
-      write_npy(dir.path() / (base + "_value.npy"), k.value, {k.value.size()});
-      record(base + "_value.npy", "float32 [kept]: CSR values, exact");
+      write_npy(dir.path() / col, k.col, {k.col.size()});
+      record(col, "uint32 [kept]: CSR column (patch order)");
+      write_npy(dir.path() / value, k.value, {k.value.size()});
+      record(value, "float32 [kept]: CSR values, exact");
     }
   }
   if (r.settings.pictures)
@@ -498,7 +505,7 @@ json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const Bake
   json m = make_manifest(scene, r, diagnostics);
   m["files"] = files;
   {
-    AtomicFile manifest(dir.path() / "manifest.json");
+    AtomicFile manifest(dir.path() / bake_file::kManifest);
     manifest.stream() << m.dump(2) << '\n';
     manifest.commit();
   }

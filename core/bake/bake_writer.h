@@ -7,12 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/bake.h"
+#include "bake/bake_format.h"
 
 namespace bounce {
-
-// 2: the multi-bounce matrix (dense T.npy or compressed T.dds + CSR) and
-// its pictures joined the folder.
-inline constexpr int kBakeFormatVersion = 2;
 
 // The manifest without its "files" list: settings, counts, timings, checks,
 // warnings and what was left out.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "bake/bake_format.h"
 #include "base/error.h"
 #include "io/npy.h"
 
@@ -12,19 +13,19 @@ namespace fs = std::filesystem;
 
 void write_final_gather(const fs::path& dir, const FinalGather& g) {
   if (g.source.size() > std::numeric_limits<std::uint32_t>::max())
-    throw Error((dir / "gather_first.npy").string(),
+    throw Error((dir / bake_file::kGatherFirst).string(),
                 "the final gather has more than 2^32 entries: too many for its row starts");
   std::vector<std::uint32_t> first(g.first.begin(), g.first.end());
-  write_npy(dir / "gather_first.npy", first, {first.size()});
-  write_npy(dir / "gather_source.npy", g.source, {g.source.size()});
-  write_npy(dir / "gather_weight.npy", g.weight, {g.weight.size()});
-  write_npy(dir / "gather_cluster.npy", g.cluster_of_patch, {g.cluster_of_patch.size()});
-  write_npy(dir / "gather_share.npy", g.cluster_share, {g.cluster_share.size()});
+  write_npy(dir / bake_file::kGatherFirst, first, {first.size()});
+  write_npy(dir / bake_file::kGatherSource, g.source, {g.source.size()});
+  write_npy(dir / bake_file::kGatherWeight, g.weight, {g.weight.size()});
+  write_npy(dir / bake_file::kGatherCluster, g.cluster_of_patch, {g.cluster_of_patch.size()});
+  write_npy(dir / bake_file::kGatherShare, g.cluster_share, {g.cluster_share.size()});
 }
 
 std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t patches,
                                              std::size_t samples) {
-  if (!fs::exists(dir / "gather_first.npy")) return std::nullopt;
+  if (!fs::exists(dir / bake_file::kGatherFirst)) return std::nullopt;
   // Each file one-dimensional, read whole.
   const auto vector_of = [&dir](const char* name, auto reader) {
     const fs::path file = dir / name;
@@ -35,13 +36,13 @@ std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t pa
   const auto u32 = [](const fs::path& f) { return read_npy_u32(f); };
   const auto f32 = [](const fs::path& f) { return read_npy_f32(f); };
   FinalGather g;
-  const std::vector<std::uint32_t> first = vector_of("gather_first.npy", u32);
+  const std::vector<std::uint32_t> first = vector_of(bake_file::kGatherFirst, u32);
   g.first.assign(first.begin(), first.end());
-  g.source = vector_of("gather_source.npy", u32);
-  g.weight = vector_of("gather_weight.npy", f32);
-  g.cluster_of_patch = vector_of("gather_cluster.npy", u32);
-  g.cluster_share = vector_of("gather_share.npy", f32);
-  const fs::path cluster_file = dir / "gather_cluster.npy";
+  g.source = vector_of(bake_file::kGatherSource, u32);
+  g.weight = vector_of(bake_file::kGatherWeight, f32);
+  g.cluster_of_patch = vector_of(bake_file::kGatherCluster, u32);
+  g.cluster_share = vector_of(bake_file::kGatherShare, f32);
+  const fs::path cluster_file = dir / bake_file::kGatherCluster;
   g.patches = patches;
   if (g.cluster_of_patch.size() != patches)
     throw Error(cluster_file.string(), "expected one cluster per patch (" +

@@ -83,7 +83,7 @@ const Tables& tables() {
 // Why this design: the error is a per-channel weighted least-squares problem
 // whose weights span decades within a block (weight ~ value^2 and one code
 // step is a 10% value step), and the loss of BC1 on this data is dominated
-// by endpoint quantisation (DESIGN 6). So:
+// by endpoint quantisation. So:
 //  1. Identical colours are merged (their weights add up): smooth blocks of
 //     the matrix hold few distinct colours (on the benchmark matrix 1-3 in
 //     95% of blocks), which makes every later step cheap.

@@ -3,7 +3,7 @@
 // taken first, never across voxels, until the budget remains. On the Cornell
 // box with the bunny, the walls' flat, evenly lit voxels should end with
 // fewer patches than the bunny's, whose samples differ in normal and in what
-// they see (the merge metric of paper 001); a fixed count per voxel gives both
+// they see (the merge metric, docs/method.md 4); a fixed count per voxel gives both
 // the same.
 #include <gtest/gtest.h>
 

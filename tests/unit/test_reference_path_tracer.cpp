@@ -1,4 +1,4 @@
-// The reference path tracer against closed forms (DESIGN 7): the white
+// The reference path tracer against closed forms (docs/reference.md): the white
 // furnace (B = E / (1 - rho)) and the parallel unit squares (Howell C-11), and
 // its promise that results do not depend on the thread count.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Stiff and extreme cases of the real pipeline (issue 7 §1-2; the table is
+// Stiff and extreme cases of the real pipeline (the table is
 // docs/stability.md). Each test states the outcome the math predicts and
 // prints what it measured ("stability:" lines, copied into the doc).
 //

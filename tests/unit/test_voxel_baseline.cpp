@@ -1,9 +1,10 @@
-// The voxel baseline (one patch per voxel and normal direction, paper 000
-// ref [1]) on a surface hidden 1 cm behind another: covered-squares is the
-// parallel unit squares (Howell C-11, F = 0.199825) with a "cover" square 1 cm
-// behind the top one, facing it. Voxel patches merge top and cover (same
-// voxels, same direction). The merged patches must still exchange exactly the
-// top's energy with the bottom: the cover sees only the top's back.
+// The voxel baseline (one patch per voxel and normal direction, what the
+// published method compares with; docs/method.md) on a surface hidden 1 cm
+// behind another: covered-squares is the parallel unit squares (Howell
+// C-11, F = 0.199825) with a "cover" square 1 cm behind the top one, facing
+// it. Voxel patches merge top and cover (same voxels, same direction). The
+// merged patches must still exchange exactly the top's energy with the
+// bottom: the cover sees only the top's back.
 //
 // Regression: visibility rays used to start at the far-field points, area
 // means of the patch's pieces, which for a merged patch lie between top and

@@ -1,0 +1,20 @@
+#pragma once
+// Public: bake a scene and write the bake folder.
+//
+//   bounce::BakeSettings settings;          // every field optional
+//   settings.error_budget = 0.02;
+//   bounce::Progress progress(callback);    // (stage, fraction) -> false to stop
+//   const bounce::BakeResult result = bounce::Baker(scene, settings, diagnostics).run(progress);
+//   bounce::write_bake(folder, scene, result, diagnostics);
+//
+// Progress::request_stop() from any thread (or the callback returning false)
+// stops the bake at its next check with bounce::Cancelled; a cancelled or
+// failed write leaves no folder behind.
+// Baker::run with a previous result re-runs only the stages the changed
+// settings affect (bake/rebake_plan.h).
+#include "bake/bake.h"
+#include "bake/bake_settings.h"
+#include "bake/bake_writer.h"
+#include "base/diagnostics.h"
+#include "base/error.h"
+#include "base/progress.h"

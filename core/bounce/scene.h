@@ -1,0 +1,12 @@
+#pragma once
+// Public: load a scene (docs/scene-format.md): a scene folder, its
+// scene.json or a bare mesh file. Problems the loader repairs are reported
+// to the Diagnostics; anything it cannot read throws bounce::Error naming
+// the file.
+//
+//   bounce::Diagnostics diagnostics;
+//   const bounce::Scene scene = bounce::SceneLoader(diagnostics).load(path);
+#include "base/diagnostics.h"
+#include "base/error.h"
+#include "scene/scene.h"
+#include "scene/scene_loader.h"

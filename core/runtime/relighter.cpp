@@ -1,0 +1,86 @@
+#include "runtime/relighter.h"
+
+#include "base/error.h"
+
+namespace bounce {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+TransportMultiplier timed_multiplier(const StoredTransport& transport,
+                                     const RelighterSettings& settings, Diagnostics* diagnostics,
+                                     double& seconds) {
+  const auto start = Clock::now();
+  TransportMultiplier m(transport, settings.multiply, settings.loop, diagnostics);
+  seconds = since(start);
+  return m;
+}
+
+// Every frame keeps each sample's direct irradiance: a final gather with
+// sample sources reads it (a few bytes per sample).
+RuntimeFrameSettings with_sample_irradiance(RuntimeFrameSettings s) {
+  s.sample_irradiance = true;
+  return s;
+}
+
+}  // namespace
+
+Relighter::Relighter(const RayTracer& tracer, const SampleSet& samples, const PatchSet& patches,
+                     const StoredTransport& transport, const RelighterSettings& settings,
+                     Diagnostics* diagnostics)
+    : multiplier_(timed_multiplier(transport, settings, diagnostics, multiply_seconds_)),
+      compile_start_(Clock::now()),
+      samples_(samples),
+      patches_(patches),
+      frame_(tracer, samples, patches, multiplier_.multiply_into(),
+             with_sample_irradiance(settings.frame)) {
+  compile_seconds_ = since(compile_start_);
+}
+
+void Relighter::light(const std::vector<Light>& lights, const std::vector<AreaLight>& area) {
+  frame_.solve(lights, area);
+}
+
+void Relighter::first_hit_and_indirect(std::vector<glm::vec3>& b,
+                                       std::vector<glm::vec3>& tb) const {
+  const std::size_t n = frame_.size();
+  if (frame_.first_hit().size() == n && frame_.indirect().size() == n) {
+    b = frame_.first_hit();
+    tb = frame_.indirect();
+    return;
+  }
+  // The record holds E, b, T b per patch (3 x 3 floats).
+  const std::vector<float>& record = frame_.record();
+  if (record.size() != 9 * n)
+    throw Error("relighter", "the frame neither publishes nor records b and T b");
+  b.resize(n);
+  tb.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    const float* r = record.data() + 9 * p;
+    b[p] = glm::vec3(r[3], r[4], r[5]);
+    tb[p] = glm::vec3(r[6], r[7], r[8]);
+  }
+}
+
+void Relighter::reflected(std::vector<glm::vec3>& out) const {
+  std::vector<glm::vec3> b, tb;
+  first_hit_and_indirect(b, tb);
+  out.resize(b.size());
+  for (std::size_t p = 0; p < b.size(); ++p) out[p] = b[p] + tb[p];
+}
+
+void Relighter::gather(const FinalGather& gather, std::vector<glm::vec3>& irradiance) const {
+  std::vector<glm::vec3> b, tb;
+  first_hit_and_indirect(b, tb);
+  std::vector<glm::vec3> light(b.size()), sample_light;
+  for (std::size_t p = 0; p < b.size(); ++p) light[p] = b[p] + tb[p];
+  if (gather.samples > 0)
+    sample_light = sample_exitance(samples_, patches_, frame_.sample_irradiance(), tb);
+  gather.irradiance(light, sample_light, irradiance);
+}
+
+}  // namespace bounce

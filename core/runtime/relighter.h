@@ -1,0 +1,71 @@
+#pragma once
+// Lights a bake again, frame after frame: the one sequence every front end
+// runs on a bake (`bounce solve`, `bake --reference`, the studio's preview):
+//
+//   pick the product T b once      runtime/transport_multiplier.h
+//   light the patches              the frame graph (runtime/runtime_frame.h):
+//                                  direct light E, b = albedo E, T b, exitance
+//   gather to points               the final gather (runtime/final_gather.h):
+//                                  the irradiance at mesh vertices or camera
+//                                  pixels from the patches' reflected b + T b
+//
+// The tracer, samples, patches and (for a dense product) the matrices of
+// the StoredTransport must outlive the Relighter. One light() at a time.
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "runtime/final_gather.h"
+#include "runtime/runtime_frame.h"
+#include "runtime/transport_multiplier.h"
+
+namespace bounce {
+
+struct RelighterSettings {
+  MultiplyChoice multiply = MultiplyChoice::kAuto;
+  CppLoop loop = CppLoop::kMeasured;
+  RuntimeFrameSettings frame;
+};
+
+class Relighter {
+ public:
+  // Throws what TransportMultiplier and RuntimeFrame throw.
+  Relighter(const RayTracer& tracer, const SampleSet& samples, const PatchSet& patches,
+            const StoredTransport& transport, const RelighterSettings& settings = {},
+            Diagnostics* diagnostics = nullptr);
+  Relighter(const Relighter&) = delete;
+  Relighter& operator=(const Relighter&) = delete;
+
+  // One frame on the patches for these lights.
+  void light(const std::vector<Light>& lights, const std::vector<AreaLight>& area = {});
+
+  // The light the patches reflect in the last frame, b + T b, per patch:
+  // what the final gather sums. Read from the frame's published b and T b,
+  // or from its record when it does not publish them.
+  void reflected(std::vector<glm::vec3>& out) const;
+  // The irradiance at the gather's points from the last frame's reflected
+  // light (before any albedo); its sample sources read each sample's own b
+  // plus its patch's T b.
+  void gather(const FinalGather& gather, std::vector<glm::vec3>& irradiance) const;
+
+  const RuntimeFrame& frame() const { return frame_; }
+  const std::string& multiply_name() const { return multiplier_.what(); }
+  // What construction took: choosing and laying out the product (with the
+  // loop's measurement), and building and compiling the frame graph.
+  double multiply_seconds() const { return multiply_seconds_; }
+  double compile_seconds() const { return compile_seconds_; }
+
+ private:
+  void first_hit_and_indirect(std::vector<glm::vec3>& b, std::vector<glm::vec3>& tb) const;
+
+  double multiply_seconds_ = 0.0, compile_seconds_ = 0.0;
+  TransportMultiplier multiplier_;
+  std::chrono::steady_clock::time_point compile_start_;
+  const SampleSet& samples_;
+  const PatchSet& patches_;
+  RuntimeFrame frame_;
+};
+
+}  // namespace bounce
