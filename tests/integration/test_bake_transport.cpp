@@ -221,7 +221,7 @@ TEST(TransportBake, LightBudgetHoldsOnTheCornellBox) {
   const fs::path out = tmp / "bake";
   const RunResult r = run({"bake", scene("cornell-box"), "--voxel", "10", "--codec", "ours",
                            "--dump-matrices", "--no-pictures", "--quiet", "--out", out.string()},
-                          tmp.path());
+                          tmp.path(), 300.0);  // a hang guard: the budget's trials take a while
   ASSERT_EQ(r.exit_code, 0) << r;
   const json m = read_manifest(out);
   const json c = m["compression"];
