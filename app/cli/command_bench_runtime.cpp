@@ -9,9 +9,9 @@
 #include <memory>
 
 #include "bake/bake_reader.h"
-#include "bake/final_gather_files.h"
 #include "base/error.h"
 #include "bench_commands.h"
+#include "bounce/bake_folder.h"
 #include "io/npy.h"
 #include "runtime/runtime_bench.h"
 
