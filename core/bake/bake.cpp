@@ -125,12 +125,13 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
             }
         for (const Diagnostic& d : previous->stage_diagnostics[static_cast<std::size_t>(stage)]) {
           if (d.kind == Diagnostic::Kind::Warning)
-            diagnostics_.warn(d.where, d.message);
+            diagnostics_.warn(d.where, d.message, d.detail);
           else
             diagnostics_.left_out(d.where, d.message);
         }
       };
-      reused({"voxelize", "ray tracer (BVH build)", "sample", "patches"}, BakeStage::Geometry);
+      reused({"voxelize", "ray tracer (BVH build)", "sample", "texture", "patches"},
+             BakeStage::Geometry);
       if (!plan.runs(BakeStage::FormFactors))
         reused(
             {"form factors", "checks", "closure", "balance", "final gather", "evaluation lights"},
@@ -192,6 +193,13 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
     if (r.samples.samples.empty())
       throw Error(scene_.path,
                   "no surface samples: no ray hit the scene's surfaces from inside any voxel");
+    r.stages.push_back(timer.finish());
+  }
+
+  // A stage of its own, so that what textures cost shows in the manifest.
+  if (plan.runs(BakeStage::Geometry) && !scene_.triangle_uv.empty()) {
+    StageTimer timer("texture");
+    apply_texture_albedo(scene_, r.voxels, r.samples, &progress);
     r.stages.push_back(timer.finish());
   }
 

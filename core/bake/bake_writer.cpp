@@ -354,6 +354,7 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
   json warnings = json::array(), left_out = json::array();
   for (const Diagnostic& d : diagnostics.all()) {
     json e = {{"where", d.where}, {"message", d.message}};
+    if (!d.detail.empty()) e["detail"] = d.detail;
     (d.kind == Diagnostic::Kind::Warning ? warnings : left_out).push_back(e);
   }
   m["warnings"] = warnings;

@@ -2,12 +2,12 @@
 
 namespace bounce {
 
-void Diagnostics::warn(std::string where, std::string message) {
-  add({Diagnostic::Kind::Warning, std::move(where), std::move(message)});
+void Diagnostics::warn(std::string where, std::string message, std::vector<std::string> detail) {
+  add({Diagnostic::Kind::Warning, std::move(where), std::move(message), std::move(detail)});
 }
 
 void Diagnostics::left_out(std::string where, std::string message) {
-  add({Diagnostic::Kind::LeftOut, std::move(where), std::move(message)});
+  add({Diagnostic::Kind::LeftOut, std::move(where), std::move(message), {}});
 }
 
 void Diagnostics::add(Diagnostic d) {

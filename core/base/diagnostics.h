@@ -13,13 +13,16 @@ struct Diagnostic {
   Kind kind;
   std::string where;    // file, stage or setting
   std::string message;  // what happened and why
+  // A warning that sums up many cases (one line per kind, naming the first
+  // few) lists every case here; the bake manifest keeps the list.
+  std::vector<std::string> detail;
 };
 
 class Diagnostics {
  public:
   using Listener = std::function<void(const Diagnostic&)>;
 
-  void warn(std::string where, std::string message);
+  void warn(std::string where, std::string message, std::vector<std::string> detail = {});
   // Records something the bake chose not to do / not to keep, with the reason.
   void left_out(std::string where, std::string message);
 

@@ -205,7 +205,9 @@ glm::vec3 ReferencePathTracer::path(const glm::vec3& x, const glm::vec3& n, Samp
       else
         e += throughput * found;
     }
-    throughput *= m.albedo;
+    // The texel where the ray landed: the bake's samples average the same
+    // texture over their surface, so both sides see the same albedo on average.
+    throughput *= scene.albedo_at(hit.triangle, origin + hit.t * dir);
     if (max_component(throughput) <= 0.0f) break;
     // Roulette before the vertex's E_direct, not after: both MIS halves (NEE
     // here, the emission the next ray finds) must survive or die together.
@@ -309,11 +311,12 @@ void ReferenceRenderer::add_samples(int samples, Progress* progress) {
         }
         const Material& m = scene.material_of(hit.triangle);
         const glm::vec3 p = eye + hit.t * dir;
+        const glm::dvec3 albedo(scene.albedo_at(hit.triangle, p));
         glm::vec3 direct_p;
         const glm::dvec3 ind(pt_.path(p, ng, rng, direct_p));
         const glm::dvec3 d(direct_p);
-        const glm::dvec3 indirect_b = glm::dvec3(m.albedo) * ind;
-        const glm::dvec3 full_b = glm::dvec3(m.albedo) * d + indirect_b + glm::dvec3(m.emission);
+        const glm::dvec3 indirect_b = albedo * ind;
+        const glm::dvec3 full_b = albedo * d + indirect_b + glm::dvec3(m.emission);
         full_sum_[i] += full_b;
         full_sq_[i] += full_b * full_b;
         ind_sum_[i] += indirect_b;

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "io/atomic_file.h"
+#include "scene/texture.h"
 
 namespace bounce {
 
@@ -62,7 +63,19 @@ void hash_scene(ContentHash& h, const Scene& scene) {
   h.bytes(scene.triangle_material.data(), scene.triangle_material.size() * sizeof(std::uint32_t));
   h.bytes(scene.triangle_mesh.data(), scene.triangle_mesh.size() * sizeof(std::uint32_t));
   h.integer(scene.materials.size());
-  for (const Material& m : scene.materials) h.vec(m.albedo).vec(m.emission);
+  for (const Material& m : scene.materials) {
+    h.vec(m.albedo).vec(m.emission);
+    // The texels themselves: a texture edited in place must not reuse a result.
+    if (m.texture) {
+      const Texture::Level& l = m.texture->levels.front();
+      h.vec(m.texture_factor)
+          .integer(static_cast<std::uint64_t>(l.width))
+          .integer(static_cast<std::uint64_t>(l.height));
+      h.bytes(l.texels.data(), l.texels.size() * sizeof(glm::vec3));
+    }
+  }
+  h.integer(scene.triangle_uv.size())
+      .bytes(scene.triangle_uv.data(), scene.triangle_uv.size() * sizeof(scene.triangle_uv[0]));
   h.integer(scene.meshes.size());
   for (const MeshInfo& m : scene.meshes)
     h.integer(m.first_triangle).integer(m.triangle_count).integer(m.two_sided ? 1 : 0);

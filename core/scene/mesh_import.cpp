@@ -13,6 +13,7 @@
 #include "scene/mtl_scan.h"
 #include "scene/ply_check.h"
 #include "scene/scene_loader.h"
+#include "scene/texture.h"
 
 namespace bounce::scene_internal {
 
@@ -149,6 +150,8 @@ class FileImporter {
       float strength = 1.f;  // glTF KHR_materials_emissive_strength
       if (m.Get(AI_MATKEY_EMISSIVE_INTENSITY, strength) == AI_SUCCESS) mat.emission *= strength;
 
+      read_texture(m, mat);
+
       if (mat.albedo && !finite(*mat.albedo))
         throw SceneLoader::LoadError(
             where_,
@@ -159,6 +162,29 @@ class FileImporter {
                                                  format_vec(mat.emission));
       out_.materials.push_back(std::move(mat));
     }
+  }
+
+  // glTF's base colour texture, else the diffuse one (OBJ map_Kd); the
+  // factor is the diffuse colour read above either way.
+  void read_texture(const aiMaterial& m, ImportedMaterial& mat) {
+    aiString name;
+    if (m.GetTexture(aiTextureType_BASE_COLOR, 0, &name) != AI_SUCCESS &&
+        m.GetTexture(aiTextureType_DIFFUSE, 0, &name) != AI_SUCCESS)
+      return;
+    mat.texture_name = name.C_Str();
+    if (mat.texture_name.empty()) return;
+    if (mat.texture_name.front() == '*') {
+      missing_textures_.emplace_back(out_.materials.size(),
+                                     "material '" + mat.name + "': texture '" + mat.texture_name +
+                                         "' is embedded in the file, which is not supported");
+      return;
+    }
+    mat.texture = resolve_texture_path(file_.parent_path(), mat.texture_name);
+    if (!mat.texture)
+      missing_textures_.emplace_back(out_.materials.size(),
+                                     "material '" + mat.name + "': texture file '" +
+                                         (file_.parent_path() / mat.texture_name).string() +
+                                         "' not found");
   }
 
   void walk(const aiNode* node, const glm::dmat4& parent) {
@@ -183,6 +209,11 @@ class FileImporter {
         const glm::dvec4 q = full * glm::dvec4(p.x, p.y, p.z, 1.0);
         piece.positions.emplace_back(static_cast<float>(q.x), static_cast<float>(q.y),
                                      static_cast<float>(q.z));
+      }
+      if (mesh.HasTextureCoords(0)) {
+        piece.uvs.reserve(mesh.mNumVertices);
+        for (unsigned v = 0; v < mesh.mNumVertices; ++v)
+          piece.uvs.emplace_back(mesh.mTextureCoords[0][v].x, mesh.mTextureCoords[0][v].y);
       }
       piece.triangles.reserve(mesh.mNumFaces);
       for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
@@ -234,23 +265,16 @@ class FileImporter {
     }
   }
 
-  // Bounce lights with one albedo per material; say what else the file had.
+  // Say what the file had that the albedo cannot follow: missing textures
+  // of materials in use (the albedo falls back to the material's colour)
+  // and per-vertex colours.
   void report_ignored_attributes() {
     std::vector<bool> used(out_.materials.size(), false);
     for (const ImportedPiece& piece : out_.pieces)
       if (piece.material < used.size()) used[piece.material] = true;
-    std::string textured;
-    for (unsigned i = 0; i < scene_->mNumMaterials; ++i) {
-      const aiMaterial& m = *scene_->mMaterials[i];
-      if (used[i] && (m.GetTextureCount(aiTextureType_DIFFUSE) > 0 ||
-                      m.GetTextureCount(aiTextureType_BASE_COLOR) > 0))
-        textured += (textured.empty() ? "" : ", ") + out_.materials[i].name;
-    }
-    if (!textured.empty())
-      diagnostics_.warn(where_,
-                        "colour textures are ignored (albedo is the material's diffuse colour) "
-                        "for materials: " +
-                            textured);
+    for (const auto& [material, message] : missing_textures_)
+      if (used[material])
+        diagnostics_.warn(where_, message + "; the material's diffuse colour is used instead");
     if (!with_vertex_colours_.empty()) {
       std::string names;
       for (const std::string& n : with_vertex_colours_) names += (names.empty() ? "" : ", ") + n;
@@ -268,6 +292,7 @@ class FileImporter {
   const aiScene* scene_ = nullptr;
   ImportedFile out_;
   std::vector<std::string> with_vertex_colours_;
+  std::vector<std::pair<std::size_t, std::string>> missing_textures_;  // material, message
 };
 
 }  // namespace

@@ -2,7 +2,8 @@
 // One mesh file through Assimp: every (node, mesh) pair becomes a piece with
 // its vertices moved into scene space (node transforms, then the scene.json
 // transform), its triangles (winding kept front-facing under mirroring) and
-// its material's stated diffuse and emissive colours as exact floats.
+// its material's stated diffuse and emissive colours as exact floats (and
+// colour texture, found but not yet read) and texture coordinates.
 // Degenerate triangles are kept here; the scene builder counts and skips
 // them once the scene's size is known. Internal to the scene module.
 #include <cstddef>
@@ -22,6 +23,10 @@ struct ImportedMaterial {
   std::string name;
   std::optional<glm::vec3> albedo;  // nullopt when the file does not state one
   glm::vec3 emission{0.0f};
+  // The colour texture as the file names it, and where it was found
+  // (nullopt: missing, already warned about; the albedo falls back).
+  std::string texture_name;
+  std::optional<std::filesystem::path> texture;
 };
 
 struct ImportedPiece {
@@ -29,6 +34,7 @@ struct ImportedPiece {
   std::uint32_t material = 0;        // index into ImportedFile::materials
   std::vector<glm::vec3> positions;  // scene space; all finite where referenced
   std::vector<glm::uvec3> triangles;
+  std::vector<glm::vec2> uvs;     // per position (first UV channel); empty when the file has none
   std::size_t non_triangles = 0;  // point and line primitives, which have no area
 };
 

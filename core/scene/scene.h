@@ -2,8 +2,10 @@
 // The scene as the bake sees it: one flat triangle soup (so the ray tracer,
 // voxeliser and sampler share indices), with per-triangle material and mesh,
 // plus lights, camera and the scene's own bake defaults.
+#include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,9 +14,24 @@
 
 namespace bounce {
 
+struct Texture;
+
+// Albedo 1 in a closed scene makes sum_h (rho F)^h diverge; keep it below.
+// Balanced form factors close a room's rows to float rounding (~1e-7), and
+// the multi-bounce sum amplifies a row error d into d / (1 - albedo) of the
+// light: at 0.9999 that is ~0.1%, at 0.99999 ~1%. 1 itself never converges.
+inline constexpr float kMaxAlbedo = 0.9999f;
+
 struct Material {
   std::string name;
-  glm::vec3 albedo{0.8f};    // diffuse reflectance per channel, in [0,1)
+  // Diffuse reflectance per channel, in [0, kMaxAlbedo]. With a texture it is
+  // the surface's mean (texture_factor x the texture's mean), for whatever
+  // cannot look the texture up.
+  glm::vec3 albedo{0.8f};
+  // Textured: the albedo at a point is texture_factor x the texel there
+  // (OBJ Kd x map_Kd, glTF baseColorFactor x baseColorTexture), clamped.
+  std::shared_ptr<const Texture> texture;
+  glm::vec3 texture_factor{1.0f};
   glm::vec3 emission{0.0f};  // emitted radiosity (W/m^2 per channel); > 0 makes an area light
   bool is_emissive() const { return emission.r > 0.f || emission.g > 0.f || emission.b > 0.f; }
 };
@@ -82,6 +99,9 @@ struct Scene {
   std::vector<glm::uvec3> triangles;
   std::vector<std::uint32_t> triangle_material;  // index into materials
   std::vector<std::uint32_t> triangle_mesh;      // index into meshes
+  // Texture coordinates of each triangle's corners; empty when no material
+  // has a texture (then every albedo is its material's).
+  std::vector<std::array<glm::vec2, 3>> triangle_uv;
   std::vector<Material> materials;
   std::vector<MeshInfo> meshes;
   std::vector<Light> lights;
@@ -95,6 +115,13 @@ struct Scene {
   float triangle_area(std::size_t tri) const;
   const Material& material_of(std::size_t tri) const { return materials[triangle_material[tri]]; }
   bool two_sided(std::size_t tri) const { return meshes[triangle_mesh[tri]].two_sided; }
+  bool textured(std::size_t tri) const {
+    return !triangle_uv.empty() && material_of(tri).texture != nullptr;
+  }
+  // Albedo at point p on triangle tri (the texel there when textured).
+  glm::vec3 albedo_at(std::size_t tri, const glm::vec3& p) const;
+  // Mean albedo over a planar polygon lying on triangle tri.
+  glm::vec3 mean_albedo(std::size_t tri, const glm::vec3* polygon, std::size_t count) const;
   Bounds bounds() const;
 };
 

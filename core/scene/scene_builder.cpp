@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "scene/scene_loader.h"
+#include "scene/texture.h"
 
 namespace bounce::scene_internal {
 
@@ -15,11 +16,6 @@ namespace {
 // A triangle whose area is at most this fraction of the squared scene
 // diagonal has no usable normal (and would only add noise to sampling).
 constexpr double kDegenerateAreaFraction = 1e-12;
-// Albedo 1 in a closed scene makes sum_h (rho F)^h diverge; keep it below.
-// Balanced form factors close a room's rows to float rounding (~1e-7), and
-// the multi-bounce sum amplifies a row error d into d / (1 - albedo) of the
-// light: at 0.9999 that is ~0.1%, at 0.99999 ~1%. 1 itself never converges.
-constexpr float kMaxAlbedo = 0.9999f;
 constexpr std::uint32_t kUnmapped = std::numeric_limits<std::uint32_t>::max();
 
 std::string format_vec(const glm::vec3& v) {
@@ -29,12 +25,53 @@ std::string format_vec(const glm::vec3& v) {
 }
 
 bool same_colours(const ImportedMaterial& a, const ImportedMaterial& b) {
-  return a.albedo == b.albedo && a.emission == b.emission;
+  return a.albedo == b.albedo && a.emission == b.emission && a.texture == b.texture;
 }
 
 std::string plural(std::size_t n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
+
+// Meshes of one file with the same problem, reported as one line: the
+// count, how many meshes and the first few of them; the diagnostic's detail
+// (kept in the bake manifest) names them all. A big model would otherwise
+// print one line per mesh and bury the warnings that matter.
+class WarningGroup {
+ public:
+  // `one`/`many`: the thing counted ("duplicate triangle"); `why` ends the line.
+  WarningGroup(std::string verb, const char* one, const char* many, std::string why)
+      : verb_(std::move(verb)), one_(one), many_(many), why_(std::move(why)) {}
+
+  void add(const std::string& mesh, std::size_t count, const std::string& note) {
+    total_ += count;
+    items_.push_back("'" + mesh + "' (" + std::to_string(count) + note + ")");
+  }
+
+  void emit(Diagnostics& diagnostics, const std::string& where, const std::string& label) {
+    if (items_.empty()) return;
+    constexpr std::size_t kFirstFew = 3;
+    std::string listed;
+    for (std::size_t i = 0; i < std::min(kFirstFew, items_.size()); ++i)
+      listed += (i ? ", " : "") + items_[i];
+    if (items_.size() > kFirstFew)
+      listed += " and " + std::to_string(items_.size() - kFirstFew) + " more";
+    diagnostics.warn(where,
+                     verb_ + " " + plural(total_, one_, many_) + " in " +
+                         plural(items_.size(), "mesh", "meshes") + label + ": " + listed + " (" +
+                         why_ + ")",
+                     items_);
+    items_.clear();
+    total_ = 0;
+  }
+
+ private:
+  std::string verb_;
+  const char* one_;
+  const char* many_;
+  std::string why_;
+  std::vector<std::string> items_;
+  std::size_t total_ = 0;
+};
 
 }  // namespace
 
@@ -75,7 +112,8 @@ std::uint32_t SceneBuilder::material_index(const std::string& name, const Entry&
   return it->second;
 }
 
-Material SceneBuilder::resolve_material(const std::string& name) const {
+Material SceneBuilder::resolve_material(const std::string& name,
+                                        std::shared_ptr<const Texture> texture) const {
   const Use& use = uses_[use_index_.at(name)];
   const auto def_it = definitions_.find(name);
   const MaterialSpec* def = def_it == definitions_.end() ? nullptr : &def_it->second;
@@ -91,6 +129,8 @@ Material SceneBuilder::resolve_material(const std::string& name) const {
   } else if (file && file->albedo) {
     m.albedo = *file->albedo;
     albedo_from = use.file;
+  } else if (texture) {
+    m.albedo = glm::vec3(1.0f);  // a texture without a colour: the texture alone
   } else {
     m.albedo = glm::vec3(SceneLoader::kDefaultAlbedo);
     diagnostics_.warn(file ? use.file : scene_file_,
@@ -104,6 +144,11 @@ Material SceneBuilder::resolve_material(const std::string& name) const {
                                        " (albedo must lie in [0, 0.9999]; 1 or more makes the "
                                        "multi-bounce transport diverge)");
     m.albedo = clamped;
+  }
+  if (texture) {
+    m.texture_factor = m.albedo;
+    m.albedo = glm::clamp(m.albedo * texture->mean, glm::vec3(0.f), glm::vec3(kMaxAlbedo));
+    m.texture = std::move(texture);
   }
   if (def && def->emission) {
     m.emission = *def->emission;
@@ -135,9 +180,33 @@ void SceneBuilder::build(Scene& scene) {
       piece_use[e].push_back(material_index(name, entry, entry.material ? nullptr : from_file));
     }
   }
+  // Each texture file is read once, however many materials use it, and the
+  // files in parallel (decoding dominates).
+  std::vector<std::filesystem::path> files;
+  std::vector<std::size_t> use_file(uses_.size(), SIZE_MAX);
+  for (std::size_t u = 0; u < uses_.size(); ++u) {
+    if (!uses_[u].from_file || !uses_[u].from_file->texture) continue;
+    const std::filesystem::path& f = *uses_[u].from_file->texture;
+    const auto at = std::find(files.begin(), files.end(), f);
+    use_file[u] = static_cast<std::size_t>(at - files.begin());
+    if (at == files.end()) files.push_back(f);
+  }
+  std::vector<std::shared_ptr<const Texture>> textures(files.size());
+  std::vector<std::string> errors(files.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t f = 0; f < static_cast<std::int64_t>(files.size()); ++f) {
+    const auto i = static_cast<std::size_t>(f);
+    textures[i] = load_texture(files[i], errors[i]);
+  }
+  for (std::size_t f = 0; f < files.size(); ++f)
+    if (!textures[f])
+      diagnostics_.warn(files[f].string(), "cannot read this texture (" + errors[f] +
+                                               "); its materials use their diffuse colour");
   std::vector<Material> resolved;
   resolved.reserve(uses_.size());
-  for (const Use& use : uses_) resolved.push_back(resolve_material(use.name));
+  for (std::size_t u = 0; u < uses_.size(); ++u)
+    resolved.push_back(
+        resolve_material(uses_[u].name, use_file[u] == SIZE_MAX ? nullptr : textures[use_file[u]]));
   for (const auto& [name, def] : definitions_)
     if (!use_index_.count(name))
       diagnostics_.warn(scene_file_, def.key_path + ": no mesh uses this material; ignored");
@@ -176,19 +245,27 @@ void SceneBuilder::build(Scene& scene) {
     const Entry& entry = entries_[e];
     const std::string where = entry.file.path.string();
     const std::string label = entry.key_path.empty() ? "" : " (" + entry.key_path + ")";
+    WarningGroup lines("ignored", "point or line primitive", "point and line primitives",
+                       "they have no area");
+    WarningGroup degenerate("skipped", "degenerate triangle", "degenerate triangles",
+                            "repeated vertices or area <= 1e-12 x squared scene diagonal");
+    WarningGroup duplicate("skipped", "duplicate triangle", "duplicate triangles",
+                           "exact copies of triangles already in the scene, same winding: they "
+                           "would count the same surface twice");
+    WarningGroup no_uvs("found no texture coordinates for", "triangle", "triangles",
+                        "their material's texture is applied as its mean colour");
     for (std::size_t p = 0; p < entry.file.pieces.size(); ++p) {
       const ImportedPiece& piece = entry.file.pieces[p];
-      if (piece.non_triangles > 0)
-        diagnostics_.warn(where, "mesh '" + piece.name + "'" + label + ": ignored " +
-                                     plural(piece.non_triangles, "point or line primitive",
-                                            "point and line primitives") +
-                                     " (they have no area)");
+      if (piece.non_triangles > 0) lines.add(piece.name, piece.non_triangles, "");
       MeshInfo info;
       info.name = piece.name;
       info.source = where;
       info.two_sided = entry.two_sided;
       info.first_triangle = static_cast<std::uint32_t>(scene.triangles.size());
 
+      const bool has_uvs = piece.uvs.size() == piece.positions.size();
+      if (resolved[piece_use[e][p]].texture && !has_uvs)
+        no_uvs.add(piece.name, piece.triangles.size(), "");
       std::vector<std::uint32_t> remap(piece.positions.size(), kUnmapped);
       std::size_t skipped = 0, duplicates = 0;
       for (const glm::uvec3& t : piece.triangles) {
@@ -216,23 +293,20 @@ void SceneBuilder::build(Scene& scene) {
           out[k] = slot;
         }
         scene.triangles.push_back(out);
+        // No coordinates: NaN, which texture lookups answer with the mean.
+        const glm::vec2 none(std::numeric_limits<float>::quiet_NaN());
+        scene.triangle_uv.push_back({has_uvs ? piece.uvs[t.x] : none,
+                                     has_uvs ? piece.uvs[t.y] : none,
+                                     has_uvs ? piece.uvs[t.z] : none});
       }
       skipped_total += skipped + duplicates;
-      if (duplicates > 0)
-        diagnostics_.warn(where,
-                          "mesh '" + piece.name + "'" + label + ": skipped " +
-                              plural(duplicates, "duplicate triangle", "duplicate triangles") +
-                              " (exact copies of triangles already in the scene, same "
-                              "winding: they would count the same surface twice)");
+      if (duplicates > 0) duplicate.add(piece.name, duplicates, "");
       info.triangle_count =
           static_cast<std::uint32_t>(scene.triangles.size()) - info.first_triangle;
       if (skipped > 0)
-        diagnostics_.warn(
-            where, "mesh '" + piece.name + "'" + label + ": skipped " +
-                       plural(skipped, "degenerate triangle", "degenerate triangles") + " of " +
-                       std::to_string(piece.triangles.size()) +
-                       " (repeated vertices or area <= 1e-12 x squared scene diagonal)" +
-                       (info.triangle_count == 0 ? "; nothing is left of this mesh" : ""));
+        degenerate.add(piece.name, skipped,
+                       " of " + std::to_string(piece.triangles.size()) +
+                           (info.triangle_count == 0 ? ", nothing is left of this mesh" : ""));
       if (info.triangle_count == 0) continue;
 
       const std::uint32_t use = piece_use[e][p];
@@ -246,7 +320,12 @@ void SceneBuilder::build(Scene& scene) {
       scene.triangle_mesh.insert(scene.triangle_mesh.end(), info.triangle_count, mesh_index);
       scene.meshes.push_back(std::move(info));
     }
+    for (WarningGroup* group : {&lines, &degenerate, &duplicate, &no_uvs})
+      group->emit(diagnostics_, where, label);
   }
+  if (std::none_of(scene.materials.begin(), scene.materials.end(),
+                   [](const Material& m) { return m.texture != nullptr; }))
+    scene.triangle_uv.clear();
   if (scene.triangles.empty())
     throw SceneLoader::LoadError(
         scene_file_, "the scene has no geometry left" +

@@ -2,10 +2,12 @@
 // Turns imported mesh files plus scene.json material definitions into the
 // Scene's flat triangle soup: one material table by name (file colours,
 // overridden by scene.json), albedo defaulted or clamped with a warning,
-// degenerate triangles counted and skipped with one warning per mesh, and
+// degenerate and duplicate triangles counted and skipped with one warning
+// per kind and file (naming the first few meshes), textures read once each, and
 // only the vertices that kept triangles use. Internal to the scene module.
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,7 +45,7 @@ class SceneBuilder {
 
   std::uint32_t material_index(const std::string& name, const Entry& entry,
                                const ImportedMaterial* from_file);
-  Material resolve_material(const std::string& name) const;
+  Material resolve_material(const std::string& name, std::shared_ptr<const Texture> texture) const;
 
   std::string scene_file_;
   std::map<std::string, MaterialSpec> definitions_;

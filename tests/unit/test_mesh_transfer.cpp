@@ -301,7 +301,10 @@ TEST(MeshTransfer, NonManifoldFacesGetTheirOwnVerticesAndTwoSidedFacesABackCopy)
   // the edge a third face.
   const auto apex = static_cast<std::uint32_t>(s.positions.size());
   s.positions.push_back({0.5f, 0.5f, 0.5f});
-  s.materials.push_back({"fin", glm::vec3(0.5f), glm::vec3(0.0f)});
+  Material fin;
+  fin.name = "fin";
+  fin.albedo = glm::vec3(0.5f);
+  s.materials.push_back(fin);
   s.meshes.push_back({"fin", "memory", 4, 2, false});
   for (const glm::uvec3 t : {glm::uvec3(1, 0, apex), glm::uvec3(0, 1, apex)}) {
     s.triangles.push_back(t);

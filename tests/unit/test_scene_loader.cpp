@@ -74,9 +74,14 @@ TEST(SceneLoaderShipped, CornellBoxHasExactMtlColoursAndAnAreaLight) {
   Diagnostics d;
   const Scene s = load_quietly(kScenes / "cornell-box", d);
   // Each box's "Bottom Face" in the OBJ repeats its right face (same corners,
-  // same winding): both copies are skipped with one warning per mesh.
-  EXPECT_EQ(d.warnings().size(), 2u) << all_warnings(d);
-  EXPECT_EQ(count_warnings(d, {"skipped 2 duplicate triangles"}), 2u) << all_warnings(d);
+  // same winding): both copies are skipped, summed up in one warning that
+  // names both meshes, with the full list in its detail.
+  ASSERT_EQ(d.warnings().size(), 1u) << all_warnings(d);
+  EXPECT_EQ(count_warnings(d, {"skipped 4 duplicate triangles in 2 meshes",
+                               "'leftWall/shortBox' (2)", "'shortBox' (2)"}),
+            1u)
+      << all_warnings(d);
+  EXPECT_EQ(d.warnings()[0].detail.size(), 2u);
   EXPECT_EQ(s.name, "cornell-box");
   // 18 quads in the OBJ (5 walls, 6 + 6 box faces, 1 light), 2 triangles
   // each, less the two duplicated quads.
@@ -137,7 +142,7 @@ TEST(SceneLoaderShipped, CornellBoxHasExactMtlColoursAndAnAreaLight) {
 TEST(SceneLoaderShipped, CornellBunnyStandsOnTheFloor) {
   Diagnostics d;
   const Scene s = load_quietly(kScenes / "cornell-bunny", d);
-  EXPECT_EQ(d.warnings().size(), 2u) << all_warnings(d);  // the box's duplicated faces
+  EXPECT_EQ(d.warnings().size(), 1u) << all_warnings(d);  // the box's duplicated faces
   const MeshInfo* bunny = find_mesh(s, "bunny");
   ASSERT_NE(bunny, nullptr);
   EXPECT_EQ(bunny->triangle_count, 69451u);  // bun_zipper: no degenerate triangles
@@ -547,7 +552,7 @@ TEST_F(SceneLoaderInput, NonFiniteVerticesAreFatalNamingMeshIndexAndCount) {
   expect_error(json, dir / "big.obj", {"mesh 'huge'", "1 vertex has", "after the transform"});
 }
 
-TEST_F(SceneLoaderInput, DegenerateTrianglesAreSkippedWithOneWarningPerMesh) {
+TEST_F(SceneLoaderInput, DegenerateTrianglesOfAllMeshesAreSkippedWithOneWarning) {
   const fs::path obj = write("degenerate.obj",
                              "o good\n"
                              "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 1 1e-9 0\n"
@@ -563,10 +568,8 @@ TEST_F(SceneLoaderInput, DegenerateTrianglesAreSkippedWithOneWarningPerMesh) {
   EXPECT_EQ(s.triangle_count(), 3u);
   ASSERT_EQ(s.meshes.size(), 1u);
   EXPECT_EQ(s.meshes[0].name, "good");
-  EXPECT_EQ(count_warnings(diagnostics, {"mesh 'good'", "skipped 2 degenerate triangles of 5"}), 1u)
-      << all_warnings(diagnostics);
-  EXPECT_EQ(count_warnings(diagnostics, {"mesh 'flat'", "skipped 1 degenerate triangle of 1",
-                                         "nothing is left"}),
+  EXPECT_EQ(count_warnings(diagnostics, {"skipped 3 degenerate triangles in 2 meshes",
+                                         "'good' (2 of 5)", "'flat' (1 of 1, nothing is left"}),
             1u)
       << all_warnings(diagnostics);
   // Only vertices of kept triangles remain.
@@ -578,6 +581,36 @@ TEST_F(SceneLoaderInput, DegenerateTrianglesAreSkippedWithOneWarningPerMesh) {
   }
 }
 
+TEST_F(SceneLoaderInput, ManyMeshesWithOneProblemMakeOneLineNamingTheFirstFew) {
+  std::string text;
+  for (int m = 0; m < 5; ++m) {
+    const int base = 4 * m;
+    text += "o mesh" + std::to_string(m) + "\n";
+    text += "v 0 0 " + std::to_string(m) + "\nv 1 0 " + std::to_string(m) + "\nv 1 1 " +
+            std::to_string(m) + "\nv 2 0 " + std::to_string(m) + "\n";
+    text += "f " + std::to_string(base + 1) + " " + std::to_string(base + 2) + " " +
+            std::to_string(base + 3) + "\n";
+    text += "f " + std::to_string(base + 1) + " " + std::to_string(base + 2) + " " +
+            std::to_string(base + 4) + "\n";  // collinear
+  }
+  const fs::path obj = write("many.obj", text);
+  load(obj);
+  // One line for the five meshes (the other warning: no material).
+  std::vector<Diagnostic> degenerate;
+  for (const Diagnostic& w : diagnostics.warnings())
+    if (w.message.find("degenerate") != std::string::npos) degenerate.push_back(w);
+  ASSERT_EQ(degenerate.size(), 1u) << all_warnings(diagnostics);
+  const Diagnostic& w = degenerate[0];
+  EXPECT_EQ(count_warnings(diagnostics, {"skipped 5 degenerate triangles in 5 meshes",
+                                         "'mesh0' (1 of 2), 'mesh1' (1 of 2), 'mesh2' (1 of 2) "
+                                         "and 2 more"}),
+            1u)
+      << all_warnings(diagnostics);
+  EXPECT_EQ(w.message.find("mesh3"), std::string::npos) << w.message;
+  ASSERT_EQ(w.detail.size(), 5u);
+  EXPECT_EQ(w.detail[4], "'mesh4' (1 of 2)");
+}
+
 TEST_F(SceneLoaderInput, TinyTrianglesRelativeToTheSceneAreDegenerate) {
   // Scene diagonal ~ 1e3: area <= 1e-12 * 1e6 = 1e-6 is degenerate.
   const fs::path obj = write("tiny.obj",
@@ -586,7 +619,8 @@ TEST_F(SceneLoaderInput, TinyTrianglesRelativeToTheSceneAreDegenerate) {
                              "f 1 2 3\nf 4 5 6\n");
   const Scene s = load(obj);
   EXPECT_EQ(s.triangle_count(), 1u);
-  EXPECT_EQ(count_warnings(diagnostics, {"skipped 1 degenerate triangle of 2"}), 1u)
+  EXPECT_EQ(count_warnings(diagnostics, {"skipped 1 degenerate triangle in 1 mesh", "(1 of 2)"}),
+            1u)
       << all_warnings(diagnostics);
 }
 

@@ -15,7 +15,11 @@ inline void add_mesh(Scene& s, const std::string& name, const std::vector<glm::v
                      glm::vec3 emission = glm::vec3(0.0f), bool two_sided = false) {
   const auto base = static_cast<std::uint32_t>(s.positions.size());
   const auto mesh = static_cast<std::uint32_t>(s.meshes.size());
-  s.materials.push_back({name, albedo, emission});
+  Material material;
+  material.name = name;
+  material.albedo = albedo;
+  material.emission = emission;
+  s.materials.push_back(material);
   s.meshes.push_back({name, "memory", static_cast<std::uint32_t>(s.triangles.size()),
                       static_cast<std::uint32_t>(triangles.size()), two_sided});
   s.positions.insert(s.positions.end(), vertices.begin(), vertices.end());

@@ -1,0 +1,165 @@
+#include "scene/texture.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <system_error>
+
+#include <OpenImageIO/imageio.h>
+
+namespace bounce {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+float srgb_to_linear(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+// Texel (x, y) of a level, wrapping both ways.
+const glm::vec3& texel(const Texture::Level& l, int x, int y) {
+  x %= l.width;
+  y %= l.height;
+  if (x < 0) x += l.width;
+  if (y < 0) y += l.height;
+  return l.texels[static_cast<std::size_t>(y) * static_cast<std::size_t>(l.width) +
+                  static_cast<std::size_t>(x)];
+}
+
+// Each texel the mean of the (up to) 2x2 texels it covers.
+Texture::Level half(const Texture::Level& in) {
+  Texture::Level out;
+  out.width = std::max(1, in.width / 2);
+  out.height = std::max(1, in.height / 2);
+  out.texels.resize(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height));
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      const int x0 = std::min(2 * x, in.width - 1), x1 = std::min(2 * x + 1, in.width - 1);
+      const int y0 = std::min(2 * y, in.height - 1), y1 = std::min(2 * y + 1, in.height - 1);
+      out.texels[static_cast<std::size_t>(y) * static_cast<std::size_t>(out.width) +
+                 static_cast<std::size_t>(x)] =
+          0.25f * (texel(in, x0, y0) + texel(in, x1, y0) + texel(in, x0, y1) + texel(in, x1, y1));
+    }
+  return out;
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+}  // namespace
+
+glm::vec3 Texture::lookup(glm::vec2 uv, int level) const {
+  const Level& l =
+      levels[static_cast<std::size_t>(std::clamp(level, 0, static_cast<int>(levels.size()) - 1))];
+  // Texel centres at half-integers; v up, row 0 at the top.
+  const float x = uv.x * static_cast<float>(l.width) - 0.5f;
+  const float y = (1.0f - uv.y) * static_cast<float>(l.height) - 0.5f;
+  if (!std::isfinite(x) || !std::isfinite(y)) return mean;
+  // Wrap far coordinates first so the int conversion cannot overflow.
+  const float xw = x - static_cast<float>(l.width) * std::floor(x / static_cast<float>(l.width));
+  const float yw = y - static_cast<float>(l.height) * std::floor(y / static_cast<float>(l.height));
+  const float fx = std::floor(xw), fy = std::floor(yw);
+  const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+  const float ax = xw - fx, ay = yw - fy;
+  return (1.0f - ay) * ((1.0f - ax) * texel(l, x0, y0) + ax * texel(l, x0 + 1, y0)) +
+         ay * ((1.0f - ax) * texel(l, x0, y0 + 1) + ax * texel(l, x0 + 1, y0 + 1));
+}
+
+glm::vec3 Texture::mean_over_triangle(const std::array<glm::vec2, 3>& uv) const {
+  const Level& base = levels.front();
+  const glm::vec2 scale(static_cast<float>(base.width), static_cast<float>(base.height));
+  const glm::vec2 e1 = (uv[1] - uv[0]) * scale, e2 = (uv[2] - uv[0]) * scale;
+  const float texels = 0.5f * std::abs(e1.x * e2.y - e1.y * e2.x);
+  if (!std::isfinite(texels)) return mean;
+  // k x k sub-triangles of equal area, one lookup at each centroid: up to 64
+  // lookups, at the level where one texel is about one sub-triangle.
+  constexpr int kMaxDivisions = 8;
+  const int k = std::clamp(static_cast<int>(std::ceil(std::sqrt(texels))), 1, kMaxDivisions);
+  const float per_lookup = texels / static_cast<float>(k * k);
+  const int level =
+      per_lookup > 1.0f ? static_cast<int>(std::round(0.5f * std::log2(per_lookup))) : 0;
+  glm::vec3 sum(0.0f);
+  const float inv = 1.0f / static_cast<float>(k);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; i + j < k; ++j) {
+      const auto at = [&](float a, float b) {
+        sum += lookup(uv[0] + a * inv * (uv[1] - uv[0]) + b * inv * (uv[2] - uv[0]), level);
+      };
+      at(static_cast<float>(i) + 1.0f / 3.0f, static_cast<float>(j) + 1.0f / 3.0f);
+      if (i + j < k - 1)
+        at(static_cast<float>(i) + 2.0f / 3.0f, static_cast<float>(j) + 2.0f / 3.0f);
+    }
+  return sum / static_cast<float>(k * k);
+}
+
+std::shared_ptr<const Texture> load_texture(const fs::path& file, std::string& error) {
+  auto in = OIIO::ImageInput::open(file.string());
+  if (!in) {
+    error = OIIO::geterror();
+    if (error.empty()) error = "OpenImageIO cannot open it";
+    return nullptr;
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  const int w = spec.width, h = spec.height, channels = spec.nchannels;
+  if (w <= 0 || h <= 0 || channels <= 0 || static_cast<long long>(w) * h > (1ll << 28)) {
+    error = "unusable image size " + std::to_string(w) + " x " + std::to_string(h) + " x " +
+            std::to_string(channels);
+    return nullptr;
+  }
+  std::vector<float> pixels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) *
+                            static_cast<std::size_t>(channels));
+  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data())) {
+    error = in->geterror();
+    if (error.empty()) error = "OpenImageIO cannot read its pixels";
+    return nullptr;
+  }
+  // Integer images are sRGB unless the file says linear; float images are linear.
+  const bool is_float = spec.format.basetype == OIIO::TypeDesc::FLOAT ||
+                        spec.format.basetype == OIIO::TypeDesc::HALF ||
+                        spec.format.basetype == OIIO::TypeDesc::DOUBLE;
+  const std::string space = lower(spec.get_string_attribute("oiio:ColorSpace"));
+  const bool srgb = !is_float && space.find("linear") == std::string::npos;
+
+  auto texture = std::make_shared<Texture>();
+  texture->path = file.string();
+  Texture::Level base;
+  base.width = w;
+  base.height = h;
+  base.texels.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  glm::dvec3 sum(0.0);
+  for (std::size_t p = 0; p < base.texels.size(); ++p) {
+    const float* px = &pixels[p * static_cast<std::size_t>(channels)];
+    glm::vec3 c = channels >= 3 ? glm::vec3(px[0], px[1], px[2]) : glm::vec3(px[0]);
+    for (glm::length_t k = 0; k < 3; ++k) {
+      if (!std::isfinite(c[k]) || c[k] < 0.0f) c[k] = 0.0f;
+      if (srgb) c[k] = srgb_to_linear(c[k]);
+    }
+    base.texels[p] = c;
+    sum += glm::dvec3(c);
+  }
+  texture->mean = glm::vec3(sum / static_cast<double>(base.texels.size()));
+  texture->levels.push_back(std::move(base));
+  while (texture->levels.back().width > 1 || texture->levels.back().height > 1)
+    texture->levels.push_back(half(texture->levels.back()));
+  return texture;
+}
+
+std::optional<fs::path> resolve_texture_path(const fs::path& folder, const std::string& name) {
+  std::string portable = name;
+  std::replace(portable.begin(), portable.end(), '\\', '/');
+  const fs::path path = fs::path(portable).is_absolute() ? fs::path(portable) : folder / portable;
+  std::error_code ec;
+  if (fs::is_regular_file(path, ec)) return path;
+  const fs::path dir = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+  const std::string wanted = lower(path.filename().string());
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (lower(it->path().filename().string()) == wanted && it->is_regular_file(ec))
+      return it->path();
+  return std::nullopt;
+}
+
+}  // namespace bounce

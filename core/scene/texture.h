@@ -1,0 +1,47 @@
+#pragma once
+// A colour texture in linear RGB with its MIP pyramid, read once per file
+// through OpenImageIO. 8- and 16-bit images (JPEG, PNG, ...) are sRGB-encoded
+// unless the file says it is linear, so they are decoded to linear on load:
+// averaging must happen on light, not on encoded values. Addressing wraps
+// (the default of OBJ and glTF), and texture space has v up with image row 0
+// at v = 1 (the convention Assimp gives for both formats).
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace bounce {
+
+struct Texture {
+  std::string path;
+  struct Level {
+    int width = 0, height = 0;
+    std::vector<glm::vec3> texels;  // row-major, row 0 at the top of the image
+  };
+  std::vector<Level> levels;  // levels[0] is the image; each next one half the size
+  glm::vec3 mean{0.0f};       // of levels[0]: the albedo of a surface mapped once onto it
+
+  // Bilinear lookup with wrapping at a (clamped) MIP level.
+  glm::vec3 lookup(glm::vec2 uv, int level = 0) const;
+  // The mean of the texture over a triangle of texture space (wrapping),
+  // from a regular lattice of lookups at the MIP level whose texels match
+  // the lattice spacing.
+  glm::vec3 mean_over_triangle(const std::array<glm::vec2, 3>& uv) const;
+};
+
+// Reads and decodes `file`; null with `error` set when it cannot.
+std::shared_ptr<const Texture> load_texture(const std::filesystem::path& file, std::string& error);
+
+// `name` as written in a material, relative to `folder` unless absolute.
+// When no file has exactly that name, a file in the same folder whose name
+// differs only in letter case is taken: models authored on Windows name
+// their textures case-insensitively. nullopt when neither exists.
+std::optional<std::filesystem::path> resolve_texture_path(const std::filesystem::path& folder,
+                                                          const std::string& name);
+
+}  // namespace bounce

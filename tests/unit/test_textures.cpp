@@ -1,0 +1,262 @@
+// Colour textures: decoding (sRGB to linear), file lookup (case-insensitive
+// fallback, one warning for a missing or unreadable file), the bake's sample
+// albedo (the texture's mean over the surface each sample carries), and the
+// reference path tracer and camera pictures that look the texel up where a
+// ray lands. The shipped textured-floor scene is an 8 x 8 checker of two
+// sRGB colours, so every expectation here is known by construction.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "base/diagnostics.h"
+#include "patches/samples.h"
+#include "raytrace/ray_tracer.h"
+#include "reference/path_tracer.h"
+#include "runtime/camera_image.h"
+#include "scene/scene_loader.h"
+#include "scene/texture.h"
+#include "scratch_dir.h"
+#include "test_scenes.h"
+#include "voxel/voxelization.h"
+
+namespace bounce {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kFloorScene = fs::path(BOUNCE_RESOURCE_DIR) / "scenes" / "textured-floor";
+const fs::path kSponza = fs::path(BOUNCE_SHARED_DATA_DIR) / "dabrovic-sponza" / "sun.json";
+
+// The sRGB transfer function, written out here independently of the loader.
+double decode(int byte) {
+  const double c = byte / 255.0;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
+// checker.png's two colours (sRGB bytes) times the floor's Kd 0.9, linear.
+glm::dvec3 colour_a() { return 0.9 * glm::dvec3(decode(224), decode(96), decode(64)); }
+glm::dvec3 colour_b() { return 0.9 * glm::dvec3(decode(48), decode(128), decode(192)); }
+
+bool near(const glm::dvec3& a, const glm::dvec3& b, double tolerance) {
+  return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::dvec3(tolerance)));
+}
+
+std::string warnings_of(const Diagnostics& d) {
+  std::string text;
+  for (const Diagnostic& w : d.warnings()) text += w.where + ": " + w.message + "\n";
+  return text;
+}
+
+const Material& floor_material(const Scene& s) {
+  for (const Material& m : s.materials)
+    if (m.name == "floor") return m;
+  throw std::runtime_error("no floor material");
+}
+
+TEST(Textures, FloorSceneLoadsItsCheckerDecodedToLinear) {
+  Diagnostics d;
+  const Scene s = SceneLoader(d).load(kFloorScene);
+  EXPECT_TRUE(d.warnings().empty()) << warnings_of(d);
+  const Material& floor = floor_material(s);
+  ASSERT_NE(floor.texture, nullptr);
+  ASSERT_EQ(s.triangle_uv.size(), s.triangle_count());
+  // Half the squares of each colour: the flat albedo is their mean.
+  EXPECT_TRUE(near(glm::dvec3(floor.albedo), 0.5 * (colour_a() + colour_b()), 2e-3))
+      << floor.albedo.x << " " << floor.albedo.y << " " << floor.albedo.z;
+  // The centre of every square is one colour or the other, alternating.
+  std::size_t a = 0, b = 0;
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) {
+      const glm::vec3 p(-1.0f + (static_cast<float>(i) + 0.5f) / 4.0f, 0.0f,
+                        -1.0f + (static_cast<float>(j) + 0.5f) / 4.0f);
+      for (std::size_t t = 0; t < s.triangle_count(); ++t) {
+        if (s.material_of(t).name != "floor") continue;
+        const glm::dvec3 albedo(s.albedo_at(t, p));
+        const bool is_a = near(albedo, colour_a(), 2e-3), is_b = near(albedo, colour_b(), 2e-3);
+        EXPECT_TRUE(is_a || is_b) << "square " << i << "," << j;
+        (is_a ? a : b) += 1;
+        break;
+      }
+    }
+  EXPECT_EQ(a, 32u);
+  EXPECT_EQ(b, 32u);
+}
+
+TEST(Textures, SampleAlbedoIsTheTexturesMeanOverWhatEachSampleCarries) {
+  Diagnostics d;
+  const Scene s = SceneLoader(d).load(kFloorScene);
+  const RayTracer tracer(s);
+  const Voxelization vox = voxelize(s, VoxelGrid(s.bounds(), 8));
+  SampleSet set = generate_samples(s, tracer, vox, SamplingSettings{});
+  EXPECT_GT(apply_texture_albedo(s, vox, set), 0u);
+  // The floor's samples tile it: their area-weighted albedo is the whole
+  // floor's mean, which is the mean of the two colours.
+  glm::dvec3 sum(0.0), lo(1.0), hi(0.0);
+  double area = 0.0;
+  for (const Sample& x : set.samples) {
+    if (s.material_of(x.triangle).name != "floor") {
+      EXPECT_EQ(x.albedo, s.material_of(x.triangle).albedo);  // untextured: unchanged
+      continue;
+    }
+    sum += static_cast<double>(x.area) * glm::dvec3(x.albedo);
+    area += static_cast<double>(x.area);
+    lo = glm::min(lo, glm::dvec3(x.albedo));
+    hi = glm::max(hi, glm::dvec3(x.albedo));
+  }
+  ASSERT_NEAR(area, 4.0, 1e-3);
+  const glm::dvec3 mean = sum / area;
+  EXPECT_TRUE(near(mean, 0.5 * (colour_a() + colour_b()), 3e-3))
+      << mean.x << " " << mean.y << " " << mean.z;
+  // Samples follow the texture: small ones on one square carry its colour.
+  EXPECT_GT(hi.r - lo.r, 0.2 * (colour_a().r - colour_b().r));
+  EXPECT_TRUE(glm::all(glm::greaterThanEqual(lo, glm::min(colour_a(), colour_b()) - 1e-3)));
+  EXPECT_TRUE(glm::all(glm::lessThanEqual(hi, glm::max(colour_a(), colour_b()) + 1e-3)));
+}
+
+// The camera straight above sees the floor fill the 64 x 64 picture, one
+// square per 8 x 8 pixels; under the vertical sun (irradiance 1) the direct
+// light of a square's centre pixel is its albedo.
+void expect_checker(const RgbFloatImage& direct, const char* what) {
+  std::size_t a = 0, b = 0;
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) {
+      const glm::dvec3 v(direct.at(8 * i + 4, 8 * j + 4));
+      const bool is_a = near(v, colour_a(), 1e-2), is_b = near(v, colour_b(), 1e-2);
+      EXPECT_TRUE(is_a || is_b) << what << ": pixel of square " << i << "," << j << " is " << v.x
+                                << " " << v.y << " " << v.z;
+      (is_a ? a : b) += 1;
+    }
+  EXPECT_EQ(a, 32u) << what;
+  EXPECT_EQ(b, 32u) << what;
+}
+
+TEST(Textures, CameraPicturesShowTheTexture) {
+  Diagnostics d;
+  const Scene s = SceneLoader(d).load(kFloorScene);
+  const RayTracer tracer(s);
+  CameraImageSettings settings;
+  settings.width = settings.height = 64;
+  std::vector<CameraHit> hits;
+  const CameraImages images = render_camera_direct(tracer, settings, hits);
+  expect_checker(images.direct, "bounce camera image");
+
+  ReferenceSettings rs;
+  rs.samples = 4;
+  const ReferencePathTracer pt(tracer, rs);
+  ReferenceRenderer renderer(pt, 64, 64);
+  renderer.add_samples(4);
+  const ReferenceImages ref = renderer.images();
+  RgbFloatImage direct(64, 64);
+  for (std::size_t p = 0; p < direct.pixels.size(); ++p)
+    direct.pixels[p] = ref.full.pixels[p] - ref.indirect.pixels[p];
+  expect_checker(direct, "reference");
+}
+
+TEST(Textures, ReferenceBouncesOffTheTexel) {
+  // A floor lit from straight above (irradiance 1), textured left half red,
+  // right half blue (linear), and a point 5 cm above the middle of the red
+  // half facing down: ~99% of what it sees is red floor, so its indirect
+  // light is ~0.8 red and ~0.1 blue. Had the path tracer bounced off the
+  // material's mean colour instead of the texel, the two would be equal.
+  Scene s;
+  test_scenes::add_quad(s, "floor", {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1});
+  auto texture = std::make_shared<Texture>();
+  Texture::Level level;
+  level.width = 64;
+  level.height = 1;
+  for (int x = 0; x < 64; ++x)
+    level.texels.push_back(x < 32 ? glm::vec3(0.8f, 0.1f, 0.1f) : glm::vec3(0.1f, 0.1f, 0.8f));
+  texture->levels.push_back(level);
+  texture->mean = glm::vec3(0.45f, 0.1f, 0.45f);
+  s.materials[0].texture = texture;
+  s.materials[0].texture_factor = glm::vec3(1.0f);
+  s.materials[0].albedo = texture->mean;
+  for (std::size_t t = 0; t < s.triangle_count(); ++t) {
+    std::array<glm::vec2, 3> uv;
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 p = s.vertex(t, k);
+      uv[static_cast<std::size_t>(k)] = glm::vec2((p.x + 1.0f) / 2.0f, (p.z + 1.0f) / 2.0f);
+    }
+    s.triangle_uv.push_back(uv);
+  }
+  Light sun;
+  sun.type = Light::Type::Directional;
+  sun.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+  s.lights.push_back(sun);
+
+  const RayTracer tracer(s);
+  ReferenceSettings rs;
+  rs.samples = 2000;
+  const ReferencePathTracer pt(tracer, rs);
+  ReferencePoint above_red;
+  above_red.position = glm::vec3(-0.5f, 0.05f, 0.0f);
+  above_red.normal = glm::vec3(0.0f, -1.0f, 0.0f);
+  const glm::vec3 e = pt.estimate_points({above_red}).indirect_irradiance[0];
+  EXPECT_NEAR(e.r, 0.8f, 0.05f);
+  EXPECT_NEAR(e.b, 0.1f, 0.02f);
+}
+
+class TextureFiles : public ::testing::Test {
+ protected:
+  test::ScratchDir dir{"bounce-textures"};
+  Diagnostics diagnostics;
+
+  void write(const std::string& name, const std::string& text) {
+    std::ofstream(dir / name, std::ios::binary) << text;
+  }
+  Scene load_quad(const std::string& texture_line) {
+    write("quad.mtl", "newmtl quad\nKd 0.5 0.25 0.125\n" + texture_line + "\n");
+    write("quad.obj",
+          "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+          "usemtl quad\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+    return SceneLoader(diagnostics).load(dir / "quad.obj");
+  }
+  // The only warning names the file, and the quad keeps its Kd untextured.
+  void expect_one_warning_and_kd(const Scene& s, const std::string& file) const {
+    ASSERT_EQ(diagnostics.warnings().size(), 1u) << warnings_of(diagnostics);
+    const Diagnostic w = diagnostics.warnings()[0];
+    EXPECT_NE((w.where + w.message).find(file), std::string::npos) << w.where << ": " << w.message;
+    EXPECT_EQ(s.materials.at(0).texture, nullptr);
+    EXPECT_EQ(s.materials.at(0).albedo, glm::vec3(0.5f, 0.25f, 0.125f));
+  }
+};
+
+TEST_F(TextureFiles, NameInOtherLetterCaseIsFound) {
+  fs::copy_file(kFloorScene / "checker.png", dir / "Checker.PNG");
+  const Scene s = load_quad("map_Kd CHECKER.png");
+  EXPECT_TRUE(diagnostics.warnings().empty()) << warnings_of(diagnostics);
+  EXPECT_NE(s.materials.at(0).texture, nullptr);
+}
+
+TEST_F(TextureFiles, MissingTextureWarnsOnceNamingItAndFallsBackToKd) {
+  expect_one_warning_and_kd(load_quad("map_Kd nowhere.png"), "nowhere.png");
+}
+
+TEST_F(TextureFiles, UnreadableTextureWarnsOnceNamingItAndFallsBackToKd) {
+  write("broken.png", "\x89PNG\r\n\x1a\nthis is not an image");
+  expect_one_warning_and_kd(load_quad("map_Kd broken.png"), "broken.png");
+}
+
+TEST(TexturesSponza, EveryTexturedMaterialReadsItsTexture) {
+  if (!fs::exists(kSponza)) GTEST_SKIP() << "no " << kSponza;
+  Diagnostics d;
+  const Scene s = SceneLoader(d).load(kSponza);
+  std::size_t textured = 0;
+  for (const Material& m : s.materials) textured += m.texture ? 1 : 0;
+  // 20 materials in use, all but sp_01_stub_baza_ with a map_Kd; the mtl
+  // names them in other letter case than the files.
+  EXPECT_EQ(textured, 19u);
+  for (const Diagnostic& w : d.warnings()) {
+    EXPECT_EQ(w.message.find("texture"), std::string::npos) << w.message;
+    EXPECT_EQ(w.message.find("ignored"), std::string::npos) << w.message;
+  }
+}
+
+}  // namespace
+}  // namespace bounce
