@@ -276,12 +276,18 @@ class FileImporter {
       if (used[material])
         diagnostics_.warn(where_, message + "; the material's diffuse colour is used instead");
     if (!with_vertex_colours_.empty()) {
+      // One line naming the first few meshes; the detail lists them all.
+      constexpr std::size_t kFirstFew = 3;
+      const std::size_t n = with_vertex_colours_.size();
       std::string names;
-      for (const std::string& n : with_vertex_colours_) names += (names.empty() ? "" : ", ") + n;
+      for (std::size_t i = 0; i < std::min(n, kFirstFew); ++i)
+        names += (i ? ", " : "") + with_vertex_colours_[i];
+      if (n > kFirstFew) names += " and " + std::to_string(n - kFirstFew) + " more";
       diagnostics_.warn(where_,
-                        "per-vertex colours are ignored (albedo is the material's diffuse "
-                        "colour) for meshes: " +
-                            names);
+                        "per-vertex colours are ignored in " + std::to_string(n) +
+                            (n == 1 ? " mesh" : " meshes") + ": " + names +
+                            " (albedo is the material's diffuse colour)",
+                        with_vertex_colours_);
     }
   }
 
