@@ -90,4 +90,23 @@ PreviewLighting::Solve PreviewLighting::solve(const glm::vec3& light_position) {
   return s;
 }
 
+LitMesh PreviewLighting::lit_mesh(const glm::vec3& light_position) {
+  lights_.front().position = light_position;
+  relighter_->light(lights_);
+  LitMesh mesh = geometry_;
+  if (gather_) {
+    std::vector<glm::vec3> gathered;
+    relighter_->gather(*gather_, gathered);
+    light_vertices(*tracer_, lights_, {}, gathered, mesh);
+  } else {
+    std::vector<glm::vec3> exitance;
+    relighter_->reflected(exitance);
+    const std::vector<Patch>& patches = data_->bake.patches.patches;
+    for (std::size_t p = 0; p < exitance.size(); ++p) exitance[p] += patches[p].emission;
+    const PatchGather gather(patches, exitance, grid_, tracer_.get(), GatherSettings{});
+    relight(mesh, gather);
+  }
+  return mesh;
+}
+
 }  // namespace bounce::views

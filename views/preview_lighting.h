@@ -45,6 +45,12 @@ class PreviewLighting {
 
   Solve solve(const glm::vec3& light_position);
 
+  // The whole light leaving each vertex with the light at `light_position`:
+  // emission + albedo x (direct + indirect irradiance), what `bounce solve`
+  // writes to lit.ply and lit.glb, for File > Export. Same threading rule as
+  // solve().
+  LitMesh lit_mesh(const glm::vec3& light_position);
+
   // The refined mesh (positions, normals, triangles, source triangle); its
   // radiosity is not kept up to date (solve() returns the light).
   const LitMesh& mesh() const { return geometry_; }

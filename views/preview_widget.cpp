@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <random>
 #include <string>
 
@@ -19,6 +20,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "base/error.h"
+#include "bounce/export.h"
 #include "io/tone_map.h"
 #include "preview_lighting.h"
 #include "preview_programs.h"
@@ -110,6 +112,17 @@ void PreviewWidget::set_data(std::shared_ptr<const BakeViewData> bake) {
   mesh_dirty_ = true;
   if (solve_on_worker_) start_worker();
   update();
+}
+
+void PreviewWidget::export_lit_glb(const std::string& path) {
+  if (!lighting_) throw Error(path, "nothing to export: open or bake a scene first");
+  LitMesh mesh;
+  {
+    std::lock_guard<std::mutex> lock(lighting_mutex_);
+    mesh = lighting_->lit_mesh(light_position_);
+  }
+  write_lit_glb(path, {mesh.positions, mesh.normals, mesh.radiosity, mesh.triangles,
+                       std::filesystem::path(path).stem().string()});
 }
 
 void PreviewWidget::set_passes(Passes passes) {

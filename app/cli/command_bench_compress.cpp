@@ -37,9 +37,6 @@ namespace bounce::cli {
 
 namespace {
 
-// The published pipeline keeps the largest 4% of each channel exactly.
-constexpr double kPaperKeptFraction = 0.04;
-
 constexpr OrderingMethod kAllOrderings[] = {OrderingMethod::None, OrderingMethod::Paper1,
                                             OrderingMethod::Paper2, OrderingMethod::Ours};
 
@@ -380,15 +377,15 @@ BenchResult run_one(const ExactTransport& exact, double kept,
 
 void run(const CompressBenchOptions& opt) {
   const BakeOptions& bo = opt.bake;
-  if (bo.codec != "auto")
+  if (bo.given("codec") && bo.texts.at("codec") != "auto")
     throw Error("--codec", "does not apply to bench compress, which compares every codec");
-  if (bo.error_budget_option->count() > 0)
+  if (bo.given("error_budget"))
     throw Error("--error-budget",
                 "does not apply to bench compress, which compares codecs at one --kept-fraction");
-  if (bo.size_limit_option->count() > 0)
+  if (bo.given("size_limit"))
     throw Error("--size-limit",
                 "does not apply to bench compress, which compares codecs at one --kept-fraction");
-  const double kept = bo.kept_fraction;
+  const double kept = bo.settings().kept_fraction.value_or(kPaperKeptFraction);
   if (!(kept > 0.0 && kept < 1.0))
     throw Error("--kept-fraction",
                 "must be between 0 and 1 (exclusive), got " + std::to_string(kept));
@@ -458,16 +455,19 @@ void register_bench_compress(CLI::App& bench) {
   cmd->get_option("scenes")->description(
       "Scene(s) to bake (scene folder, scene.json or mesh file), or bake folder(s) holding "
       "T.npy, lights_first_hit.npy, patches.npy and manifest.json");
-  opt->bake.kept_fraction_option->description(
+  CLI::Option* kept_fraction = opt->bake.option("kept_fraction");
+  CLI::Option* error_budget = opt->bake.option("error_budget");
+  CLI::Option* size_limit = opt->bake.option("size_limit");
+  kept_fraction->description(
       "Share of each channel's largest entries kept exactly, for every row of the table "
       "(default 0.04, the paper's; the paper row always keeps 0.04)");
   cmd->get_option("--codec")->group("");  // hidden: the bench compares every codec
-  opt->bake.error_budget_option->group("");
-  opt->bake.size_limit_option->group("");
-  opt->bake.kept_fraction_option->remove_excludes(opt->bake.error_budget_option);
-  opt->bake.kept_fraction_option->remove_excludes(opt->bake.size_limit_option);
-  opt->bake.size_limit_option->remove_excludes(opt->bake.kept_fraction_option);
-  opt->bake.error_budget_option->remove_excludes(opt->bake.kept_fraction_option);
+  error_budget->group("");
+  size_limit->group("");
+  kept_fraction->remove_excludes(error_budget);
+  kept_fraction->remove_excludes(size_limit);
+  size_limit->remove_excludes(kept_fraction);
+  error_budget->remove_excludes(kept_fraction);
   cmd->add_option("--encoders", opt->encoders,
                   "BC1 encoders to compare, comma-separated: weighted (ours), squish-cluster "
                   "(the paper's), squish-cluster-masked, squish-iterative, squish-range, stb-hq")

@@ -12,6 +12,7 @@
 
 #include "base/error.h"
 #include "bench_commands.h"
+#include "bounce/settings.h"
 #include "compress/ordering.h"
 #include "synthetic_codes.h"
 #include "transport/text_format.h"
@@ -25,7 +26,7 @@ constexpr double kTargetSeconds = 60.0;  // the issue's target at N = 16384
 struct OrderingBenchOptions {
   std::size_t n = 16384;
   std::size_t channels = 3;
-  double kept_fraction = 0.04;
+  double kept_fraction = kPaperKeptFraction;
   std::uint64_t seed = 1;
   int paper_passes = 0;
   bool json = false;

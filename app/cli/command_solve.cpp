@@ -1,11 +1,11 @@
 // `bounce solve BAKE`: one frame of the runtime on a baked scene, written out
 // for people to look at: the light on the patches (direct, first hit,
-// indirect), the lit mesh as a PLY with vertex colours, and the scene
-// camera's pictures (direct, indirect, full) as PNG and EXR. The frame on
-// the patches runs through the runtime's frame graph (runtime/runtime_frame.h).
-// With --compare-exact, the same frame through the exact matrix too, and
-// what the compression changes: per patch, per vertex (in the PLY) and per
-// pixel of the camera's indirect picture (an error picture).
+// indirect), the lit mesh as a PLY and a binary glTF (lit.glb, for Blender and web viewers) with
+// vertex colours, and the scene camera's pictures (direct, indirect, full) as PNG and EXR. The
+// frame on the patches runs through the runtime's frame graph (runtime/runtime_frame.h). With
+// --compare-exact, the same frame through the exact matrix too, and what the compression changes:
+// per patch, per vertex (in the PLY) and per pixel of the camera's indirect picture (an error
+// picture).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -18,12 +18,12 @@
 #include <string>
 
 #include "bounce/bake_folder.h"
+#include "bounce/export.h"
 #include "bounce/relight.h"
 #include "bounce/scene.h"
 #include "commands.h"
 #include "console_progress.h"
 #include "io/npy.h"
-#include "io/ply_writer.h"
 #include "metrics/error_heat_map.h"
 #include "metrics/image_metrics.h"
 #include "metrics/patch_light_error.h"
@@ -36,6 +36,15 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
+
+// The bake folder's own name ("bakes/sponza/" -> "sponza"): what a viewer
+// lists the exported mesh as.
+std::string bake_display_name(const std::string& folder) {
+  fs::path p = fs::path(folder).lexically_normal();
+  if (p.filename().empty()) p = p.parent_path();
+  const std::string name = p.filename().string();
+  return name.empty() || name == "." ? "lit" : name;
+}
 
 struct SolveOptions {
   std::string bake;
@@ -261,6 +270,10 @@ void run_solve(const SolveOptions& opt) {
     write_lit_ply(out / "lit.ply", {mesh.positions, mesh.normals, mesh.radiosity, mesh.triangles},
                   scalars);
     files.push_back("lit.ply");
+    // The same light for Blender and web viewers, without the error columns.
+    write_lit_glb(out / "lit.glb", {mesh.positions, mesh.normals, mesh.radiosity, mesh.triangles,
+                                    bake_display_name(opt.bake)});
+    files.push_back("lit.glb");
     timings["mesh_transfer"] = since(t);
   }
   if (!opt.no_images) {
@@ -377,8 +390,9 @@ void register_solve(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "solve",
       "Light a baked scene: direct light on the patches from the scene's lights (moved with "
-      "--light), indirect light through the baked matrix, the lit mesh as a PLY with vertex "
-      "colours and the scene camera's pictures (direct, indirect, full) as PNG and EXR");
+      "--light), indirect light through the baked matrix, the lit mesh as a PLY and a binary "
+      "glTF (lit.glb, for Blender and web viewers) with vertex colours and the scene camera's "
+      "pictures (direct, indirect, full) as PNG and EXR");
   cmd->add_option("bake", opt->bake, "Bake folder written by `bounce bake`")->required();
   cmd->add_option("--light", opt->lights,
                   "Move a scene light: NAME:x,y,z (repeat for several lights; `bounce info "
@@ -407,7 +421,7 @@ void register_solve(CLI::App& app) {
                 "camera_indirect_error.exr (|I~ - I|) and .png (relative error of the indirect "
                 "picture, colour map 0..10%), and the figures in the summary");
   cmd->add_flag("--no-images", opt->no_images, "Skip the camera pictures");
-  cmd->add_flag("--no-mesh", opt->no_mesh, "Skip the lit PLY mesh");
+  cmd->add_flag("--no-mesh", opt->no_mesh, "Skip the lit mesh (lit.ply and lit.glb)");
   cmd->add_flag("--json", opt->json, "Print a machine-readable summary with timings per step");
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress bars");
   cmd->callback([opt]() { run_solve(*opt); });

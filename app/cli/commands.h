@@ -2,10 +2,12 @@
 // The `bounce` subcommands. Each registers its options on a CLI11 subcommand
 // and runs through the same core functions the studio uses.
 #include <CLI/CLI.hpp>
+#include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
-#include "bake/bake_settings.h"
+#include "bounce/settings.h"
 
 namespace bounce::cli {
 
@@ -15,42 +17,26 @@ struct ExitCode {
   int code;
 };
 
-// Bake options shared by `bake` and `bench bake`.
+// Bake options shared by `bake` and `bench bake`: one per row of the
+// settings table (bounce/settings.h), with the row's flag and help.
 struct BakeOptions {
   std::vector<std::string> scenes;
   std::string out;
-  int voxel = 0;
-  int patches_total = 0;
-  int patches_per_voxel = 3;
-  std::string patch_mode = "virtual";
-  int samples_per_face = 4;
-  int visibility_rays = 8;
-  int closure_rays = BakeSettings{}.closure_rays;
-  int final_gather_rays = BakeSettings{}.final_gather_rays;
-  std::uint64_t seed = 1;
-  bool dump_matrices = false;
-  std::string bounces = "auto";
-  std::string codec = "auto";
-  std::string ordering = "auto";
-  double kept_fraction = 0.04;
-  double error_budget = BakeSettings::kDefaultErrorBudget;
-  double size_limit = BakeSettings::kDefaultSizeLimit;
-  std::string gemm = "auto";
-  std::string out_of_core = "auto";
-  std::string out_of_core_dir;
-  bool no_pictures = false;
   bool reference = false;  // bake: also measure against the path-traced reference
   bool json = false;
   bool quiet = false;
-  CLI::Option* voxel_option = nullptr;
-  CLI::Option* patches_total_option = nullptr;
-  CLI::Option* patches_per_voxel_option = nullptr;
-  CLI::Option* samples_per_face_option = nullptr;
-  CLI::Option* kept_fraction_option = nullptr;
-  CLI::Option* error_budget_option = nullptr;
-  CLI::Option* size_limit_option = nullptr;
+  // Each setting's text as given on the command line, and its option.
+  std::map<std::string, std::string, std::less<>> texts;
+  std::map<std::string, bool, std::less<>> flags;
+  std::map<std::string, CLI::Option*, std::less<>> options;
 
   void add_to(CLI::App& cmd, bool with_output);
+  // The option of a setting (settings_table.h); null when this command does
+  // not offer it.
+  CLI::Option* option(std::string_view setting) const;
+  bool given(std::string_view setting) const;
+  // Options not given leave the defaults (and the scene's) in force; a value
+  // that cannot be read throws BakeSettings::InvalidSetting.
   BakeSettings settings() const;
 };
 

@@ -33,6 +33,11 @@ int main(int argc, char** argv) {
   } catch (const bounce::Cancelled&) {
     std::fprintf(stderr, "bounce: cancelled; nothing was written\n");
     return 130;
+  } catch (const bounce::BakeSettings::InvalidSetting& e) {
+    // The core names the setting; the user typed its option.
+    std::fprintf(stderr, "bounce: error: %s: %s\n", bounce::setting_row(e.setting()).flag,
+                 e.what());
+    return 1;
   } catch (const bounce::Error& e) {
     std::fprintf(stderr, "bounce: error: %s\n", e.what());
     return 1;

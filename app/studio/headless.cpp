@@ -78,13 +78,11 @@ void take_screenshot(const ScreenshotRequest& r) {
     if (r.patches_total > 0)
       panel.set_grid(SettingsPanel::GridChoice::PatchesTotal, r.patches_total);
     if (!r.codec.isEmpty()) {
-      const std::string c = r.codec.toStdString();
-      if (c != "auto" && c != "dense" && c != "paper" && c != "ours")
-        throw Error("--codec", "must be auto, dense, paper or ours, got '" + c + "'");
-      panel.set_codec(c == "dense"   ? CodecChoice::Dense
-                      : c == "paper" ? CodecChoice::Paper
-                      : c == "ours"  ? CodecChoice::Ours
-                                     : CodecChoice::Auto);
+      try {
+        panel.set("codec", r.codec.toStdString());
+      } catch (const BakeSettings::InvalidSetting& e) {
+        throw Error("--codec", e.what());
+      }
     }
     if (r.bake_out.isEmpty() && !temp.isValid())
       throw Error("--bake-out", "no temporary folder available; give one");

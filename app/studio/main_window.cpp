@@ -26,6 +26,7 @@
 #include "matrix_view.h"
 #include "patch_view.h"
 #include "preview_view.h"
+#include "preview_widget.h"
 #include "report_controller.h"
 #include "report_view.h"
 #include "settings_panel.h"
@@ -154,6 +155,9 @@ void MainWindow::build_menus() {
   rebuild_recent_menu();
   export_action_ = file->addAction(tr("&Export bake..."), this, &MainWindow::export_bake_folder);
   export_action_->setEnabled(false);
+  export_glb_action_ =
+      file->addAction(tr("Export lit mesh as &glTF..."), this, &MainWindow::export_lit_glb);
+  export_glb_action_->setEnabled(false);
   file->addSeparator();
   file->addAction(tr("&Quit"), this, &QWidget::close, QKeySequence::Quit);
 }
@@ -250,6 +254,8 @@ void MainWindow::show_data(std::shared_ptr<const views::BakeViewData> bake) {
   matrix_view_->set_data(bake);
   error_view_->set_data(bake);
   preview_view_->set_data(bake);
+  // The preview may decline a bake (no point or spot light to move).
+  export_glb_action_->setEnabled(preview_view_->preview()->vertex_count() > 0);
 }
 
 void MainWindow::show_tab(Tab tab) { tabs_->setCurrentIndex(static_cast<int>(tab)); }
@@ -325,6 +331,20 @@ void MainWindow::export_bake_folder() {
   try {
     export_bake(*last_job_, dir.toStdString());
     statusBar()->showMessage(tr("Exported to %1").arg(dir));
+  } catch (const std::exception& e) {
+    show_error(tr("Export failed"), QString::fromStdString(e.what()));
+  }
+}
+
+void MainWindow::export_lit_glb() {
+  const QString path = QFileDialog::getSaveFileName(
+      this, tr("Export lit mesh (binary glTF)"), QFileInfo(scene_path_).completeBaseName() + ".glb",
+      tr("Binary glTF (*.glb)"));
+  if (path.isEmpty()) return;
+  try {
+    // The preview's light where it is now, as `bounce solve` writes lit.glb.
+    preview_view_->preview()->export_lit_glb(path.toStdString());
+    statusBar()->showMessage(tr("Exported the lit mesh to %1").arg(path));
   } catch (const std::exception& e) {
     show_error(tr("Export failed"), QString::fromStdString(e.what()));
   }

@@ -60,6 +60,7 @@ class MainWindow : public QMainWindow {
   void rebuild_recent_menu();
   void start_bake();
   void export_bake_folder();
+  void export_lit_glb();
   void on_stage_progress(const QString& stage, double fraction, double eta);
   void set_busy(bool busy);
   void show_error(const QString& what, const QString& message);
@@ -79,6 +80,7 @@ class MainWindow : public QMainWindow {
   QLabel* scene_label_;
   QMenu* recent_menu_ = nullptr;
   QAction* export_action_ = nullptr;
+  QAction* export_glb_action_ = nullptr;
   QString scene_path_;
   QString current_stage_;
   QProgressBar* current_bar_ = nullptr;

@@ -5,17 +5,22 @@
 #include <QFormLayout>
 #include <QSettings>
 #include <QSpinBox>
-
-#include "transport/transport_settings.h"
+#include <algorithm>
+#include <cmath>
+#include <variant>
 
 namespace bounce::studio {
 
 namespace {
 
-// Bounces menu: auto, infinite, then fixed counts.
+// Bounces menu: its named values (auto, infinite), then fixed counts.
 constexpr int kFixedBouncesShown = 16;
-// Ordering menu: the codec's own ordering (BakeSettings::ordering unset).
-constexpr int kAutoOrdering = -1;
+// Double spin boxes cannot exclude a bound: they stop one step inside it.
+constexpr int kBudgetDecimals = 3;
+
+QString text_of(const SettingRow& row, const SettingValue& v) {
+  return QString::fromStdString(setting_text(row, v));
+}
 
 }  // namespace
 
@@ -36,83 +41,37 @@ SettingsPanel::SettingsPanel(QWidget* parent)
   grid_box_->setToolTip(
       tr("How fine the patch grid is: as the scene file suggests, by voxel size, or by the "
          "number of patches you want in total (the voxel size is then chosen for you)"));
-  voxel_box_->setRange(1, 512);
-  voxel_box_->setValue(BakeSettings::kDefaultVoxelResolution);
   voxel_box_->setSuffix(tr(" voxels across"));
-  voxel_box_->setToolTip(
-      tr("Voxels along the scene's longest side. More voxels: smaller patches, finer light "
-         "detail, longer bakes (patch count grows about with the square)"));
-  patches_total_box_->setRange(1, 1 << 20);
+  kept_box_->setDecimals(4);
+  kept_box_->setSingleStep(0.01);
+  budget_box_->setDecimals(kBudgetDecimals);
+  budget_box_->setSingleStep(0.01);
+  add_control("voxel_resolution", voxel_box_);
+  add_control("patches_total", patches_total_box_);
+  add_control("patches_per_voxel", per_voxel_box_);
+  add_control("patch_mode", patch_mode_box_);
+  add_control("bounces", bounces_box_);
+  add_control("codec", codec_box_);
+  add_control("ordering", ordering_box_);
+  add_control("kept_fraction", kept_box_);
+  add_control("error_budget", budget_box_);
+  // Where the spin boxes start when the setting is left to the scene or the codec.
+  voxel_box_->setValue(BakeSettings::kDefaultVoxelResolution);
   patches_total_box_->setValue(2048);
-  patches_total_box_->setToolTip(
-      tr("Aim for about this many patches; the bake picks the voxel size that comes closest"));
-  per_voxel_box_->setRange(1, 64);
   per_voxel_box_->setValue(BakeSettings::kDefaultPatchesPerVoxel);
-  per_voxel_box_->setToolTip(
-      tr("Patches kept in each voxel after clustering its samples. 3 keeps the three walls of "
-         "a room corner apart; more subdivides flat surfaces"));
-  patch_mode_box_->addItem(tr("virtual patches"), static_cast<int>(PatchMode::Virtual));
-  patch_mode_box_->addItem(tr("voxel baseline"), static_cast<int>(PatchMode::Voxel));
-  patch_mode_box_->setToolTip(
-      tr("virtual: the samples in each voxel clustered into patches (the method); voxel "
-         "baseline: one patch per voxel, for comparison"));
-  bounces_box_->addItem(tr("auto"), TransportSettings::kAutoBounces);
-  bounces_box_->addItem(tr("infinite (exact)"), TransportSettings::kInfiniteBounces);
-  for (int k = 1; k <= kFixedBouncesShown; ++k) bounces_box_->addItem(QString::number(k), k);
-  bounces_box_->setToolTip(
-      tr("How many times light bounces between surfaces. auto: until the next bounce adds "
-         "less than 0.1%; infinite: the exact limit"));
-  codec_box_->addItem(tr("auto"), static_cast<int>(CodecChoice::Auto));
-  codec_box_->addItem(tr("dense (exact)"), static_cast<int>(CodecChoice::Dense));
-  codec_box_->addItem(tr("paper (published BC1)"), static_cast<int>(CodecChoice::Paper));
-  codec_box_->addItem(tr("ours"), static_cast<int>(CodecChoice::Ours));
-  codec_box_->setToolTip(
-      tr("How the light-transport matrix is stored. dense: exact and large; paper: the "
-         "published DXT1 pipeline; ours: smaller for the same error; auto: ours, or dense "
-         "when the matrix is too small for compression to pay"));
-  ordering_box_->addItem(tr("codec's own"), kAutoOrdering);
-  ordering_box_->addItem(tr("none (patch order)"), static_cast<int>(OrderingMethod::None));
-  ordering_box_->addItem(tr("paper, 1 pass"), static_cast<int>(OrderingMethod::Paper1));
-  ordering_box_->addItem(tr("paper, 2 passes"), static_cast<int>(OrderingMethod::Paper2));
-  ordering_box_->addItem(tr("ours"), static_cast<int>(OrderingMethod::Ours));
-  ordering_box_->setToolTip(
-      tr("The order of the matrix rows and columns before they are cut into 4x4 blocks: "
-         "similar rows side by side make smoother blocks and less compression error (see the "
-         "Matrix view's right half). codec's own: paper's 2-pass tour for paper, ours for ours; "
-         "paper: the published greedy tour (slow on large matrices); none: patch order. "
-         "Changing it re-runs only the compression"));
+  kept_box_->setValue(kPaperKeptFraction);
+  budget_box_->setValue(BakeSettings::kDefaultErrorBudget);
   kept_mode_box_->addItems({tr("from error budget"), tr("fixed share")});
   kept_mode_box_->setToolTip(
       tr("Which of the matrix's largest values are kept exactly: as few as meet the error "
          "budget, or a fixed share"));
-  kept_box_->setRange(0.0, 1.0);
-  kept_box_->setDecimals(4);
-  kept_box_->setSingleStep(0.01);
-  kept_box_->setValue(0.04);
-  kept_box_->setToolTip(
-      tr("Share of each colour's matrix values kept exactly (the paper keeps 0.04). More: "
-         "less error, larger bake"));
-  budget_box_->setRange(0.001, 0.999);
-  budget_box_->setDecimals(3);
-  budget_box_->setSingleStep(0.01);
-  budget_box_->setValue(BakeSettings::kDefaultErrorBudget);
-  budget_box_->setToolTip(
-      tr("Relative RMS error of the indirect light the compressed matrix may cause, on the "
-         "worst evaluation light (0.02 = 2%); the codec keeps the fewest exact values that "
-         "meet it"));
 
   auto* form = new QFormLayout(this);
   form->addRow(tr("Grid"), grid_box_);
-  form->addRow(tr("Voxel size"), voxel_box_);
-  form->addRow(tr("Total patches"), patches_total_box_);
-  form->addRow(tr("Patches per voxel"), per_voxel_box_);
-  form->addRow(tr("Patches"), patch_mode_box_);
-  form->addRow(tr("Bounces"), bounces_box_);
-  form->addRow(tr("Codec"), codec_box_);
-  form->addRow(tr("Ordering"), ordering_box_);
-  form->addRow(tr("Kept values"), kept_mode_box_);
-  form->addRow(tr("Kept fraction"), kept_box_);
-  form->addRow(tr("Error budget"), budget_box_);
+  for (const auto& [row, control] : controls_) {
+    if (control == kept_box_) form->addRow(tr("Kept values"), kept_mode_box_);
+    form->addRow(tr(row->label), control);
+  }
 
   for (QComboBox* box :
        {grid_box_, patch_mode_box_, bounces_box_, codec_box_, ordering_box_, kept_mode_box_})
@@ -127,40 +86,69 @@ SettingsPanel::SettingsPanel(QWidget* parent)
   update_enabled();
 }
 
+void SettingsPanel::add_control(const char* setting, QWidget* control) {
+  const SettingRow& row = setting_row(setting);
+  control->setToolTip(tr(row.studio_help));
+  if (auto* spin = qobject_cast<QSpinBox*>(control)) {
+    spin->setRange(static_cast<int>(row.min), static_cast<int>(row.max));
+  } else if (auto* real = qobject_cast<QDoubleSpinBox*>(control)) {
+    const double step = std::pow(10.0, -real->decimals());
+    real->setRange(row.min + (row.min_exclusive ? step : 0.0),
+                   row.max - (row.max_exclusive ? step : 0.0));
+  } else if (auto* box = qobject_cast<QComboBox*>(control)) {
+    // Each entry's data is the setting's text, which parse_setting reads back.
+    if (row.optional) box->addItem(tr(row.unset_label), QString(row.unset));
+    for (const SettingChoice& c : row.choices) box->addItem(tr(c.label), QString(c.name));
+    for (const NamedValue& n : row.named)
+      if (n.label) box->addItem(tr(n.label), QString(n.name));
+    if (!row.named.empty())
+      for (int k = 1; k <= kFixedBouncesShown && k <= row.max; ++k)
+        box->addItem(QString::number(k), QString::number(k));
+    show_value(row, box, row.get(BakeSettings{}));
+  }
+  controls_.emplace_back(&row, control);
+}
+
+SettingValue SettingsPanel::value_of(const SettingRow& row, const QWidget* control) const {
+  if (const auto* box = qobject_cast<const QSpinBox*>(control))
+    return static_cast<std::int64_t>(box->value());
+  if (const auto* box = qobject_cast<const QDoubleSpinBox*>(control)) return box->value();
+  const auto* box = qobject_cast<const QComboBox*>(control);
+  return parse_setting(row, box->currentData().toString().toStdString());
+}
+
+void SettingsPanel::show_value(const SettingRow& row, QWidget* control, const SettingValue& value) {
+  if (auto* box = qobject_cast<QComboBox*>(control)) {
+    if (const int k = box->findData(text_of(row, value)); k >= 0) box->setCurrentIndex(k);
+  } else if (const auto* v = std::get_if<std::int64_t>(&value)) {
+    qobject_cast<QSpinBox*>(control)->setValue(static_cast<int>(*v));
+  } else if (const auto* x = std::get_if<double>(&value)) {
+    qobject_cast<QDoubleSpinBox*>(control)->setValue(*x);
+  }
+}
+
 void SettingsPanel::update_enabled() {
   const auto grid = static_cast<GridChoice>(grid_box_->currentIndex());
   voxel_box_->setEnabled(grid == GridChoice::VoxelSize);
   patches_total_box_->setEnabled(grid == GridChoice::PatchesTotal);
-  const auto codec = static_cast<CodecChoice>(codec_box_->currentData().toInt());
-  const bool compressed = codec != CodecChoice::Dense;
+  const QString codec = codec_box_->currentData().toString();
+  const bool compressed = codec != to_string(CodecChoice::Dense);
+  const bool paper = codec == to_string(CodecChoice::Paper);
   // The paper's codec has no error budget: it keeps a fixed share.
-  kept_mode_box_->setEnabled(compressed && codec != CodecChoice::Paper);
+  kept_mode_box_->setEnabled(compressed && !paper);
   ordering_box_->setEnabled(compressed);
-  const bool fixed = codec == CodecChoice::Paper || kept_mode_box_->currentIndex() == 1;
+  const bool fixed = paper || kept_mode_box_->currentIndex() == 1;
   kept_box_->setEnabled(compressed && fixed);
   budget_box_->setEnabled(compressed && !fixed);
 }
 
 BakeSettings SettingsPanel::settings() const {
   BakeSettings s;
-  switch (static_cast<GridChoice>(grid_box_->currentIndex())) {
-    case GridChoice::SceneDefault:
-      break;
-    case GridChoice::VoxelSize:
-      s.voxel_resolution = voxel_box_->value();
-      break;
-    case GridChoice::PatchesTotal:
-      s.patches_total = patches_total_box_->value();
-      break;
-  }
-  s.patches_per_voxel = per_voxel_box_->value();
-  s.patch_mode = static_cast<PatchMode>(patch_mode_box_->currentData().toInt());
-  s.transport.bounces = bounces_box_->currentData().toInt();
-  s.codec = static_cast<CodecChoice>(codec_box_->currentData().toInt());
-  if (const int o = ordering_box_->currentData().toInt(); o != kAutoOrdering)
-    s.ordering = static_cast<OrderingMethod>(o);
-  if (kept_box_->isEnabled()) s.kept_fraction = kept_box_->value();
-  if (budget_box_->isEnabled()) s.error_budget = budget_box_->value();
+  // The menus always apply; a number only while its box is enabled (the
+  // grid choice and the kept-values mode decide which).
+  for (const auto& [row, control] : controls_)
+    if (qobject_cast<const QComboBox*>(control) || control->isEnabled())
+      row->set(s, value_of(*row, control));
   s.dump_matrices = true;
   s.pictures = true;
   return s;
@@ -173,12 +161,19 @@ void SettingsPanel::set_grid(GridChoice choice, int value) {
 }
 
 void SettingsPanel::set_codec(CodecChoice codec) {
-  codec_box_->setCurrentIndex(codec_box_->findData(static_cast<int>(codec)));
+  codec_box_->setCurrentIndex(codec_box_->findData(QString(to_string(codec))));
 }
 
 void SettingsPanel::set_ordering(std::optional<OrderingMethod> ordering) {
-  ordering_box_->setCurrentIndex(
-      ordering_box_->findData(ordering ? static_cast<int>(*ordering) : kAutoOrdering));
+  BakeSettings s;
+  s.ordering = ordering;
+  const SettingRow& row = setting_row("ordering");
+  show_value(row, ordering_box_, row.get(s));
+}
+
+void SettingsPanel::set(const std::string& setting, const std::string& text) {
+  for (const auto& [row, control] : controls_)
+    if (setting == row->name) show_value(*row, control, parse_setting(*row, text));
 }
 
 void SettingsPanel::apply(const BakeSettings& s) {
@@ -186,57 +181,49 @@ void SettingsPanel::apply(const BakeSettings& s) {
     set_grid(GridChoice::PatchesTotal, *s.patches_total);
   else if (s.voxel_resolution)
     set_grid(GridChoice::VoxelSize, *s.voxel_resolution);
-  if (s.patches_per_voxel) per_voxel_box_->setValue(*s.patches_per_voxel);
-  patch_mode_box_->setCurrentIndex(patch_mode_box_->findData(static_cast<int>(s.patch_mode)));
-  if (const int k = bounces_box_->findData(s.transport.bounces); k >= 0)
-    bounces_box_->setCurrentIndex(k);
-  set_codec(s.codec);
-  if (s.kept_fraction) {
-    kept_mode_box_->setCurrentIndex(1);
-    kept_box_->setValue(*s.kept_fraction);
-  } else if (s.codec == CodecChoice::Ours) {
-    kept_mode_box_->setCurrentIndex(0);
+  for (const auto& [row, control] : controls_) {
+    if (control == voxel_box_ || control == patches_total_box_) continue;  // the grid, above
+    const SettingValue v = row->get(s);
+    if (!std::holds_alternative<std::monostate>(v)) show_value(*row, control, v);
   }
+  if (s.kept_fraction)
+    kept_mode_box_->setCurrentIndex(1);
+  else if (s.codec == CodecChoice::Ours)
+    kept_mode_box_->setCurrentIndex(0);
   update_enabled();
 }
 
 void SettingsPanel::save(QSettings& store) const {
   store.beginGroup("bake");
   store.setValue("grid", grid_box_->currentIndex());
-  store.setValue("voxel", voxel_box_->value());
-  store.setValue("patches_total", patches_total_box_->value());
-  store.setValue("patches_per_voxel", per_voxel_box_->value());
-  store.setValue("patch_mode", patch_mode_box_->currentData());
-  store.setValue("bounces", bounces_box_->currentData());
-  store.setValue("codec", codec_box_->currentData());
-  store.setValue("ordering", ordering_box_->currentData());
   store.setValue("kept_mode", kept_mode_box_->currentIndex());
-  store.setValue("kept_fraction", kept_box_->value());
-  store.setValue("error_budget", budget_box_->value());
+  // Each setting under its name; menus by the chosen entry's name.
+  for (const auto& [row, control] : controls_)
+    store.setValue(row->name, text_of(*row, value_of(*row, control)));
   store.endGroup();
 }
 
 void SettingsPanel::load(QSettings& store) {
   store.beginGroup("bake");
-  // Values out of range are clamped by the widgets; unknown menu entries keep the default.
+  // Values out of range are clamped by the widgets; unknown menu entries and
+  // unreadable values keep the panel's.
   grid_box_->setCurrentIndex(std::clamp(store.value("grid", 0).toInt(), 0, 2));
-  voxel_box_->setValue(store.value("voxel", voxel_box_->value()).toInt());
-  patches_total_box_->setValue(store.value("patches_total", patches_total_box_->value()).toInt());
-  per_voxel_box_->setValue(store.value("patches_per_voxel", per_voxel_box_->value()).toInt());
-  if (const int k =
-          patch_mode_box_->findData(store.value("patch_mode", patch_mode_box_->currentData()));
-      k >= 0)
-    patch_mode_box_->setCurrentIndex(k);
-  if (const int k = bounces_box_->findData(store.value("bounces", bounces_box_->currentData()));
-      k >= 0)
-    bounces_box_->setCurrentIndex(k);
-  if (const int k = codec_box_->findData(store.value("codec", codec_box_->currentData())); k >= 0)
-    codec_box_->setCurrentIndex(k);
-  if (const int k = ordering_box_->findData(store.value("ordering", kAutoOrdering)); k >= 0)
-    ordering_box_->setCurrentIndex(k);
   kept_mode_box_->setCurrentIndex(std::clamp(store.value("kept_mode", 0).toInt(), 0, 1));
-  kept_box_->setValue(store.value("kept_fraction", kept_box_->value()).toDouble());
-  budget_box_->setValue(store.value("error_budget", budget_box_->value()).toDouble());
+  for (const auto& [row, control] : controls_) {
+    const QVariant stored = store.value(row->name);
+    if (!stored.isValid()) continue;
+    if (auto* box = qobject_cast<QComboBox*>(control)) {
+      if (const int k = box->findData(stored.toString()); k >= 0) box->setCurrentIndex(k);
+    } else if (auto* spin = qobject_cast<QSpinBox*>(control)) {
+      bool ok = false;
+      const int v = stored.toInt(&ok);
+      if (ok) spin->setValue(v);
+    } else if (auto* real = qobject_cast<QDoubleSpinBox*>(control)) {
+      bool ok = false;
+      const double v = stored.toDouble(&ok);
+      if (ok) real->setValue(v);
+    }
+  }
   store.endGroup();
   update_enabled();
 }

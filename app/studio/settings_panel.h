@@ -1,10 +1,15 @@
 #pragma once
 // The bake parameters in artists' terms, each with a tooltip saying what it
-// changes on screen, mapped to bounce::BakeSettings (core/bake/bake_settings.h)
-// and persisted with QSettings.
+// changes on screen, mapped to bounce::BakeSettings and persisted with
+// QSettings. Each control is built from its row of the settings table
+// (bounce/settings.h): label, tooltip, range, default, menu entries; the
+// store keeps each setting under its name, and choices by name.
 #include <QWidget>
+#include <string>
+#include <utility>
+#include <vector>
 
-#include "bake/bake_settings.h"
+#include "bounce/settings.h"
 
 class QComboBox;
 class QDoubleSpinBox;
@@ -31,6 +36,9 @@ class SettingsPanel : public QWidget {
   void apply(const BakeSettings& settings);
   // Unset: the codec's own ordering.
   void set_ordering(std::optional<OrderingMethod> ordering);
+  // Sets a setting's control from its text as the command line gives it
+  // (e.g. "codec", "paper"); throws BakeSettings::InvalidSetting.
+  void set(const std::string& setting, const std::string& text);
 
   void save(QSettings& store) const;
   void load(QSettings& store);
@@ -40,6 +48,10 @@ class SettingsPanel : public QWidget {
 
  private:
   void update_enabled();
+  // The control of a row of the settings table, set up from the row.
+  void add_control(const char* setting, QWidget* control);
+  SettingValue value_of(const SettingRow& row, const QWidget* control) const;
+  void show_value(const SettingRow& row, QWidget* control, const SettingValue& value);
 
   QComboBox* grid_box_;
   QSpinBox* voxel_box_;
@@ -52,6 +64,8 @@ class SettingsPanel : public QWidget {
   QComboBox* kept_mode_box_;
   QDoubleSpinBox* kept_box_;
   QDoubleSpinBox* budget_box_;
+  // Every control that shows one setting, in the settings table's order.
+  std::vector<std::pair<const SettingRow*, QWidget*>> controls_;
 };
 
 }  // namespace bounce::studio

@@ -143,6 +143,7 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
   const std::optional<int> resolved_resolution =
       plan.runs(BakeStage::Geometry) ? std::nullopt : r.settings.voxel_resolution;
   r.settings = settings_;
+  r.requested = settings_;
   r.settings.apply_scene_defaults(scene_.defaults);
   r.settings.validate();
   if (resolved_resolution) r.settings.voxel_resolution = resolved_resolution;

@@ -27,7 +27,8 @@
 namespace bounce {
 
 struct BakeResult {
-  BakeSettings settings;  // as resolved (grid resolution filled in)
+  BakeSettings settings;   // as resolved (grid resolution filled in)
+  BakeSettings requested;  // as given to the Baker, before the scene's defaults
   Voxelization voxels;
   SampleSet samples;
   PatchSet patches;

@@ -17,7 +17,7 @@ enum class PatchMode { Virtual, Voxel };
 //   Auto:  ours, unless the matrix is so small that compression does not pay
 //          (dense float RGB under kDenseUpToBytes): then dense, and said so.
 //   Dense: float32, no compression (exact).
-//   Paper: the published pipeline (paper 000), the baseline.
+//   Paper: the published pipeline, the baseline.
 //   Ours:  our codec, always, whatever the size.
 enum class CodecChoice { Auto, Dense, Paper, Ours };
 
@@ -28,9 +28,16 @@ enum class CodecChoice { Auto, Dense, Paper, Ours };
 enum class OutOfCore { Auto, On, Off };
 
 struct BakeSettings {
+  // Names the setting (settings_table.h), not a front end's control for it:
+  // "setting 'error_budget': ...". The command line adds its option's name.
   class InvalidSetting : public Error {
    public:
-    using Error::Error;
+    InvalidSetting(std::string setting, const std::string& what)
+        : Error("setting '" + setting + "'", what), setting_(std::move(setting)) {}
+    const std::string& setting() const noexcept { return setting_; }
+
+   private:
+    std::string setting_;
   };
 
   // Exactly one of these two decides the grid; with neither, the scene's
@@ -55,8 +62,8 @@ struct BakeSettings {
 
   TransportSettings transport;
   CodecChoice codec = CodecChoice::Auto;
-  // Share of each channel's entries kept exactly. Unset: the paper's 4% for
-  // `paper`; for ours the smallest fraction of kKeptFractionLadder that meets
+  // Share of each channel's entries kept exactly. Unset: kPaperKeptFraction
+  // for `paper`; for ours the smallest fraction of kKeptFractionLadder that meets
   // the error budget.
   std::optional<double> kept_fraction;
   // Relative RMS error of the indirect light the compressed matrix may cause
@@ -97,7 +104,8 @@ struct BakeSettings {
   // Fills unset values from the scene's bake block, then the defaults, so
   // every optional above except the grid choice has a value afterwards.
   void apply_scene_defaults(const BakeDefaults& defaults);
-  // Throws InvalidSetting naming the option for absurd values.
+  // Throws InvalidSetting naming the setting for absurd values: each value
+  // against its row's range (settings_table.h), then the combinations.
   void validate() const;
 };
 

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "bake/bake_pictures.h"
 #include "bake/final_gather_files.h"
+#include "bake/settings_table.h"
 #include "compress/dds.h"
 #include "io/atomic_file.h"
 #include "io/npy.h"
@@ -198,6 +200,46 @@ json storage_json(const MatrixStorage& s, std::size_t probe_lights_total) {
   return m;
 }
 
+// Every setting by its manifest key (settings_table.h): unset ones as null,
+// choices and named values (bounces "auto", "inf") by name.
+json settings_json(const BakeSettings& s) {
+  json out = json::object();
+  for (const SettingRow& row : settings_table()) {
+    const SettingValue v = row.get(s);
+    const auto* number = std::get_if<std::int64_t>(&v);
+    const bool named =
+        number && std::any_of(row.named.begin(), row.named.end(),
+                              [&](const NamedValue& n) { return n.value == *number; });
+    out[row.manifest_key] =
+        named ? json(setting_text(row, v))
+              : std::visit(
+                    [](const auto& x) -> json {
+                      if constexpr (std::is_same_v<std::decay_t<decltype(x)>, std::monostate>)
+                        return nullptr;
+                      else
+                        return x;
+                    },
+                    v);
+  }
+  return out;
+}
+
+// The settings as the bake used them: the scene's defaults and the grid
+// resolution (r.settings), and what the compression chose for the codec,
+// kept fraction, error budget, size limit and ordering left to it.
+BakeSettings resolved_settings(const BakeResult& r) {
+  BakeSettings s = r.settings;
+  const MatrixStorage& st = r.storage;
+  if (!st.codec.empty()) setting_row("codec").set(s, st.codec);
+  if (st.compressed) {
+    s.kept_fraction = st.compressed->kept_fraction;
+    setting_row("ordering").set(s, st.compressed->ordering);
+  }
+  s.error_budget = st.error_budget;
+  s.size_limit = st.size_limit;
+  return s;
+}
+
 // T.npy: every stored channel, float32 [channels x n x n].
 void write_dense_transport(const fs::path& path, const TransportResult& t) {
   std::vector<std::span<const float>> channels;
@@ -239,6 +281,10 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                    {"seed", s.seed},
                    {"dump_matrices", s.dump_matrices},
                    {"out_of_core", to_string(s.out_of_core)}};
+  // Every setting, as asked for and as the bake resolved it; the keys above
+  // are the resolved values readers of earlier bakes know.
+  m["settings"]["requested"] = settings_json(r.requested);
+  m["settings"]["resolved"] = settings_json(resolved_settings(r));
   const VoxelGrid& g = r.voxels.grid;
   m["grid"] = {{"origin", vec(g.bounds().lo)},
                {"cell_size", g.cell_size()},

@@ -184,7 +184,7 @@ MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t
   }
   Trial chosen;
   if (settings.kept_fraction || choice == CodecChoice::Paper) {
-    codec.kept_fraction = settings.kept_fraction.value_or(0.04);
+    codec.kept_fraction = settings.kept_fraction.value_or(kPaperKeptFraction);
     s.decisions.push_back(
         {text_format("kept fraction: %g", codec.kept_fraction),
          settings.kept_fraction ? "requested" : "the published pipeline keeps 4% of the entries"});

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "base/error.h"
+#include "compress/codec.h"
 #include "compress/log_quantizer.h"
 #include "compress/sparse_split.h"
 
@@ -184,7 +185,7 @@ BlockBenchData make_block_bench_data(std::size_t n) {
         channel[static_cast<std::size_t>(i) * n + j] = static_cast<float>(v * albedo);
       }
     }
-    const float threshold = kept_threshold(channel.data(), n, 0.04);
+    const float threshold = kept_threshold(channel.data(), n, kPaperKeptFraction);
     LogQuantizer quantizer;
     for (const float v : channel)
       if (v < threshold) quantizer.vmax = std::max(quantizer.vmax, v);

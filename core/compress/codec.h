@@ -34,11 +34,15 @@
 namespace bounce {
 
 enum class CodecKind { Paper, Ours };
+
+// The published pipeline keeps this share of each channel's largest entries
+// exactly (4%); `--codec paper` keeps it unless told otherwise.
+inline constexpr double kPaperKeptFraction = 0.04;
 enum class OrderingMethod { None, Paper1, Paper2, Ours };
 
 struct CodecSettings {
   CodecKind kind = CodecKind::Ours;
-  double kept_fraction = 0.04;
+  double kept_fraction = kPaperKeptFraction;
   // Overrides, for comparisons (bounce bench compress); unset = the codec's own.
   std::optional<Bc1Encoder> bc1_encoder;
   // Colour scenes: one BC4 image per channel (3 x 8 bytes per block, 3x the

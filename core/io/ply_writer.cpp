@@ -43,10 +43,7 @@ float write_lit_ply(const std::filesystem::path& path, const PlyMeshView& mesh,
     for (int c = 0; c < 3; ++c)
       if (t[c] >= n) throw Error(path.string(), "PLY: a triangle names a vertex out of range");
 
-  std::vector<float> lum;
-  lum.reserve(n);
-  for (const glm::vec3& r : mesh.radiance) lum.push_back(luminance(r));
-  const float exposure = ToneMap::exposure_for(std::move(lum));
+  const float exposure = ToneMap::exposure_for(mesh.radiance);
 
   std::ostringstream header;
   header.precision(9);

@@ -21,6 +21,13 @@ float ToneMap::exposure_for(std::vector<float> luminance) {
   return kTarget / reference;
 }
 
+float ToneMap::exposure_for(const std::vector<glm::vec3>& linear) {
+  std::vector<float> lum;
+  lum.reserve(linear.size());
+  for (const glm::vec3& c : linear) lum.push_back(luminance(c));
+  return exposure_for(std::move(lum));
+}
+
 std::uint8_t ToneMap::srgb8(float linear) {
   // NaN counts as black, +inf as white.
   const float c = linear > 0.0f ? std::min(linear, 1.0f) : 0.0f;

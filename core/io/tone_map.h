@@ -22,6 +22,8 @@ struct ToneMap {
   // `luminance`). Falls back to the maximum when the quantile is zero (mostly
   // dark data) and to 1 when everything is zero or the list is empty.
   static float exposure_for(std::vector<float> luminance);
+  // The same for linear RGB values (their luminance).
+  static float exposure_for(const std::vector<glm::vec3>& linear);
 
   // Linear value in [0, 1] (clamped) to an 8-bit sRGB code, rounded.
   static std::uint8_t srgb8(float linear);

@@ -234,5 +234,108 @@ TEST(BakeSettings, SceneBakeDefaultsApplyUnlessTheCommandLineOverrides) {
   EXPECT_EQ(o["samples_per_face"], 3) << o.dump();
 }
 
+// Every setting's option lands in the manifest: settings.requested holds
+// what the command line asked for (null: left to the scene or the codec),
+// settings.resolved what the bake used. Two bakes, since some options
+// exclude others; between them every option is given a value other than its
+// default.
+TEST(BakeSettings, EveryOptionRoundTripsIntoTheManifest) {
+  TempDir tmp;
+  const std::string matrices = (tmp / "matrices").string();
+  fs::create_directories(matrices);
+  const Bake a = bake(tmp, "a", scene("cornell-box"),
+                      {"--voxel",
+                       "3",
+                       "--patches-per-voxel",
+                       "2",
+                       "--patches",
+                       "voxel",
+                       "--samples-per-face",
+                       "3",
+                       "--visibility-rays",
+                       "4",
+                       "--closure-rays",
+                       "64",
+                       "--final-gather-rays",
+                       "16",
+                       "--seed",
+                       "7",
+                       "--bounces",
+                       "3",
+                       "--gemm",
+                       "openblas",
+                       "--out-of-core",
+                       "off",
+                       "--out-of-core-dir",
+                       matrices,
+                       "--codec",
+                       "paper",
+                       "--ordering",
+                       "paper-1-pass",
+                       "--kept-fraction",
+                       "0.08",
+                       "--dump-matrices",
+                       "--no-pictures"});
+  ASSERT_FALSE(a.manifest.is_null());
+  const json asked_a = {{"voxel_resolution", 3},
+                        {"patches_total_target", nullptr},
+                        {"patches_per_voxel", 2},
+                        {"patch_mode", "voxel"},
+                        {"samples_per_face", 3},
+                        {"visibility_rays", 4},
+                        {"closure_rays", 64},
+                        {"final_gather_rays", 16},
+                        {"seed", 7},
+                        {"bounces", 3},
+                        {"gemm", "openblas"},
+                        {"out_of_core", "off"},
+                        {"out_of_core_dir", matrices},
+                        {"codec", "paper"},
+                        {"ordering", "paper-1-pass"},
+                        {"kept_fraction", 0.08},
+                        {"error_budget", nullptr},
+                        {"size_limit", nullptr},
+                        {"dump_matrices", true},
+                        {"pictures", false}};
+  EXPECT_EQ(a.manifest["settings"]["requested"], asked_a) << a.manifest["settings"].dump(2);
+  // Everything was given, so the bake used it as asked.
+  EXPECT_EQ(a.manifest["settings"]["resolved"], asked_a) << a.manifest["settings"].dump(2);
+
+  const Bake b = bake(tmp, "b", scene("cornell-box"),
+                      {"--patches-total", "60", "--codec", "ours", "--error-budget", "0.1",
+                       "--size-limit", "0.5", "--bounces", "inf", "--no-pictures"});
+  ASSERT_FALSE(b.manifest.is_null());
+  const json& asked_b = b.manifest["settings"]["requested"];
+  const json& used_b = b.manifest["settings"]["resolved"];
+  EXPECT_EQ(asked_b["voxel_resolution"], nullptr) << asked_b.dump(2);
+  EXPECT_EQ(asked_b["patches_total_target"], 60);
+  EXPECT_EQ(asked_b["patches_per_voxel"], nullptr);
+  EXPECT_EQ(asked_b["samples_per_face"], nullptr);
+  EXPECT_EQ(asked_b["patch_mode"], "virtual");
+  EXPECT_EQ(asked_b["bounces"], "inf");
+  EXPECT_EQ(asked_b["codec"], "ours");
+  EXPECT_EQ(asked_b["ordering"], nullptr);
+  EXPECT_EQ(asked_b["kept_fraction"], nullptr);
+  EXPECT_EQ(asked_b["error_budget"], 0.1);
+  EXPECT_EQ(asked_b["size_limit"], 0.5);
+  EXPECT_EQ(asked_b["pictures"], false);
+  // Resolved: the grid the patch target chose, the scene's bake block (3 per
+  // voxel) and the built-in 4 x 4 rays per face, the codec's own ordering
+  // and the kept fraction the budget found.
+  EXPECT_EQ(used_b["voxel_resolution"], b.manifest["settings"]["voxel_resolution"]);
+  EXPECT_GE(used_b["voxel_resolution"].get<int>(), 1) << used_b.dump(2);
+  EXPECT_EQ(used_b["patches_total_target"], 60);
+  EXPECT_EQ(used_b["patches_per_voxel"], 3);
+  EXPECT_EQ(used_b["samples_per_face"], 4);
+  EXPECT_EQ(used_b["bounces"], "inf");
+  EXPECT_EQ(used_b["codec"], "ours");
+  EXPECT_EQ(used_b["ordering"], "ours");
+  EXPECT_EQ(used_b["kept_fraction"], b.manifest["compression"]["kept_fraction"]);
+  EXPECT_GT(used_b["kept_fraction"].get<double>(), 0.0);
+  EXPECT_EQ(used_b["error_budget"], 0.1);
+  EXPECT_EQ(used_b["size_limit"], 0.5);
+  for (const json* block : {&asked_b, &used_b}) EXPECT_EQ(block->size(), asked_a.size());
+}
+
 }  // namespace
 }  // namespace bounce::itest

@@ -17,6 +17,8 @@ json comparable(json m) {
   m.erase("total_seconds");
   m.erase("memory");
   m["settings"].erase("out_of_core");
+  m["settings"]["requested"].erase("out_of_core");
+  m["settings"]["resolved"].erase("out_of_core");
   std::function<void(json&)> strip = [&](json& j) {
     if (j.is_object()) {
       for (const char* key : {"seconds", "probe_openblas_seconds", "probe_clblast_seconds"})

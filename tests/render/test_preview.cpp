@@ -2,6 +2,9 @@
 // -1 to 1 with the red wall at -x and the green wall at +x, floor y = 0,
 // ceiling y = 2, back wall z = -1; the scene camera looks down -z from
 // z = 3.4, so -x is the picture's left).
+#include <assimp/scene.h>
+#include <assimp/Importer.hpp>
+
 #include <iostream>
 
 #include <QElapsedTimer>
@@ -135,6 +138,57 @@ TEST_F(Preview, TheLatestLightPositionWins) {
   view_.set_light_position(last, true);
   const QImage direct = shot({});
   EXPECT_EQ(dragged, direct);
+}
+
+// File > Export: the lit mesh as binary glTF, read back with Assimp. Its
+// vertices are the preview's; a wall with the light beside it comes out in
+// its own colour and brighter than with the light across the box.
+TEST_F(Preview, ExportsTheLitMeshAsGltf) {
+  const std::filesystem::path dir = work_dir("preview-export");
+  struct Walls {
+    Rgb left, right;
+  };
+  auto export_at = [&](const glm::vec3& light, const std::string& name) {
+    view_.set_light_position(light, true);
+    const std::filesystem::path path = dir / name;
+    view_.export_lit_glb(path.string());
+    Assimp::Importer importer;
+    const aiScene* scene = importer.ReadFile(path.string(), 0);
+    EXPECT_NE(scene, nullptr) << importer.GetErrorString();
+    Walls w;
+    if (!scene || scene->mNumMeshes != 1) return w;
+    const aiMesh* m = scene->mMeshes[0];
+    EXPECT_EQ(m->mNumVertices, view_.vertex_count());
+    EXPECT_TRUE(m->HasVertexColors(0));
+    if (!m->HasVertexColors(0)) return w;
+    int nl = 0, nr = 0;
+    for (unsigned v = 0; v < m->mNumVertices; ++v) {
+      const aiVector3D p = m->mVertices[v];
+      if (p.y < 0.2f || p.y > 1.8f || p.z < -0.8f || p.z > 0.8f) continue;  // wall middles
+      if (std::abs(p.x) < 0.98f) continue;                                  // not on a side wall
+      const aiColor4D c = m->mColors[0][v];
+      Rgb& side = p.x < 0.0f ? w.left : w.right;
+      side.r += c.r;
+      side.g += c.g;
+      side.b += c.b;
+      ++(p.x < 0.0f ? nl : nr);
+    }
+    EXPECT_GT(nl, 0);
+    EXPECT_GT(nr, 0);
+    if (nl > 0) w.left = {w.left.r / nl, w.left.g / nl, w.left.b / nl};
+    if (nr > 0) w.right = {w.right.r / nr, w.right.g / nr, w.right.b / nr};
+    return w;
+  };
+  const Walls at_left = export_at({-0.6f, 1.0f, 0.0f}, "left.glb");
+  const Walls at_right = export_at({0.6f, 1.0f, 0.0f}, "right.glb");
+  // Each wall with the light beside it shows its own colour (the far wall
+  // then takes much of its light from the near one: colour bleeding).
+  EXPECT_GT(at_left.left.r, 2.0 * at_left.left.g) << "the red wall is not red";
+  EXPECT_GT(at_right.right.g, 2.0 * at_right.right.r) << "the green wall is not green";
+  EXPECT_GT(at_left.left.luminance(), 1.2 * at_right.left.luminance())
+      << "the left wall is not brighter with the light beside it";
+  EXPECT_GT(at_right.right.luminance(), 1.2 * at_left.right.luminance())
+      << "the right wall is not brighter with the light beside it";
 }
 
 TEST_F(Preview, IndirectLightBleedsTheWallColours) {
