@@ -80,6 +80,13 @@ void warn_far_scaled_rows(const Scene& scene, const PatchSet& patches, const Bal
                        "), on " + names);
 }
 
+std::vector<float> patch_densities(const Scene& scene) {
+  std::vector<float> d;
+  d.reserve(scene.meshes.size());
+  for (const MeshInfo& m : scene.meshes) d.push_back(m.patch_density);
+  return d;
+}
+
 }  // namespace
 
 int Baker::resolution_for_patch_count(const Scene& scene, int patches_total, int per_voxel,
@@ -112,6 +119,13 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
   RebakePlan plan;  // a full bake
   if (previous) {
     plan = plan_rebake(scene_, previous->settings, settings_);
+    // The scene itself is taken to be the previous bake's, except for the
+    // patch densities, which a scene.json edit may change without touching
+    // the geometry.
+    if (plan.first != BakeStage::Geometry && previous->patch_density != patch_densities(scene_)) {
+      plan.first = BakeStage::Geometry;
+      plan.reasons.push_back("patch density of a mesh (re-runs from geometry)");
+    }
     if (plan.first != BakeStage::Geometry) {
       r = *previous;
       r.stages.clear();
@@ -213,6 +227,7 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
       // patches_per_voxel, the merges then go where they cost least.
       if (r.settings.patches_total)
         c.total_patches = static_cast<std::size_t>(*r.settings.patches_total);
+      c.mesh_density = patch_densities(scene_);
       if (distribution_) c.sharing = distribution_->sample_row_sharing();
       r.patches = cluster_virtual_patches(*tracer, r.voxels, r.samples, c, r.clustering, &progress);
       if (r.clustering.voxels_above_target > 0)
@@ -226,6 +241,7 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
       r.patches = voxel_patches(r.samples);
       progress.end_stage();
     }
+    r.patch_density = patch_densities(scene_);
     r.stages.push_back(timer.finish());
     record_from(BakeStage::Geometry, diagnostics_before);
   }

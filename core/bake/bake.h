@@ -43,6 +43,9 @@ struct BakeResult {
   FinalGather vertex_gather;
   BalanceStats balance;
   ClusteringStats clustering;
+  // Each mesh's patch density the patches were made with: a re-bake of a
+  // scene whose densities differ cannot reuse them.
+  std::vector<float> patch_density;
   std::size_t patches_before_pruning = 0;
   TransportResult transport;  // multi-bounce matrices, exact
   // The first-hit light of the evaluation lights (runtime/direct_light.h),

@@ -285,6 +285,20 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
   // are the resolved values readers of earlier bakes know.
   m["settings"]["requested"] = settings_json(r.requested);
   m["settings"]["resolved"] = settings_json(resolved_settings(r));
+  // Per mesh: its patch density and what it got, to check a density's effect.
+  std::vector<std::size_t> mesh_patches(scene.meshes.size(), 0);
+  for (const Patch& p : r.patches.patches)
+    if (p.mesh < mesh_patches.size()) ++mesh_patches[p.mesh];
+  std::vector<double> mesh_area(scene.meshes.size(), 0.0);
+  for (std::size_t t = 0; t < scene.triangle_count(); ++t)
+    mesh_area[scene.triangle_mesh[t]] += scene.triangle_area(t);
+  json meshes = json::array();
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i)
+    meshes.push_back({{"name", scene.meshes[i].name},
+                      {"patch_density", scene.meshes[i].patch_density},
+                      {"patches", mesh_patches[i]},
+                      {"area", mesh_area[i]}});
+  m["meshes"] = meshes;
   const VoxelGrid& g = r.voxels.grid;
   m["grid"] = {{"origin", vec(g.bounds().lo)},
                {"cell_size", g.cell_size()},

@@ -149,6 +149,82 @@ float metric(const Cluster& a, const Cluster& b, const std::vector<float>& targe
          (1.0f + std::sqrt(ff));
 }
 
+// Per voxel: its patch density (area-weighted mean of its samples' meshes')
+// and the mesh with most area in it. Empty when every density is 1, so that
+// such a scene takes exactly the path it took before densities existed.
+struct VoxelDensity {
+  std::vector<double> density;
+  std::vector<std::uint32_t> mesh;
+};
+
+VoxelDensity voxel_densities(const SampleSet& set, const std::vector<float>& mesh_density) {
+  VoxelDensity out;
+  if (std::all_of(mesh_density.begin(), mesh_density.end(), [](float d) { return d == 1.0f; }))
+    return out;
+  const std::size_t nv = set.first.size() - 1;
+  out.density.assign(nv, 1.0);
+  out.mesh.assign(nv, 0);
+  std::unordered_map<std::uint32_t, double> area_of_mesh;
+  for (std::size_t v = 0; v < nv; ++v) {
+    double area = 0.0, weighted = 0.0;
+    area_of_mesh.clear();
+    for (std::uint32_t s = set.first[v]; s < set.first[v + 1]; ++s) {
+      const Sample& x = set.samples[s];
+      const double d = x.mesh < mesh_density.size() ? mesh_density[x.mesh] : 1.0;
+      area += x.area;
+      weighted += d * x.area;
+      area_of_mesh[x.mesh] += x.area;
+    }
+    if (area > 0.0) out.density[v] = weighted / area;
+    double most = -1.0;
+    for (const auto& [mesh, a] : area_of_mesh)
+      if (a > most || (a == most && mesh < out.mesh[v])) {
+        most = a;
+        out.mesh[v] = mesh;
+      }
+  }
+  return out;
+}
+
+// Patches each voxel keeps under a total budget with densities: `kept` (what
+// the cheapest-merge-first rule kept at density 1) times the voxel's density
+// times one factor k, each within [fewest, most] (as far as the voxel can
+// merge, its sample count), k chosen by bisection so the total is the budget.
+// Rounded with the remainder carried on per mesh (by the voxel's main mesh),
+// so each mesh's count is its share to within one patch.
+std::vector<std::size_t> density_allotment(const std::vector<std::size_t>& kept,
+                                           const std::vector<std::size_t>& fewest,
+                                           const std::vector<std::size_t>& most,
+                                           const VoxelDensity& vd, std::size_t budget) {
+  const std::size_t nv = kept.size();
+  const auto share = [&](double k, std::size_t v) {
+    const double want = k * vd.density[v] * static_cast<double>(kept[v]);
+    return std::clamp(want, static_cast<double>(fewest[v]), static_cast<double>(most[v]));
+  };
+  const auto total = [&](double k) {
+    double sum = 0.0;
+    for (std::size_t v = 0; v < nv; ++v) sum += share(k, v);
+    return sum;
+  };
+  const auto target = static_cast<double>(budget);
+  double lo = 0.0, hi = 1.0;
+  for (int i = 0; i < 64 && total(hi) < target; ++i) hi *= 2.0;
+  for (int i = 0; i < 64; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (total(mid) < target ? lo : hi) = mid;
+  }
+  std::unordered_map<std::uint32_t, double> carried;
+  std::vector<std::size_t> out(nv);
+  for (std::size_t v = 0; v < nv; ++v) {
+    double& c = carried[vd.mesh[v]];
+    const double want = share(hi, v);
+    const auto n = std::llround(c + want) - std::llround(c);
+    c += want;
+    out[v] = std::clamp(static_cast<std::size_t>(std::max<long long>(n, 0)), fewest[v], most[v]);
+  }
+  return out;
+}
+
 }  // namespace
 
 SampleRows sample_rows_of(std::size_t part, std::size_t parts, std::size_t ns) {
@@ -168,6 +244,12 @@ PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vo
   const std::size_t nt = targets.samples.size();
   const std::size_t nv = vox.voxels.size();
   const auto keep = static_cast<std::size_t>(std::max(1, settings.patches_per_voxel));
+  const VoxelDensity vd = voxel_densities(set, settings.mesh_density);
+  const auto keep_in = [&](std::size_t v) {
+    if (vd.density.empty()) return keep;
+    return static_cast<std::size_t>(
+        std::max(1.0, std::round(vd.density[v] * static_cast<double>(keep))));
+  };
 
   if (progress) progress->begin_stage("cluster: merge samples", nv);
   std::vector<std::vector<std::vector<std::uint32_t>>> clusters_of_voxel(nv);
@@ -217,7 +299,8 @@ PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vo
     for (std::size_t a = 0; a < n; ++a)
       for (std::size_t b = a + 1; b < n; ++b) update(a, b);
     std::size_t remaining = n;
-    while (remaining > (budget ? 1 : keep)) {
+    const std::size_t stop_at = budget ? 1 : keep_in(v);
+    while (remaining > stop_at) {
       float best = kNever;
       std::size_t ba = 0, bb = 0;
       for (std::size_t a = 0; a < n; ++a) {
@@ -267,6 +350,17 @@ PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vo
       --count;
       if (++taken[v] < merges_of_voxel[v].size()) next.push({merges_of_voxel[v][taken[v]].cost, v});
     }
+    if (!vd.density.empty()) {
+      std::vector<std::size_t> kept(nv), fewest(nv), most(nv);
+      for (std::size_t v = 0; v < nv; ++v) {
+        most[v] = set.first[v + 1] - set.first[v];
+        fewest[v] = most[v] - merges_of_voxel[v].size();
+        kept[v] = most[v] - taken[v];
+      }
+      const std::vector<std::size_t> allot =
+          density_allotment(kept, fewest, most, vd, settings.total_patches);
+      for (std::size_t v = 0; v < nv; ++v) taken[v] = most[v] - allot[v];
+    }
     for (std::size_t v = 0; v < nv; ++v) {
       std::vector<std::vector<std::uint32_t>> members;
       for (std::uint32_t s = set.first[v]; s < set.first[v + 1]; ++s) members.push_back({s});
@@ -284,7 +378,7 @@ PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vo
 
   PatchSet patches;
   for (std::size_t v = 0; v < nv; ++v) {
-    if (!budget && clusters_of_voxel[v].size() > keep) stats.voxels_above_target++;
+    if (!budget && clusters_of_voxel[v].size() > keep_in(v)) stats.voxels_above_target++;
     for (const auto& members : clusters_of_voxel[v]) patches.add_patch(set.samples, members);
   }
   if (progress) progress->end_stage();

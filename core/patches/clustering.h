@@ -26,6 +26,7 @@
 // count is reported.
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "base/progress.h"
 #include "patches/patch_set.h"
@@ -59,6 +60,14 @@ struct ClusteringSettings {
   // remain, so flat voxels end with one patch and curved or shaded ones keep
   // more.
   std::size_t total_patches = 0;
+  // Patch density of each mesh (MeshInfo::patch_density, indexed by
+  // Sample::mesh; empty, or all 1: every surface alike). A voxel's density is
+  // the area-weighted mean of its samples'. Under a total budget each voxel
+  // keeps density x what it keeps at density 1, times one factor for the
+  // whole scene that brings the total back to the budget; with
+  // patches_per_voxel it keeps density x patches_per_voxel (rounded, at
+  // least 1).
+  std::vector<float> mesh_density;
   std::size_t max_targets = 2048;
   SampleRowSharing sharing;
 };

@@ -44,6 +44,10 @@ struct MeshInfo {
   // Both sides of each triangle receive and emit light (thin walls, leaves);
   // otherwise only the side its winding faces (counter-clockwise = front).
   bool two_sided = false;
+  // How many patches this mesh's surface gets relative to the rest: under a
+  // total patch budget its voxels keep this many times the patches they
+  // would otherwise, the others fewer, so the total stays the budget.
+  float patch_density = 1.0f;
 };
 
 struct Light {

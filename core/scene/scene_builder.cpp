@@ -82,8 +82,9 @@ SceneBuilder::SceneBuilder(std::string scene_file, std::map<std::string, Materia
       diagnostics_(diagnostics) {}
 
 void SceneBuilder::add(ImportedFile file, bool two_sided, std::optional<std::string> material,
-                       std::string key_path) {
-  entries_.push_back({std::move(file), two_sided, std::move(material), std::move(key_path)});
+                       std::string key_path, float patch_density) {
+  entries_.push_back(
+      {std::move(file), two_sided, std::move(material), std::move(key_path), patch_density});
 }
 
 std::uint32_t SceneBuilder::material_index(const std::string& name, const Entry& entry,
@@ -261,6 +262,7 @@ void SceneBuilder::build(Scene& scene) {
       info.name = piece.name;
       info.source = where;
       info.two_sided = entry.two_sided;
+      info.patch_density = entry.patch_density;
       info.first_triangle = static_cast<std::uint32_t>(scene.triangles.size());
 
       const bool has_uvs = piece.uvs.size() == piece.positions.size();

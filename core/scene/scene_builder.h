@@ -27,9 +27,10 @@ class SceneBuilder {
                Diagnostics& diagnostics);
 
   // `material` overrides the file's materials for every triangle of it;
-  // `key_path` ("meshes[2]") names the scene.json entry in messages.
+  // `key_path` ("meshes[2]") names the scene.json entry in messages;
+  // `patch_density` goes to every mesh of the file (MeshInfo::patch_density).
   void add(ImportedFile file, bool two_sided, std::optional<std::string> material,
-           std::string key_path);
+           std::string key_path, float patch_density = 1.0f);
 
   // Fills geometry, materials and meshes of `scene`. Throws
   // SceneLoader::LoadError when no triangle is left or a material is unknown.
@@ -41,6 +42,7 @@ class SceneBuilder {
     bool two_sided;
     std::optional<std::string> material;
     std::string key_path;
+    float patch_density;
   };
 
   std::uint32_t material_index(const std::string& name, const Entry& entry,

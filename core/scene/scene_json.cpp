@@ -22,6 +22,9 @@ constexpr long long kMaxVoxelResolution = 4096;
 constexpr long long kMaxPatchesTotal = 1'000'000;
 constexpr long long kMaxPatchesPerVoxel = 1024;
 constexpr long long kMaxSamplesPerFace = 65536;
+// A mesh at 64 times the others' density already takes nearly a whole budget
+// from a scene of a few dozen equal meshes; more is a typo.
+constexpr int kMaxPatchDensity = 64;
 
 std::string read_text_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -133,7 +136,8 @@ void read_materials(const JsonReader& r, const Json& value, SceneDescription& sc
 MeshSpec read_mesh(const JsonReader& r, const Json& value, const std::string& path,
                    const std::filesystem::path& base_dir, SceneDescription& scene) {
   r.expect_object(value, path);
-  r.warn_unknown_keys(value, path, {"file", "name", "transform", "material", "two_sided"});
+  r.warn_unknown_keys(value, path,
+                      {"file", "name", "transform", "material", "two_sided", "patch_density"});
   MeshSpec mesh;
   mesh.key_path = path;
   const Json* file = find(value, "file");
@@ -146,6 +150,18 @@ MeshSpec read_mesh(const JsonReader& r, const Json& value, const std::string& pa
     mesh.transform = read_transform(r, *t, join_key(path, "transform"));
   if (const Json* two = find(value, "two_sided"))
     mesh.two_sided = r.boolean(*two, join_key(path, "two_sided"));
+  if (const Json* d = find(value, "patch_density")) {
+    const std::string key = join_key(path, "patch_density");
+    if (!d->is_number())
+      r.fail(key, "expected a number > 0 and <= " + std::to_string(kMaxPatchDensity) + ", got " +
+                      JsonReader::describe(*d));
+    const double density = d->get<double>();
+    // NaN fails both comparisons.
+    if (!(density > 0.0 && density <= kMaxPatchDensity))
+      r.fail(key, "must be a number > 0 and <= " + std::to_string(kMaxPatchDensity) +
+                      " (a multiplier on the mesh's share of patches), got " + d->dump());
+    mesh.patch_density = static_cast<float>(density);
+  }
   if (const Json* m = find(value, "material")) {
     const std::string mat_path = join_key(path, "material");
     if (m->is_string()) {

@@ -29,6 +29,7 @@ struct MeshSpec {
   glm::dmat4 transform{1.0};            // object -> scene, applied after the file's node transforms
   std::optional<std::string> material;  // every triangle gets this material
   bool two_sided = false;
+  float patch_density = 1.0f;  // MeshInfo::patch_density
 };
 
 struct SceneDescription {

@@ -179,6 +179,43 @@ TEST(BakeSettings, PatchesTotalLandsNearTheTarget) {
   EXPECT_EQ(read_npy_f32(b.dir / "patches.npy").shape[0], b.patches());
 }
 
+TEST(BakeSettings, PatchDensityInSceneJsonShowsPerMeshInTheManifest) {
+  TempDir tmp;
+  // Two equal unit squares facing each other, one file each, the bottom one
+  // at four times the density.
+  const fs::path dir = tmp / "scene";
+  write_text(dir / "bottom.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n");
+  write_text(dir / "top.obj", "v 0 0 1\nv 0 1 1\nv 1 1 1\nv 1 0 1\nf 1 2 3\nf 1 3 4\n");
+  write_text(dir / "scene.json", R"({
+  "meshes": [{ "file": "bottom.obj", "name": "bottom", "patch_density": 4 },
+             { "file": "top.obj", "name": "top" }],
+  "lights": [{ "position": [0.5, 0.5, 0.5] }]
+})");
+  const Bake b = bake(tmp, "dense", dir.string(),
+                      {"--patches-total", "96", "--samples-per-face", "6", "--codec", "dense",
+                       "--final-gather-rays", "0"});
+  ASSERT_FALSE(b.manifest.is_null());
+  const json& meshes = b.manifest["meshes"];
+  ASSERT_EQ(meshes.size(), 2u) << meshes.dump();
+  EXPECT_EQ(meshes[0]["name"], "bottom");
+  EXPECT_EQ(meshes[0]["patch_density"], 4.0);
+  EXPECT_EQ(meshes[1]["name"], "top");
+  EXPECT_EQ(meshes[1]["patch_density"], 1.0);
+  for (const json& m : meshes) EXPECT_NEAR(m["area"].get<double>(), 1.0, 1e-6) << m.dump();
+  const auto dense = meshes[0]["patches"].get<std::size_t>();
+  const auto other = meshes[1]["patches"].get<std::size_t>();
+  EXPECT_EQ(dense + other, b.patches());
+  // About 4x (exactly 4x up to rounding and the grid the target resolves to;
+  // the unit test pins the ratio down).
+  EXPECT_GE(dense, 3 * other) << meshes.dump();
+  // The patches' own mesh column (11) agrees with the manifest's counts.
+  const auto p = read_npy_f32(b.dir / "patches.npy");
+  ASSERT_EQ(p.shape[0], b.patches());
+  std::size_t on_bottom = 0;
+  for (std::size_t i = 0; i < p.shape[0]; ++i) on_bottom += p.data[i * 15 + 11] == 0.0f ? 1 : 0;
+  EXPECT_EQ(on_bottom, dense);
+}
+
 TEST(BakeSettings, SameSeedGivesIdenticalBytesWhateverTheThreadCount) {
   TempDir tmp;
   RunOptions one_thread, two_threads;

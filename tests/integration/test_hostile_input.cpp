@@ -261,6 +261,17 @@ TEST_F(HostileSceneJson, HugeIntegersForCounts) {
   }
 }
 
+TEST_F(HostileSceneJson, PatchDensityThatIsNotAPositiveNumberIsNamed) {
+  for (const std::string value : {"0", "-1", R"("x")", "1e300", "65", "null"}) {
+    SCOPED_TRACE(value);
+    expect_scene_refused(
+        R"({"meshes": [{"file": "squares.obj", "patch_density": )" + value + "}], " + kLight + "}",
+        {"meshes[0].patch_density", "> 0 and <= 64"});
+  }
+  // Not JSON at all: refused at its position like any other NaN.
+  expect_scene_refused(R"({"meshes": [{"file": "squares.obj", "patch_density": NaN}]})");
+}
+
 TEST_F(HostileSceneJson, WrongTypesAtTheTop) {
   for (const std::string text : {"[]", "null", R"({"meshes": {}})", R"({"meshes": [{"file": 7}]})",
                                  R"({"meshes": [{"file": "squares.obj"}], "lights": {}})"}) {

@@ -305,7 +305,7 @@ TEST(MeshTransfer, NonManifoldFacesGetTheirOwnVerticesAndTwoSidedFacesABackCopy)
   fin.name = "fin";
   fin.albedo = glm::vec3(0.5f);
   s.materials.push_back(fin);
-  s.meshes.push_back({"fin", "memory", 4, 2, false});
+  s.meshes.push_back({"fin", "memory", 4, 2, false, 1.0f});
   for (const glm::uvec3 t : {glm::uvec3(1, 0, apex), glm::uvec3(0, 1, apex)}) {
     s.triangles.push_back(t);
     s.triangle_material.push_back(2);

@@ -7,6 +7,7 @@
 // the same.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <map>
 #include <string>
 
@@ -15,6 +16,7 @@
 #include "patches/samples.h"
 #include "raytrace/ray_tracer.h"
 #include "scene/scene_loader.h"
+#include "test_scenes.h"
 #include "voxel/voxelization.h"
 
 namespace bounce {
@@ -110,6 +112,96 @@ TEST(PatchBudget, CurvedSurfaceKeepsMorePatchesThanFlatWalls) {
   const auto [bunny_fixed, walls_fixed] = patches_per_voxel(s, cluster(0));
   EXPECT_LT(bunny_fixed, 1.5 * walls_fixed)
       << "bunny voxels " << bunny_fixed << " patches, wall voxels " << walls_fixed;
+}
+
+PatchSet cluster_walls(const Sampled& s, std::size_t total, std::vector<float> density) {
+  ClusteringSettings settings;
+  settings.total_patches = total;
+  settings.mesh_density = std::move(density);
+  ClusteringStats stats;
+  return cluster_virtual_patches(*s.tracer, s.voxels, s.samples, settings, stats);
+}
+
+// Two equal unit walls facing each other (z = 0 and z = 1), sampled on a
+// 4^3 grid: 16 voxels a wall, each with enough samples for 6 patches.
+const Sampled& two_walls() {
+  static const Sampled s = [] {
+    Sampled r;
+    r.scene = test_scenes::parallel_squares();
+    r.tracer = std::make_unique<RayTracer>(r.scene);
+    r.voxels = voxelize(r.scene, VoxelGrid(r.scene.bounds(), 4));
+    SamplingSettings sampling;
+    sampling.samples_per_face = 6;
+    r.samples = generate_samples(r.scene, *r.tracer, r.voxels, sampling);
+    return r;
+  }();
+  return s;
+}
+
+std::array<std::size_t, 2> patches_per_wall(const PatchSet& p) {
+  std::array<std::size_t, 2> n{0, 0};
+  for (const Patch& q : p.patches) ++n.at(q.mesh);
+  return n;
+}
+
+TEST(PatchBudget, DensityFourOnOneOfTwoEqualWallsGivesItFourTimesThePatches) {
+  const Sampled& s = two_walls();
+  ASSERT_EQ(s.scene.meshes.size(), 2u);
+  // Every voxel must be able to hold its share (4.8 patches at density 4)
+  // and go down to one (1.2 at density 1): otherwise the clamping, not the
+  // density, sets the ratio.
+  std::size_t fewest_samples = s.samples.samples.size();
+  for (std::size_t v = 0; v + 1 < s.samples.first.size(); ++v)
+    fewest_samples =
+        std::min<std::size_t>(fewest_samples, s.samples.first[v + 1] - s.samples.first[v]);
+  ASSERT_GE(fewest_samples, 5u);
+  const std::size_t total = 96;  // 3 a voxel over 32 voxels
+  const auto even = patches_per_wall(cluster_walls(s, total, {}));
+  EXPECT_EQ(even[0] + even[1], total);
+  const auto dense = patches_per_wall(cluster_walls(s, total, {4.0f, 1.0f}));
+  // The budget is still the budget, to within the one patch each mesh's
+  // rounding may add or drop.
+  EXPECT_NEAR(static_cast<double>(dense[0] + dense[1]), static_cast<double>(total), 2.0);
+  // Each wall keeps 4 (or 1) times what it kept at density 1, scaled back to
+  // 96; the walls differ a little at density 1 (the two sides sample
+  // differently), so the ratio is measured against that. What moves it off 4:
+  // per-mesh rounding (one patch) and the sparse wall's voxels that cannot go
+  // below one patch, which keep more than their share. Measured: 52/44 at
+  // density 1, 78/18 at density 4, a relative ratio of 3.67; 0.4 allows for
+  // that floor and the rounding, and fails if the density is ignored (1) or
+  // applied twice (16).
+  const double ratio = static_cast<double>(dense[0]) / static_cast<double>(dense[1]);
+  const double even_ratio = static_cast<double>(even[0]) / static_cast<double>(even[1]);
+  EXPECT_NEAR(ratio / even_ratio, 4.0, 0.4) << "dense wall " << dense[0] << ", other " << dense[1]
+                                            << "; at density 1 " << even[0] << " and " << even[1];
+  // The other way round, the other wall.
+  const auto swapped = patches_per_wall(cluster_walls(s, total, {1.0f, 4.0f}));
+  EXPECT_GT(swapped[1], 3 * swapped[0]);
+}
+
+TEST(PatchBudget, DensityOneEverywhereIsExactlyNoDensity) {
+  const Sampled& s = cornell_bunny();
+  for (std::size_t total : {std::size_t{0}, 2 * s.voxels.voxels.size()}) {
+    SCOPED_TRACE(total);
+    ClusteringSettings a, b;
+    a.total_patches = b.total_patches = total;
+    b.mesh_density.assign(s.scene.meshes.size(), 1.0f);
+    ClusteringStats stats;
+    const PatchSet pa = cluster_virtual_patches(*s.tracer, s.voxels, s.samples, a, stats);
+    const PatchSet pb = cluster_virtual_patches(*s.tracer, s.voxels, s.samples, b, stats);
+    EXPECT_EQ(pa.member_first, pb.member_first);
+    EXPECT_EQ(pa.member_samples, pb.member_samples);
+  }
+}
+
+TEST(PatchBudget, DensityScalesPatchesPerVoxelWithoutABudget) {
+  const Sampled& s = two_walls();
+  for (std::size_t v = 0; v + 1 < s.samples.first.size(); ++v)
+    ASSERT_GE(s.samples.first[v + 1] - s.samples.first[v], 6u) << "voxel " << v;
+  const auto n = patches_per_wall(cluster_walls(s, 0, {2.0f, 1.0f}));
+  // 16 voxels a wall: 6 patches each on the dense wall, 3 on the other.
+  EXPECT_EQ(n[0], 16u * 6u);
+  EXPECT_EQ(n[1], 16u * 3u);
 }
 
 }  // namespace

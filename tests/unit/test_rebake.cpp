@@ -194,6 +194,31 @@ TEST(Rebake, CodecOnlyReBakeEqualsAFullBakeWithoutNewFormFactors) {
   EXPECT_NE(first.result.storage.compressed->codec, partial.result.storage.compressed->codec);
 }
 
+TEST(Rebake, APatchDensityChangeReRunsFromGeometry) {
+  const CountedBake first = run_bake(small_settings());
+  EXPECT_EQ(first.result.patch_density.size(), cornell_box().meshes.size());
+  // The same scene with one mesh denser, as after an edit of scene.json; the
+  // settings are unchanged, so only the densities can tell.
+  Scene denser = cornell_box();
+  denser.meshes.front().patch_density = 4.0f;
+  std::string last;
+  std::multiset<std::string> stages;
+  Progress progress([&](const std::string& stage, double) {
+    if (stage != last) stages.insert(stage);
+    last = stage;
+    return true;
+  });
+  Diagnostics d;
+  const BakeResult again = Baker(denser, small_settings(), d).run(progress, &first.result);
+  EXPECT_EQ(again.plan.first, BakeStage::Geometry);
+  ASSERT_FALSE(again.plan.reasons.empty());
+  EXPECT_NE(again.plan.reasons.back().find("patch density"), std::string::npos);
+  EXPECT_EQ(again.patch_density.front(), 4.0f);
+  // Unchanged densities still reuse everything.
+  const CountedBake same = run_bake(small_settings(), &first.result);
+  EXPECT_EQ(same.result.plan.first, BakeStage::None);
+}
+
 TEST(Rebake, BouncesReBakeReRunsTransportOnly) {
   const CountedBake first = run_bake(small_settings());
   BakeSettings more = small_settings();

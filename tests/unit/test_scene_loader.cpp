@@ -455,6 +455,44 @@ TEST_F(SceneLoaderInput, AbsurdBakeDefaultsAreFatalNamingTheKey) {
   EXPECT_NEAR(s.defaults.error_budget.value_or(0.0), 0.03, 1e-7);
 }
 
+TEST_F(SceneLoaderInput, PatchDensityIsAPositiveBoundedNumberNamedInErrors) {
+  write_triangle_obj();
+  const std::pair<std::string, std::vector<std::string>> cases[] = {
+      {"0", {"meshes[0].patch_density", "> 0 and <= 64", "got 0"}},
+      {"-1", {"meshes[0].patch_density", "> 0 and <= 64", "got -1"}},
+      {"65", {"meshes[0].patch_density", "got 65"}},
+      {"1e300", {"meshes[0].patch_density", "got 1e+300"}},
+      {R"("x")", {"meshes[0].patch_density", "a string"}},
+      {R"("NaN")", {"meshes[0].patch_density", "a string"}},
+      {"null", {"meshes[0].patch_density", "null"}},
+  };
+  for (std::size_t i = 0; i < std::size(cases); ++i) {
+    SCOPED_TRACE(cases[i].first);
+    const fs::path json =
+        write("density" + std::to_string(i) + ".json",
+              R"({"meshes": [{"file": "tri.obj", "patch_density": )" + cases[i].first + "}]}");
+    const std::string what = expect_error(json, json, cases[i].second);
+    // One error, about this key only.
+    EXPECT_EQ(what.find("patch_density"), what.rfind("patch_density")) << what;
+  }
+  // JSON has no NaN literal: a bare NaN is a syntax error at its position.
+  const fs::path nan = write("nan.json",
+                             "{\"meshes\": [{\"file\": \"tri.obj\",\n"
+                             "  \"patch_density\": NaN}]}");
+  expect_error(nan, nan, {"nan.json:2:"});
+  // Default 1; every mesh of the entry gets the entry's density.
+  write("two.obj",
+        "o a\nv 0 0 2\nv 1 0 2\nv 0 1 2\nf 1 2 3\n"
+        "o b\nv 0 0 1\nv 1 0 1\nv 0 1 1\nf 4 5 6\n");
+  const fs::path ok = write("ok.json", R"({"meshes": [{"file": "tri.obj"},
+      {"file": "two.obj", "patch_density": 2.5}]})");
+  const Scene s = load(ok);
+  ASSERT_EQ(s.meshes.size(), 3u);
+  EXPECT_EQ(s.meshes[0].patch_density, 1.0f);
+  EXPECT_EQ(s.meshes[1].patch_density, 2.5f);
+  EXPECT_EQ(s.meshes[2].patch_density, 2.5f);
+}
+
 TEST_F(SceneLoaderInput, BadLightsAreFatalNamingTheLight) {
   write_triangle_obj();
   const std::pair<std::string, std::vector<std::string>> cases[] = {

@@ -21,7 +21,7 @@ inline void add_mesh(Scene& s, const std::string& name, const std::vector<glm::v
   material.emission = emission;
   s.materials.push_back(material);
   s.meshes.push_back({name, "memory", static_cast<std::uint32_t>(s.triangles.size()),
-                      static_cast<std::uint32_t>(triangles.size()), two_sided});
+                      static_cast<std::uint32_t>(triangles.size()), two_sided, 1.0f});
   s.positions.insert(s.positions.end(), vertices.begin(), vertices.end());
   for (const auto& t : triangles) {
     s.triangles.push_back(t + glm::uvec3(base));

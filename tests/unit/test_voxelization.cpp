@@ -16,7 +16,7 @@ Scene one_triangle(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
   s.triangle_material = {0};
   s.triangle_mesh = {0};
   s.materials = {Material{}};
-  s.meshes = {MeshInfo{"t", "", 0, 1, false}};
+  s.meshes = {MeshInfo{"t", "", 0, 1, false, 1.0f}};
   return s;
 }
 
