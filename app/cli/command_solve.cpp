@@ -53,6 +53,7 @@ struct SolveOptions {
   std::string out;
   std::string multiply = "auto";
   int width = 640, height = 480, samples = 1;
+  int camera_gather_rays = 256;  // 0: the nearest patches' light
   bool no_images = false, no_mesh = false;
   bool json = false, quiet = false;
   bool float32 = false;  // the C++ product in float32 instead of the measured choice of loop
@@ -102,6 +103,9 @@ void run_solve(const SolveOptions& opt) {
     throw Error("--size", "width and height must be between 1 and 16384");
   if (opt.samples < 1 || opt.samples > 16)
     throw Error("--samples", "must be between 1 and 16 (n x n rays per pixel)");
+  if (opt.camera_gather_rays < 0 || opt.camera_gather_rays > 65536)
+    throw Error("--camera-gather-rays",
+                "must be between 0 and 65536, got " + std::to_string(opt.camera_gather_rays));
   nlohmann::ordered_json timings;
   auto t = Clock::now();
   // auto multiplies a dense bake (T.npy, no T.dds) with its dense matrix, so
@@ -276,23 +280,32 @@ void run_solve(const SolveOptions& opt) {
     files.push_back("lit.glb");
     timings["mesh_transfer"] = since(t);
   }
+  std::string camera_transfer = "none";
   if (!opt.no_images) {
     t = Clock::now();
-    // The camera adds the direct light itself: gather only the indirect.
-    const PatchGather gather_indirect(bake.patches.patches, indirect, grid, &tracer,
-                                      GatherSettings{});
     CameraImageSettings cs;
     cs.width = opt.width;
     cs.height = opt.height;
     cs.samples_per_side = opt.samples;
-    const CameraImages images = render_camera(tracer, gather_indirect, cs, &console.progress());
+    // Each pixel gathers from the patches it sees (as the bake's vertices
+    // do), when the bake says which triangle its surface lies on; otherwise
+    // the camera blends the nearest patches' T b.
+    std::optional<CameraGather> pixels;
+    if (opt.camera_gather_rays > 0 && camera_gather_possible(bake))
+      pixels.emplace(tracer, bake, cs, opt.camera_gather_rays, &console.progress());
+    camera_transfer = pixels ? "final gather" : "nearest patches";
+    const auto render = [&](const std::vector<glm::vec3>& patch_indirect) {
+      if (pixels) return pixels->images(first_hit, patch_indirect, frame.sample_irradiance());
+      const PatchGather nearest(bake.patches.patches, patch_indirect, grid, &tracer,
+                                GatherSettings{});
+      return render_camera(tracer, nearest, cs, &console.progress());
+    };
+    const CameraImages images = render(indirect);
     write_camera_images(images, out, "camera");
     for (const char* part : {"direct", "indirect", "full"})
       for (const char* ext : {".png", ".exr"}) files.push_back(std::string("camera_") + part + ext);
     if (opt.compare_exact) {
-      const PatchGather exact_gather(bake.patches.patches, exact_indirect, grid, &tracer,
-                                     GatherSettings{});
-      const CameraImages exact = render_camera(tracer, exact_gather, cs, &console.progress());
+      const CameraImages exact = render(exact_indirect);
       write_exr(out / "camera_indirect_error.exr",
                 absolute_difference(images.indirect, exact.indirect));
       write_png(out / "camera_indirect_error.png",
@@ -328,6 +341,7 @@ void run_solve(const SolveOptions& opt) {
       {"patches", n},
       {"multiply", relighter.multiply_name()},
       {"transfer", gather ? "final gather" : "nearest patches"},
+      {"camera_transfer", camera_transfer},
       {"lights", lights},
       {"area_light_triangles", area.size()},
       {"first_hit_power", direct_sum},
@@ -409,6 +423,13 @@ void register_solve(CLI::App& app) {
   cmd->add_option("--width", opt->width, "Camera image width in pixels")->capture_default_str();
   cmd->add_option("--height", opt->height, "Camera image height in pixels")->capture_default_str();
   cmd->add_option("--samples", opt->samples, "n x n camera rays per pixel (anti-aliasing)")
+      ->capture_default_str();
+  cmd->add_option("--camera-gather-rays", opt->camera_gather_rays,
+                  "Rays per camera pixel gathering its indirect light from the patches it "
+                  "sees, as the bake's vertices do (sharp where patches are coarse: the foot of a "
+                  "sunlit pillar, the dark under an arch). 0: blend the nearest patches' light "
+                  "instead (faster, blurred over a voxel; also what bakes made before folders "
+                  "kept their surface triangles get)")
       ->capture_default_str();
   cmd->add_flag("--float32", opt->float32,
                 "Compressed C++ product in float32 (default: bfloat16 products with float32 "

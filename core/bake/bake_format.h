@@ -90,7 +90,12 @@ namespace carried_polygon_column {
 inline constexpr std::size_t kSample = 0;
 inline constexpr std::size_t kFirstVertex = 1;
 inline constexpr std::size_t kVertexCount = 2;
-inline constexpr std::size_t kCount = 3;
+// Without the next two (bakes made before they were written), a reader
+// knows the polygons' shapes but not which triangle each lies on.
+inline constexpr std::size_t kCountWithoutTriangles = 3;
+inline constexpr std::size_t kTriangle = 3;  // the scene triangle it lies on
+inline constexpr std::size_t kBack = 4;      // 1: its back side (two-sided triangles)
+inline constexpr std::size_t kCount = 5;
 }  // namespace carried_polygon_column
 
 // Columns of closure.npy (float32, one row per patch).

@@ -10,6 +10,7 @@
 #include "base/checked_size.h"
 #include "compress/dds.h"
 #include "io/npy.h"
+#include "voxel/voxel_grid.h"
 
 namespace bounce {
 
@@ -34,15 +35,20 @@ void require_shape(const fs::path& file, const std::vector<std::size_t>& shape,
 // The polygons each sample carries (carried_*.npy), when the bake has them
 // (bakes before session 8 do not: their point lights are then evaluated at
 // the samples). Only what the direct light reads comes back: the polygons and
-// their areas, not the triangle parts they came from.
+// their areas and the triangle and side each lies on, not the voxelization's
+// triangle parts they came from.
 void read_carried_polygons(const fs::path& dir, SampleSet& samples) {
   const fs::path pf = dir / bake_file::kCarriedPolygons, af = dir / bake_file::kCarriedArea,
                  vf = dir / bake_file::kCarriedVertices;
   if (!fs::exists(pf) && !fs::exists(af) && !fs::exists(vf)) return;
   const NpyArray<std::uint32_t> p = read_npy_u32(pf);
-  constexpr std::size_t kPolygonColumns = carried_polygon_column::kCount;
-  if (p.shape.size() != 2 || p.shape[1] != kPolygonColumns)
-    throw ReadError(pf.string(), "must have " + std::to_string(kPolygonColumns) + " columns");
+  namespace cc = carried_polygon_column;
+  if (p.shape.size() != 2 || (p.shape[1] != cc::kCount && p.shape[1] != cc::kCountWithoutTriangles))
+    throw ReadError(pf.string(), "must have " + std::to_string(cc::kCount) + " columns (or " +
+                                     std::to_string(cc::kCountWithoutTriangles) +
+                                     ", from older bakes)");
+  const std::size_t columns = p.shape[1];
+  const bool triangles = columns == cc::kCount;
   const std::size_t count = p.shape[0];
   const NpyArray<float> a = read_npy_f32(af);
   require_shape(af, a.shape, {count});
@@ -62,10 +68,12 @@ void read_carried_polygons(const fs::path& dir, SampleSet& samples) {
   samples.carried_first.assign(sample_count + 1, 0);
   std::uint32_t previous = 0;
   for (std::size_t c = 0; c < count; ++c) {
-    const std::uint32_t* row = &p.data[kPolygonColumns * c];
+    const std::uint32_t* row = &p.data[columns * c];
     const std::uint32_t sample = row[carried_polygon_column::kSample],
                         first = row[carried_polygon_column::kFirstVertex],
-                        corners = row[carried_polygon_column::kVertexCount];
+                        corners = row[carried_polygon_column::kVertexCount],
+                        triangle = triangles ? row[cc::kTriangle] : CarriedArea::kUnknownTriangle,
+                        back = triangles ? row[cc::kBack] : 0;
     const std::string polygon = "polygon " + std::to_string(c);
     if (sample >= sample_count || sample < previous)
       throw ReadError(pf.string(), polygon + " names sample " + std::to_string(sample) +
@@ -74,11 +82,18 @@ void read_carried_polygons(const fs::path& dir, SampleSet& samples) {
     if (corners < 3 || first > vertices || corners > vertices - first)
       throw ReadError(pf.string(), polygon + " has vertices " + std::to_string(first) + " + " +
                                        std::to_string(corners) + " of " + std::to_string(vertices));
+    if (back > 1)
+      throw ReadError(pf.string(), polygon + " has side " + std::to_string(back) + " (0 or 1)");
     if (!(a.data[c] >= 0.0f) || !std::isfinite(a.data[c]))
       throw ReadError(af.string(), polygon + " has area " + std::to_string(a.data[c]));
     previous = sample;
-    samples.carried[c] = CarriedArea{
-        std::numeric_limits<std::uint32_t>::max(), false, a.data[c], first, corners, false};
+    samples.carried[c] = CarriedArea{std::numeric_limits<std::uint32_t>::max(),
+                                     back == 1,
+                                     a.data[c],
+                                     first,
+                                     corners,
+                                     false,
+                                     triangle};
     ++samples.carried_first[sample + 1];
   }
   for (std::size_t k = 0; k < sample_count; ++k)
@@ -152,6 +167,7 @@ void read_patches(const fs::path& dir, std::size_t n, LoadedBake& b) {
   }
   std::vector<std::vector<std::uint32_t>> members(n);
   b.samples.samples.reserve(count);
+  b.patch_of_sample.assign(count, -1);
   for (std::size_t k = 0; k < count; ++k) {
     const float* r = &s.data[k * sc::kCount];
     Sample sample{};
@@ -168,12 +184,42 @@ void read_patches(const fs::path& dir, std::size_t n, LoadedBake& b) {
       throw ReadError(sf.string(), "sample " + std::to_string(k) + " names patch " +
                                        std::to_string(patch) + " of " + std::to_string(n));
     members[static_cast<std::size_t>(patch)].push_back(static_cast<std::uint32_t>(k));
+    b.patch_of_sample[k] = static_cast<std::int32_t>(patch);
   }
   b.patches.member_first.push_back(0);
   for (const auto& m : members) {
     b.patches.member_samples.insert(b.patches.member_samples.end(), m.begin(), m.end());
     b.patches.member_first.push_back(static_cast<std::uint32_t>(b.patches.member_samples.size()));
   }
+}
+
+// The cells of voxels.npy, checked against the samples that name them
+// (none when a folder lacks the file: the bake still relights).
+void read_voxel_cells(const fs::path& dir, LoadedBake& b) {
+  namespace vc = voxel_column;
+  const fs::path vf = dir / bake_file::kVoxels;
+  std::error_code ec;
+  if (!fs::exists(vf, ec)) return;
+  const NpyArray<float> v = read_npy_f32(vf);
+  if (v.shape.size() != 2 || v.shape[1] != vc::kCount)
+    throw ReadError(vf.string(), "must have " + std::to_string(vc::kCount) + " columns");
+  const std::size_t count = v.shape[0];
+  b.voxel_cells.resize(count);
+  for (std::size_t k = 0; k < count; ++k)
+    for (int c = 0; c < 3; ++c) {
+      const std::size_t column = vc::kCell + static_cast<std::size_t>(c);
+      const std::uint32_t i = index_column(vf, k, column, v.data[k * vc::kCount + column]);
+      if (i > static_cast<std::uint32_t>(VoxelGrid::kMaxResolution))
+        throw ReadError(vf.string(), "voxel " + std::to_string(k) + " has cell index " +
+                                         std::to_string(i) + ", beyond any grid");
+      b.voxel_cells[k][c] = static_cast<int>(i);
+    }
+  for (std::size_t s = 0; s < b.samples.samples.size(); ++s)
+    if (b.samples.samples[s].voxel >= count)
+      throw ReadError((dir / bake_file::kSamples).string(),
+                      "sample " + std::to_string(s) + " names voxel " +
+                          std::to_string(b.samples.samples[s].voxel) + " of " +
+                          std::to_string(count));
 }
 
 // A one-dimensional array of `expected` elements (any, when nullopt).
@@ -323,6 +369,7 @@ LoadedBake BakeReader::read_checked(const fs::path& dir, Dense dense) {
   if (n == 0) throw ReadError(manifest_path.string(), "counts.patches is 0");
   read_patches(dir, n, b);
   read_carried_polygons(dir, b.samples);
+  read_voxel_cells(dir, b);
   const json& t = b.manifest.at("transport");
   b.channel_of_rgb = t.at("channel_of_rgb").get<std::array<int, 3>>();
   b.stored_channels = static_cast<int>(t.at("channels").size());

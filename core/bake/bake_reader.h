@@ -25,6 +25,12 @@ struct LoadedBake {
   // voxel, triangle): enough to compute direct light on the patches.
   PatchSet patches;
   SampleSet samples;
+  // Each sample's patch, or -1 when its patch was left out.
+  std::vector<std::int32_t> patch_of_sample;
+  // Each occupied voxel's cell (i, j, k) in the bake's grid (voxels.npy):
+  // with the carried polygons' triangles, what SurfacePatchLookup needs to
+  // find the patch at a surface point.
+  std::vector<glm::ivec3> voxel_cells;
   std::array<int, 3> channel_of_rgb{0, 1, 2};
   int stored_channels = 0;
   // The compressed matrix, when the bake stored one.

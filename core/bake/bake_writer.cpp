@@ -73,7 +73,7 @@ std::vector<float> sample_rows(const BakeResult& r) {
 void write_carried_polygons(const fs::path& dir, const SampleSet& samples) {
   std::vector<std::uint32_t> polygons;
   std::vector<float> areas, vertices;
-  polygons.reserve(3 * samples.carried.size());
+  polygons.reserve(carried_polygon_column::kCount * samples.carried.size());
   areas.reserve(samples.carried.size());
   vertices.reserve(3 * samples.carried_vertices.size());
   for (const glm::vec3& v : samples.carried_vertices)
@@ -82,8 +82,8 @@ void write_carried_polygons(const fs::path& dir, const SampleSet& samples) {
     for (std::size_t k = 0; k < samples.samples.size(); ++k)
       for (std::uint32_t c = samples.carried_first[k]; c < samples.carried_first[k + 1]; ++c) {
         const CarriedArea& piece = samples.carried[c];
-        polygons.insert(polygons.end(),
-                        {static_cast<std::uint32_t>(k), piece.first_vertex, piece.vertex_count});
+        polygons.insert(polygons.end(), {static_cast<std::uint32_t>(k), piece.first_vertex,
+                                         piece.vertex_count, piece.triangle, piece.back ? 1u : 0u});
         areas.push_back(piece.area);
       }
   write_npy(dir / bake_file::kCarriedPolygons, std::span<const std::uint32_t>(polygons),
@@ -488,8 +488,8 @@ json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const Bake
                                   "voxel index, patch index (-1 = left out), triangle index");
   write_carried_polygons(dir.path(), r.samples);
   record(bake_file::kCarriedPolygons,
-         "uint32 [polygons x 3]: sample index, first vertex, vertex count of each planar "
-         "polygon of surface a sample stands for, in sample order");
+         "uint32 [polygons x 5]: sample index, first vertex, vertex count, scene triangle and "
+         "side (1: back) of each planar polygon of surface a sample stands for, in sample order");
   record(bake_file::kCarriedArea, "float32 [polygons]: the area each polygon stands for");
   record(bake_file::kCarriedVertices, "float32 [vertices x 3]: the polygons' vertices xyz");
   if (r.closure.closure.size() == n && r.balance.row_scale.size() == n) {

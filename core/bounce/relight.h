@@ -6,7 +6,8 @@
 //   bounce::Relighter relighter(tracer, bake.samples, bake.patches,
 //                               bounce::stored_transport(bake));
 //   relighter.light(scene.lights, bounce::area_lights(scene));
-//   relighter.gather(*bounce::read_final_gather(folder, bake.size(), bake.samples.samples.size()), per_vertex);
+//   relighter.gather(*bounce::read_final_gather(folder, bake.size(), bake.samples.samples.size()),
+//   per_vertex);
 //
 // The product T b is chosen once (RelighterSettings::multiply: dense,
 // compressed in C++ with its block loop measured at load, or compressed on
@@ -15,6 +16,7 @@
 // to the lit mesh's vertices (the gather a bake stores; the mesh from
 // build_transfer_mesh) or to camera pixels (build_final_gather over the
 // hits of render_camera_direct).
+#include "bake/camera_gather.h"
 #include "bake/stored_transport.h"
 #include "raytrace/ray_tracer.h"
 #include "runtime/area_lights.h"

@@ -154,7 +154,8 @@ VoxelSamples sample_voxel(const Scene& scene, const RayTracer& tracer, const Vox
                    const std::vector<glm::vec3>& poly, float area, bool whole) {
     samples[s].area += area;
     carried[s].push_back({part_index, back, area, static_cast<std::uint32_t>(vertices.size()),
-                          static_cast<std::uint32_t>(poly.size()), whole});
+                          static_cast<std::uint32_t>(poly.size()), whole,
+                          vox.parts[part_index].triangle});
     vertices.insert(vertices.end(), poly.begin(), poly.end());
   };
   for (std::uint32_t k = 0; k < voxel.part_count; ++k) {

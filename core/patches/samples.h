@@ -56,6 +56,11 @@ struct CarriedArea {
   std::uint32_t first_vertex;  // into SampleSet::carried_vertices
   std::uint32_t vertex_count;
   bool whole_part;  // a part no ray hit, given whole to this sample
+  // The part's scene triangle: what a bake folder keeps of the part, so that
+  // a bake read back (no voxelization) can still look up surface points.
+  // kUnknownTriangle in bakes made before folders kept it.
+  std::uint32_t triangle;
+  static constexpr std::uint32_t kUnknownTriangle = 0xffffffffu;
 };
 
 struct SampleSet {

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+
+#include "base/error.h"
 
 namespace bounce {
 
@@ -22,6 +25,40 @@ SurfacePatchLookup::SurfacePatchLookup(const Voxelization& vox, const SampleSet&
                           static_cast<std::uint32_t>(s)});
     }
   }
+  sort_entries();
+}
+
+SurfacePatchLookup::SurfacePatchLookup(const VoxelGrid& grid,
+                                       const std::vector<glm::ivec3>& voxel_cells,
+                                       const SampleSet& samples,
+                                       const std::vector<std::int32_t>& patch_of_sample)
+    : grid_(grid), samples_(samples), patch_of_sample_(patch_of_sample) {
+  const glm::ivec3 dims = grid.dims();
+  for (std::size_t s = 0; s < samples.samples.size(); ++s) {
+    if (s >= patch_of_sample.size() || patch_of_sample[s] < 0) continue;
+    const std::uint32_t v = samples.samples[s].voxel;
+    if (v >= voxel_cells.size())
+      throw Error("surface lookup", "sample " + std::to_string(s) + " names voxel " +
+                                        std::to_string(v) + " of " +
+                                        std::to_string(voxel_cells.size()));
+    const glm::ivec3 c = voxel_cells[v];
+    if (c.x < 0 || c.y < 0 || c.z < 0 || c.x >= dims.x || c.y >= dims.y || c.z >= dims.z)
+      throw Error("surface lookup", "voxel " + std::to_string(v) + " lies outside the grid");
+    const std::uint64_t cell = grid.linear_index(c);
+    for (std::uint32_t k = samples.carried_first[s]; k < samples.carried_first[s + 1]; ++k) {
+      const CarriedArea& piece = samples.carried[k];
+      if (piece.triangle == CarriedArea::kUnknownTriangle)
+        throw Error("surface lookup",
+                    "the bake does not say which triangle its surface pieces "
+                    "lie on (made by an older bounce): bake it again");
+      entries_.push_back(
+          {2ull * piece.triangle + (piece.back ? 1 : 0), cell, static_cast<std::uint32_t>(s)});
+    }
+  }
+  sort_entries();
+}
+
+void SurfacePatchLookup::sort_entries() {
   std::sort(entries_.begin(), entries_.end());
   entries_.erase(std::unique(entries_.begin(), entries_.end(),
                              [](const Entry& a, const Entry& b) {

@@ -25,6 +25,14 @@ class SurfacePatchLookup {
   // `patch_of_sample[s]`: the patch sample s belongs to, or -1 (left out).
   SurfacePatchLookup(const Voxelization& vox, const SampleSet& samples,
                      const std::vector<std::int32_t>& patch_of_sample);
+  // The same from a bake read back, which keeps no voxelization: each carried
+  // polygon's triangle and side (CarriedArea::triangle, back) and the cell of
+  // its sample's voxel (`voxel_cells`, by Sample::voxel), since a sample
+  // carries parts of its own voxel only. Throws bounce::Error when a polygon's
+  // triangle is unknown (a bake made before folders kept it) or a sample names
+  // a voxel `voxel_cells` does not have.
+  SurfacePatchLookup(const VoxelGrid& grid, const std::vector<glm::ivec3>& voxel_cells,
+                     const SampleSet& samples, const std::vector<std::int32_t>& patch_of_sample);
 
   // The patch standing for point x on side `back` of triangle `triangle`, or
   // -1. A point on a cell face may round into the neighbouring cell: the
@@ -49,6 +57,8 @@ class SurfacePatchLookup {
       return side != o.side ? side < o.side : (cell != o.cell ? cell < o.cell : sample < o.sample);
     }
   };
+  void sort_entries();
+
   const VoxelGrid& grid_;
   const SampleSet& samples_;
   const std::vector<std::int32_t>& patch_of_sample_;

@@ -32,6 +32,25 @@ VoxelGrid::VoxelGrid(const Bounds& scene_bounds, int resolution) : resolution_(r
   bounds_.hi = center + 0.5f * size;
 }
 
+VoxelGrid VoxelGrid::restore(const glm::vec3& origin, float cell_size, const glm::ivec3& dims) {
+  if (!(cell_size > 0.0f) || !std::isfinite(cell_size) || !std::isfinite(origin.x) ||
+      !std::isfinite(origin.y) || !std::isfinite(origin.z))
+    throw SettingsError("voxel grid",
+                        "the grid's origin and cell size must be finite, the cell "
+                        "size positive");
+  for (int a = 0; a < 3; ++a)
+    if (dims[a] < 1 || dims[a] > kMaxResolution)
+      throw SettingsError("voxel grid", "the grid's cell counts must be between 1 and " +
+                                            std::to_string(kMaxResolution));
+  VoxelGrid g;
+  g.cell_ = cell_size;
+  g.dims_ = dims;
+  g.resolution_ = std::max({dims.x, dims.y, dims.z});
+  g.bounds_.lo = origin;
+  g.bounds_.hi = origin + glm::vec3(dims) * cell_size;
+  return g;
+}
+
 glm::ivec3 VoxelGrid::coord_of(std::uint64_t linear) const {
   const auto dx = static_cast<std::uint64_t>(dims_.x), dy = static_cast<std::uint64_t>(dims_.y);
   return {static_cast<int>(linear % dx), static_cast<int>((linear / dx) % dy),

@@ -23,6 +23,10 @@ class VoxelGrid {
   VoxelGrid() = default;
   // `resolution` = number of cells along the longest axis of the bounds.
   VoxelGrid(const Bounds& scene_bounds, int resolution);
+  // The grid a bake recorded (its minimum corner, cell size and cell counts),
+  // the same cells to the bit. Throws SettingsError for a non-positive or
+  // non-finite cell size, or counts outside [1, kMaxResolution].
+  static VoxelGrid restore(const glm::vec3& origin, float cell_size, const glm::ivec3& dims);
 
   const Bounds& bounds() const { return bounds_; }
   glm::ivec3 dims() const { return dims_; }

@@ -82,7 +82,7 @@ TEST_F(CarriedPolygons, PolygonNamingAMissingSampleIsOneErrorNamingTheFile) {
   const auto polygons = read_npy_u32(out / "carried_polygons.npy");
   const auto samples = read_npy_f32(out / "samples.npy").shape[0];
   std::vector<std::uint32_t> bad = polygons.data;
-  bad[3 * (polygons.shape[0] - 1)] = static_cast<std::uint32_t>(samples);
+  bad[polygons.shape[1] * (polygons.shape[0] - 1)] = static_cast<std::uint32_t>(samples);
   write_npy(out / "carried_polygons.npy", std::span<const std::uint32_t>(bad), polygons.shape);
   try {
     BakeReader::read(out);
@@ -99,6 +99,33 @@ TEST_F(CarriedPolygons, PolygonWithTooFewVerticesIsRejected) {
   bad[2] = 2;  // polygon 0: two corners
   write_npy(out / "carried_polygons.npy", std::span<const std::uint32_t>(bad), polygons.shape);
   EXPECT_THROW(BakeReader::read(out), BakeReader::ReadError);
+}
+
+TEST_F(CarriedPolygons, PolygonsNameTheirTriangleAndSide) {
+  // Each polygon lies in the plane of the triangle it names (its corners
+  // within rounding of that plane), on a side the triangle has.
+  const auto polygons = read_npy_u32(out / "carried_polygons.npy");
+  ASSERT_EQ(polygons.shape[1], 5u);
+  const auto vertices = read_npy_f32(out / "carried_vertices.npy");
+  Diagnostics d;
+  const Scene loaded = SceneLoader(d).load(scene("cornell-box"));
+  const float size = glm::length(loaded.bounds().hi - loaded.bounds().lo);
+  std::size_t back = 0;
+  for (std::size_t r = 0; r < polygons.shape[0]; ++r) {
+    const std::uint32_t* row = &polygons.data[5 * r];
+    const std::uint32_t t = row[3];
+    ASSERT_LT(t, loaded.triangle_count()) << "polygon " << r;
+    ASSERT_LE(row[4], 1u) << "polygon " << r;
+    back += row[4];
+    const glm::vec3 n = glm::normalize(loaded.triangle_cross(t)), a = loaded.vertex(t, 0);
+    for (std::uint32_t k = 0; k < row[2]; ++k) {
+      const float* v = &vertices.data[3 * (row[1] + k)];
+      ASSERT_LT(std::abs(glm::dot(glm::vec3(v[0], v[1], v[2]) - a, n)), 1e-5f * size)
+          << "polygon " << r << " corner " << k << " is off triangle " << t;
+    }
+  }
+  // The Cornell box's triangles are one-sided: no back side is carried.
+  EXPECT_EQ(back, 0u);
 }
 
 }  // namespace

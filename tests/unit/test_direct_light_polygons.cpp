@@ -228,8 +228,8 @@ TEST(DirectLightPolygons, PolygonFramesMatchTheirGeometry) {
   set.carried_vertices = l_shape;
   set.carried_vertices.push_back({5, 5, 5});
   set.carried_vertices.push_back({6, 5, 5});
-  set.carried.push_back(CarriedArea{0, false, 3.0f, 0, 6, false});
-  set.carried.push_back(CarriedArea{0, false, 0.0f, 6, 2, false});
+  set.carried.push_back(CarriedArea{0, false, 3.0f, 0, 6, false, 0});
+  set.carried.push_back(CarriedArea{0, false, 0.0f, 6, 2, false, 0});
   set.carried_first = {0, 2};
   const std::vector<CarriedPolygonFrame> frames = carried_polygon_frames(set);
   ASSERT_EQ(frames.size(), 2u);
