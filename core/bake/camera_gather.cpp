@@ -66,13 +66,11 @@ CameraGather::CameraGather(const RayTracer& tracer, const LoadedBake& bake,
   cell_size_ = grid.cell_size();
   const std::size_t pixel_count =
       static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+  // render_camera_direct gives the hits in pixel order: each pixel's are a
+  // contiguous run.
   pixel_first_.assign(pixel_count + 1, 0);
   for (const CameraHit& h : hits_) ++pixel_first_[h.pixel + 1];
   for (std::size_t p = 0; p < pixel_count; ++p) pixel_first_[p + 1] += pixel_first_[p];
-  pixel_hits_.resize(hits_.size());
-  std::vector<std::uint32_t> at(pixel_first_.begin(), pixel_first_.end() - 1);
-  for (std::size_t i = 0; i < hits_.size(); ++i)
-    pixel_hits_[at[hits_[i].pixel]++] = static_cast<std::uint32_t>(i);
 }
 
 std::vector<glm::vec3> CameraGather::filtered(const std::vector<glm::vec3>& irradiance) const {
@@ -97,12 +95,12 @@ std::vector<glm::vec3> CameraGather::filtered(const std::vector<glm::vec3>& irra
         const std::size_t q = static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
                               static_cast<std::size_t>(x);
         for (std::uint32_t k = pixel_first_[q]; k < pixel_first_[q + 1]; ++k) {
-          const CameraHit& g = hits_[pixel_hits_[k]];
+          const CameraHit& g = hits_[k];
           const float agree = glm::dot(h.normal, g.normal);
           if (agree < 0.9f) continue;
           const glm::vec3 d = g.position - h.position;
           const float w = std::exp(-glm::dot(d, d) * inv_two_sigma2) * agree * agree * agree;
-          sum += w * irradiance[pixel_hits_[k]];
+          sum += w * irradiance[k];
           total += w;
         }
       }

@@ -72,8 +72,8 @@ class CameraGather {
   int width_ = 0, height_ = 0;
   float cell_size_ = 1.0f;
   int filter_radius_ = 3;
-  // Hits of pixel p: pixel_hits_[pixel_first_[p] .. pixel_first_[p + 1]).
-  std::vector<std::uint32_t> pixel_first_, pixel_hits_;
+  // Hits of pixel p: hits_[pixel_first_[p] .. pixel_first_[p + 1]).
+  std::vector<std::uint32_t> pixel_first_;
 
   std::vector<glm::vec3> filtered(const std::vector<glm::vec3>& irradiance) const;
 };

@@ -12,20 +12,10 @@ namespace bounce {
 SurfacePatchLookup::SurfacePatchLookup(const Voxelization& vox, const SampleSet& samples,
                                        const std::vector<std::int32_t>& patch_of_sample)
     : grid_(vox.grid), samples_(samples), patch_of_sample_(patch_of_sample) {
-  std::vector<std::uint32_t> voxel_of_part(vox.parts.size(), 0);
-  for (std::size_t v = 0; v < vox.voxels.size(); ++v)
-    for (std::uint32_t k = 0; k < vox.voxels[v].part_count; ++k)
-      voxel_of_part[vox.voxels[v].first_part + k] = static_cast<std::uint32_t>(v);
-  for (std::size_t s = 0; s < samples.samples.size(); ++s) {
-    if (s >= patch_of_sample.size() || patch_of_sample[s] < 0) continue;
-    for (std::uint32_t c = samples.carried_first[s]; c < samples.carried_first[s + 1]; ++c) {
-      const CarriedArea& piece = samples.carried[c];
-      entries_.push_back({2ull * vox.parts[piece.part].triangle + (piece.back ? 1 : 0),
-                          vox.voxels[voxel_of_part[piece.part]].cell,
-                          static_cast<std::uint32_t>(s)});
-    }
-  }
-  sort_entries();
+  std::vector<std::uint64_t> cell_of_voxel;
+  cell_of_voxel.reserve(vox.voxels.size());
+  for (const auto& v : vox.voxels) cell_of_voxel.push_back(v.cell);
+  add_entries(cell_of_voxel);
 }
 
 SurfacePatchLookup::SurfacePatchLookup(const VoxelGrid& grid,
@@ -34,31 +24,37 @@ SurfacePatchLookup::SurfacePatchLookup(const VoxelGrid& grid,
                                        const std::vector<std::int32_t>& patch_of_sample)
     : grid_(grid), samples_(samples), patch_of_sample_(patch_of_sample) {
   const glm::ivec3 dims = grid.dims();
-  for (std::size_t s = 0; s < samples.samples.size(); ++s) {
-    if (s >= patch_of_sample.size() || patch_of_sample[s] < 0) continue;
-    const std::uint32_t v = samples.samples[s].voxel;
-    if (v >= voxel_cells.size())
-      throw Error("surface lookup", "sample " + std::to_string(s) + " names voxel " +
-                                        std::to_string(v) + " of " +
-                                        std::to_string(voxel_cells.size()));
+  std::vector<std::uint64_t> cell_of_voxel;
+  cell_of_voxel.reserve(voxel_cells.size());
+  for (std::size_t v = 0; v < voxel_cells.size(); ++v) {
     const glm::ivec3 c = voxel_cells[v];
     if (c.x < 0 || c.y < 0 || c.z < 0 || c.x >= dims.x || c.y >= dims.y || c.z >= dims.z)
       throw Error("surface lookup", "voxel " + std::to_string(v) + " lies outside the grid");
-    const std::uint64_t cell = grid.linear_index(c);
-    for (std::uint32_t k = samples.carried_first[s]; k < samples.carried_first[s + 1]; ++k) {
-      const CarriedArea& piece = samples.carried[k];
+    cell_of_voxel.push_back(grid.linear_index(c));
+  }
+  add_entries(cell_of_voxel);
+}
+
+// A sample carries parts of its own voxel only, so each piece's cell is its
+// sample's voxel's; the piece names its triangle and side.
+void SurfacePatchLookup::add_entries(const std::vector<std::uint64_t>& cell_of_voxel) {
+  for (std::size_t s = 0; s < samples_.samples.size(); ++s) {
+    if (s >= patch_of_sample_.size() || patch_of_sample_[s] < 0) continue;
+    const std::uint32_t v = samples_.samples[s].voxel;
+    if (v >= cell_of_voxel.size())
+      throw Error("surface lookup", "sample " + std::to_string(s) + " names voxel " +
+                                        std::to_string(v) + " of " +
+                                        std::to_string(cell_of_voxel.size()));
+    for (std::uint32_t k = samples_.carried_first[s]; k < samples_.carried_first[s + 1]; ++k) {
+      const CarriedArea& piece = samples_.carried[k];
       if (piece.triangle == CarriedArea::kUnknownTriangle)
         throw Error("surface lookup",
                     "the bake does not say which triangle its surface pieces "
                     "lie on (made by an older bounce): bake it again");
-      entries_.push_back(
-          {2ull * piece.triangle + (piece.back ? 1 : 0), cell, static_cast<std::uint32_t>(s)});
+      entries_.push_back({2ull * piece.triangle + (piece.back ? 1 : 0), cell_of_voxel[v],
+                          static_cast<std::uint32_t>(s)});
     }
   }
-  sort_entries();
-}
-
-void SurfacePatchLookup::sort_entries() {
   std::sort(entries_.begin(), entries_.end());
   entries_.erase(std::unique(entries_.begin(), entries_.end(),
                              [](const Entry& a, const Entry& b) {

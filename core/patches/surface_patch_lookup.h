@@ -57,7 +57,9 @@ class SurfacePatchLookup {
       return side != o.side ? side < o.side : (cell != o.cell ? cell < o.cell : sample < o.sample);
     }
   };
-  void sort_entries();
+  // Fills and sorts entries_ from the samples' carried pieces; the cell of
+  // voxel v (Sample::voxel) is cell_of_voxel[v].
+  void add_entries(const std::vector<std::uint64_t>& cell_of_voxel);
 
   const VoxelGrid& grid_;
   const SampleSet& samples_;
