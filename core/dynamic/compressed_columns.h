@@ -30,7 +30,7 @@ struct KeptColumns {
   int width = 3;                   // values per entry: R, G, B, or 1 for all
   std::vector<std::uint32_t> ptr;  // padded + 1 offsets
   std::vector<std::uint32_t> row;  // stored row per entry
-  std::vector<float> value;        // width per entry
+  std::vector<float> value;        // width per entry, then one trailing 0
   std::size_t bytes() const {
     return (ptr.size() + row.size()) * sizeof(std::uint32_t) + value.size() * sizeof(float);
   }
@@ -45,16 +45,16 @@ std::vector<std::uint8_t> blocks_by_column(const CompressedTransportTables& t);
 
 // y[i][k] = sum over stored columns q of the block columns in `block_columns`
 // (ascending, each once) of B_iq x[q][k], for every stored row i (padded
-// rows), B the matrix the blocks decode to (without the kept entries). x: 4
-// floats per stored column (R, G, B, unused), padded columns; columns
-// outside `block_columns` are not read.
+// rows; y[i][3] = 0), B the matrix the blocks decode to (without the kept
+// entries). x: 4 floats per stored column (R, G, B, unused), padded
+// columns; columns outside `block_columns` are not read.
 // `column_blocks`: blocks_by_column(t) (the palettes come from t).
 void multiply_block_columns(const CompressedTransportTables& t, const std::uint8_t* column_blocks,
                             const float* x, std::span<const std::uint32_t> block_columns,
-                            float (*y)[3]);
+                            float (*y)[4]);
 // Adds the kept entries' corrections of those block columns: after both,
 // y = T~ restricted to the block columns, times x. Returns the entries added.
 std::size_t add_kept_columns(const KeptColumns& kept, const float* x,
-                             std::span<const std::uint32_t> block_columns, float (*y)[3]);
+                             std::span<const std::uint32_t> block_columns, float (*y)[4]);
 
 }  // namespace bounce

@@ -38,7 +38,7 @@ LightTemporalRadiosity::LightTemporalRadiosity(const CompressedTransportTables& 
   scaled_.assign(4 * padded, 0.0f);
   previous_.assign(4 * padded, 0.0f);
   mass_.assign(tables_.block_rows, 0.0);
-  y_stored_.assign(3 * padded, 0.0f);
+  y_stored_.assign(4 * padded, 0.0f);
   offset0_ = unit_double(hash32(settings_.seed ^ 0x5bd1e995u));
 }
 
@@ -48,18 +48,21 @@ void LightTemporalRadiosity::estimate(std::span<const glm::vec3> b, std::uint32_
     throw Error("light temporal radiosity", "the output has " + std::to_string(out.size()) +
                                                 " entries for " + std::to_string(tables_.n) +
                                                 " patches");
-  estimate_stored(b, frame);
-  const float(*y)[3] = reinterpret_cast<const float(*)[3]>(y_stored_.data());
+  estimate_stored(b, frame, false);
+  const float(*y)[4] = reinterpret_cast<const float(*)[4]>(y_stored_.data());
   for (std::size_t i = 0; i < tables_.n; ++i)
     out[tables_.permutation[i]] = glm::vec3(y[i][0], y[i][1], y[i][2]);
 }
 
-void LightTemporalRadiosity::estimate_stored(std::span<const glm::vec3> b, std::uint32_t frame) {
+void LightTemporalRadiosity::estimate_stored(std::span<const glm::vec3> b, std::uint32_t frame,
+                                             bool measure_change) {
   if (b.size() != tables_.n)
     throw Error("light temporal radiosity", "b has " + std::to_string(b.size()) + " entries for " +
                                                 std::to_string(tables_.n) + " patches");
-  // One pass: b into stored order and the mass of each block column.
+  // One pass: b into stored order, the mass of each block column and, when
+  // asked, the change against the previous step's b (same weights).
   std::fill(mass_.begin(), mass_.end(), 0.0);
+  double change = 0.0;
   for (std::size_t i = 0; i < tables_.n; ++i) {
     const glm::vec3& v = b[tables_.permutation[i]];
     float* stored = &b_stored_[4 * i];
@@ -69,6 +72,18 @@ void LightTemporalRadiosity::estimate_stored(std::span<const glm::vec3> b, std::
     const float* c = &column_sums_[3 * i];
     mass_[i / 4] +=
         static_cast<double>(c[0] * std::abs(v.x) + c[1] * std::abs(v.y) + c[2] * std::abs(v.z));
+    if (measure_change) {
+      const float* p = &previous_[4 * i];
+      change += static_cast<double>(c[0] * std::abs(v.x - p[0]) + c[1] * std::abs(v.y - p[1]) +
+                                    c[2] * std::abs(v.z - p[2]));
+    }
+  }
+  if (measure_change) {
+    double total = 0.0;
+    for (const double m : mass_) total += m;
+    last_change_ = total > 0.0    ? change / total
+                   : change > 0.0 ? std::numeric_limits<double>::infinity()
+                                  : 0.0;
   }
   const double u = settings_.stratify_frames
                        ? std::fmod(offset0_ + kGolden * static_cast<double>(frame), 1.0)
@@ -81,23 +96,11 @@ void LightTemporalRadiosity::estimate_stored(std::span<const glm::vec3> b, std::
     const auto scale = static_cast<float>(draw_.scale[d]);
     for (std::size_t i = 4 * q0; i < 4 * q0 + 16; ++i) scaled_[i] = b_stored_[i] * scale;
   }
-  float(*y)[3] = reinterpret_cast<float(*)[3]>(y_stored_.data());
+  float(*y)[4] = reinterpret_cast<float(*)[4]>(y_stored_.data());
   multiply_block_columns(tables_, column_blocks_.data(), scaled_.data(), draw_.items, y);
   last_kept_ = add_kept_columns(kept_, scaled_.data(), draw_.items, y);
   for (std::uint32_t J : draw_.items)
     std::fill_n(scaled_.begin() + 16 * static_cast<std::ptrdiff_t>(J), 16, 0.0f);
-}
-
-double LightTemporalRadiosity::stored_change() const {
-  double change = 0.0, total = 0.0;
-  for (std::size_t i = 0; i < tables_.n; ++i)
-    for (std::size_t k = 0; k < 3; ++k) {
-      const double c = column_sums_[3 * i + k];
-      change += c * std::abs(static_cast<double>(b_stored_[4 * i + k]) - previous_[4 * i + k]);
-      total += c * std::abs(b_stored_[4 * i + k]);
-    }
-  if (total > 0.0) return change / total;
-  return change > 0.0 ? std::numeric_limits<double>::infinity() : 0.0;
 }
 
 double LightTemporalRadiosity::light_change(std::span<const glm::vec3> b) const {
@@ -124,12 +127,12 @@ void LightTemporalRadiosity::step(std::span<const glm::vec3> b, std::span<glm::v
     throw Error("light temporal radiosity", "the history has " + std::to_string(history.size()) +
                                                 " entries for " + std::to_string(tables_.n) +
                                                 " patches");
-  estimate_stored(b, frame_);
-  last_change_ = has_previous_ ? stored_change() : 0.0;
+  estimate_stored(b, frame_, has_previous_);
+  if (!has_previous_) last_change_ = 0.0;
   history_frames_ =
       history_frames_after_change(history_frames_, last_change_, settings_.history.change_scale);
   const float w = history_weight(history_frames_);
-  const float(*y)[3] = reinterpret_cast<const float(*)[3]>(y_stored_.data());
+  const float(*y)[4] = reinterpret_cast<const float(*)[4]>(y_stored_.data());
   for (std::size_t i = 0; i < tables_.n; ++i) {
     glm::vec3& h = history[tables_.permutation[i]];
     h = w * h + (1.0f - w) * glm::vec3(y[i][0], y[i][1], y[i][2]);

@@ -100,7 +100,7 @@ class LightTemporalRadiosity {
   std::vector<float> scaled_;       // b_stored_ of the drawn block columns, scaled
   std::vector<float> previous_;     // b_stored_ of the previous step
   std::vector<double> mass_;        // per block column
-  std::vector<float> y_stored_;     // 3 per stored row
+  std::vector<float> y_stored_;     // 4 per stored row (R, G, B, 0)
   SystematicDraw draw_;
   std::size_t last_kept_ = 0;
   bool has_previous_ = false;
@@ -110,10 +110,9 @@ class LightTemporalRadiosity {
   std::uint32_t frame_ = 0;
   double offset0_ = 0.0;
 
-  // The estimate into y_stored_ (stored order), b left in b_stored_.
-  void estimate_stored(std::span<const glm::vec3> b, std::uint32_t frame);
-  // The change between b_stored_ and previous_.
-  double stored_change() const;
+  // The estimate into y_stored_ (stored order), b left in b_stored_; with
+  // `measure_change`, last_change_ = the change of b against previous_.
+  void estimate_stored(std::span<const glm::vec3> b, std::uint32_t frame, bool measure_change);
 };
 
 }  // namespace bounce

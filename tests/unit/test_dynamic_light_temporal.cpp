@@ -148,30 +148,30 @@ TEST(CompressedColumns, ProductAndColumnSumsMatchTheDecompressedMatrix) {
     for (int k = 0; k < 3; ++k) x[4 * i + static_cast<std::size_t>(k)] = b[t.permutation[i]][k];
   std::vector<std::uint32_t> all(t.block_rows);
   std::iota(all.begin(), all.end(), 0u);
-  std::vector<float> y(3 * t.padded);
+  std::vector<float> y(4 * t.padded);
   const KeptColumns kept = kept_by_column(t);
   const std::vector<std::uint8_t> blocks = blocks_by_column(t);
   EXPECT_EQ(kept.row.size(), t.corrections());
-  multiply_block_columns(t, blocks.data(), x.data(), all, reinterpret_cast<float(*)[3]>(y.data()));
-  EXPECT_EQ(add_kept_columns(kept, x.data(), all, reinterpret_cast<float(*)[3]>(y.data())),
+  multiply_block_columns(t, blocks.data(), x.data(), all, reinterpret_cast<float(*)[4]>(y.data()));
+  EXPECT_EQ(add_kept_columns(kept, x.data(), all, reinterpret_cast<float(*)[4]>(y.data())),
             t.corrections());
   const std::vector<glm::dvec3> ref = product(c, b);
   const double scale = l1(ref) / static_cast<double>(n);
   for (std::size_t i = 0; i < n; ++i)
     for (int k = 0; k < 3; ++k)
-      EXPECT_NEAR(y[3 * i + static_cast<std::size_t>(k)], ref[t.permutation[i]][k], 1e-5 * scale);
+      EXPECT_NEAR(y[4 * i + static_cast<std::size_t>(k)], ref[t.permutation[i]][k], 1e-5 * scale);
   // Two block columns only: the product of b restricted to their patches.
   const std::vector<std::uint32_t> some{1, 7};
   std::vector<glm::vec3> restricted(n, glm::vec3(0.0f));
   for (std::uint32_t J : some)
     for (std::size_t i = 4 * J; i < 4 * J + 4 && i < n; ++i)
       restricted[t.permutation[i]] = b[t.permutation[i]];
-  multiply_block_columns(t, blocks.data(), x.data(), some, reinterpret_cast<float(*)[3]>(y.data()));
-  add_kept_columns(kept, x.data(), some, reinterpret_cast<float(*)[3]>(y.data()));
+  multiply_block_columns(t, blocks.data(), x.data(), some, reinterpret_cast<float(*)[4]>(y.data()));
+  add_kept_columns(kept, x.data(), some, reinterpret_cast<float(*)[4]>(y.data()));
   const std::vector<glm::dvec3> part = product(c, restricted);
   for (std::size_t i = 0; i < n; ++i)
     for (int k = 0; k < 3; ++k)
-      EXPECT_NEAR(y[3 * i + static_cast<std::size_t>(k)], part[t.permutation[i]][k], 1e-5 * scale);
+      EXPECT_NEAR(y[4 * i + static_cast<std::size_t>(k)], part[t.permutation[i]][k], 1e-5 * scale);
   // Column sums of |T~|.
   const std::vector<float> sums = compressed_column_abs_sums(t);
   for (std::size_t j = 0; j < n; ++j)
