@@ -155,12 +155,14 @@ TEST(AlphaMasks, ReferenceSeesTheSunThroughTheHolesOnly) {
 
 TEST(AlphaMasks, CameraRaysPassTheHoles) {
   Scene s = floor_under_quad(checker_mask(kTexels), true, 2.0f);
-  // Straight above the middle; the quad (2 x 2 at y = 0.5, 2.5 below the
-  // camera) fills the view: tan(fov / 2) = 1 / 2.5.
-  s.camera.position = glm::vec3(1.0f, 3.0f, 1.0f);
+  // Straight above the middle; the quad (2 x 2 at y = 0.5, 9.5 below the
+  // camera) fills the view: tan(fov / 2) = 1 / 9.5. A ray through a hole
+  // meets the floor 10 / 9.5 times as far from the middle, still on it for
+  // the squares' centres.
+  s.camera.position = glm::vec3(1.0f, 10.0f, 1.0f);
   s.camera.target = glm::vec3(1.0f, 0.0f, 1.0f);
   s.camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
-  s.camera.fov_y_deg = static_cast<float>(2.0 * std::atan(0.4) * 180.0 / std::numbers::pi);
+  s.camera.fov_y_deg = static_cast<float>(2.0 * std::atan(1.0 / 9.5) * 180.0 / std::numbers::pi);
   const RayTracer tracer(s);
   CameraImageSettings settings;
   settings.width = settings.height = 64;
@@ -382,7 +384,7 @@ std::string base64(const std::string& in) {
 class GltfMask : public AlphaMaskFile {
  protected:
   Scene load_gltf_quad(const std::string& image, const std::string& material,
-                       const std::string& factor = "[1, 1, 1, 1]") {
+                       const std::string& factor = "[0.5, 0.5, 0.5, 1]") {
     std::string buffer;
     const auto put = [&](const auto& value) {
       buffer.append(reinterpret_cast<const char*>(&value), sizeof(value));
@@ -419,11 +421,11 @@ TEST_F(GltfMask, MaskModeCutsWhereTheBaseColoursAlphaIsBelowTheCutoff) {
   ASSERT_NE(m.alpha_mask, nullptr);
   EXPECT_EQ(m.alpha_cutoff, 0.25f);
   EXPECT_NE(m.texture, nullptr);
-  // Texel (0, 0) (top left of the image, v = 1 in texture space: the quad's
-  // corner y = 0 as glTF's v runs down) is solid, texel (2, 0) cut.
+  // Texel (0, 0), the top left of the image (glTF texture coordinates
+  // (0, 0): the quad's corner x = 0, y = 1), is solid, texel (2, 0) cut.
   const RayTracer tracer(s);
-  EXPECT_TRUE(tracer.intersect({0.5f / 8, 0.5f / 8, 1.0f}, {0, 0, -1}).hit);
-  EXPECT_FALSE(tracer.intersect({2.5f / 8, 0.5f / 8, 1.0f}, {0, 0, -1}).hit);
+  EXPECT_TRUE(tracer.intersect({0.5f / 8, 1 - 0.5f / 8, 1.0f}, {0, 0, -1}).hit);
+  EXPECT_FALSE(tracer.intersect({2.5f / 8, 1 - 0.5f / 8, 1.0f}, {0, 0, -1}).hit);
 }
 
 TEST_F(GltfMask, OpaqueAndBlendAreWhole) {
@@ -442,10 +444,10 @@ TEST_F(GltfMask, CutoffOutsideZeroToOneWarnsNamingTheFile) {
 
 TEST_F(GltfMask, FactorBelowTheCutoffCutsEverything) {
   fs::copy_file(kFloorScene / "fence-mask.png", dir / "mask.png");
-  const Scene s = load_gltf_quad("mask.png", R"(, "alphaMode": "MASK")", "[1, 1, 1, 0.3]");
+  const Scene s = load_gltf_quad("mask.png", R"(, "alphaMode": "MASK")", "[0.5, 0.5, 0.5, 0.3]");
   EXPECT_TRUE(diagnostics.warnings().empty()) << warnings_of(diagnostics);
   const RayTracer tracer(s);
-  EXPECT_FALSE(tracer.intersect({0.5f / 8, 0.5f / 8, 1.0f}, {0, 0, -1}).hit);
+  EXPECT_FALSE(tracer.intersect({0.5f / 8, 1 - 0.5f / 8, 1.0f}, {0, 0, -1}).hit);
 }
 
 }  // namespace
