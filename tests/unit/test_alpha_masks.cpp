@@ -251,6 +251,15 @@ TEST(AlphaMasks, FullyCutQuadSamplesAsIfItWereNotThere) {
     EXPECT_EQ(a.samples[k].area, b.samples[k].area) << k;
     EXPECT_EQ(a.samples[k].triangle, b.samples[k].triangle) << k;
   }
+  // Rays: nothing between the floor and the ceiling, as without the quad.
+  for (int i = 0; i < 16; ++i)
+    for (int j = 0; j < 16; ++j) {
+      const glm::vec3 p((static_cast<float>(i) + 0.5f) / 16, 0.0f,
+                        (static_cast<float>(j) + 0.5f) / 16);
+      EXPECT_FALSE(tw.occluded(p, glm::vec3(0, 1, 0), 1e-4f, 0.9f)) << i << "," << j;
+      const Hit h = tw.intersect(p + glm::vec3(0, 0.9f, 0), glm::vec3(0, -1, 0));
+      EXPECT_EQ(with.material_of(h.triangle).name, "floor") << i << "," << j;
+    }
   EXPECT_NEAR(a.cut_away_area, 1.0, 1e-5);
   EXPECT_EQ(b.cut_away_area, 0.0);
   EXPECT_EQ(a.sampled_area, b.sampled_area);
