@@ -21,6 +21,7 @@ float value(const AlphaMask& m, int x, int y) {
 }  // namespace
 
 float AlphaMask::lookup(glm::vec2 uv) const {
+  if (is_constant()) return values.front();
   // Texel centres at half-integers, as Texture::lookup.
   const float x = uv.x * static_cast<float>(width) - 0.5f;
   const float y = (1.0f - uv.y) * static_cast<float>(height) - 0.5f;

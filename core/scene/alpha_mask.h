@@ -22,7 +22,8 @@ struct AlphaMask {
   std::vector<float> values;  // row-major, row 0 at the top of the image
 
   // Bilinear lookup with wrapping; 1 (solid) where uv is not finite, so
-  // that a triangle without texture coordinates stays whole.
+  // that a triangle without texture coordinates stays whole (a mask of one
+  // texel answers its value everywhere).
   float lookup(glm::vec2 uv) const;
   // The fraction of a triangle of texture space where lookup() * factor >=
   // cutoff, from a regular lattice of 16 to 256 lookups (one per
@@ -30,6 +31,8 @@ struct AlphaMask {
   float solid_fraction(const std::array<glm::vec2, 3>& uv, float factor, float cutoff) const;
   // A mask of one texel: a constant coverage (glTF alpha without a texture).
   static std::shared_ptr<const AlphaMask> constant(float value);
+  // One texel: the same everywhere, so it needs no texture coordinates.
+  bool is_constant() const { return width == 1 && height == 1; }
 };
 
 // Which channel holds the coverage.

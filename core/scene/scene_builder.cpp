@@ -312,7 +312,8 @@ void SceneBuilder::build(Scene& scene) {
       info.first_triangle = static_cast<std::uint32_t>(scene.triangles.size());
 
       const bool has_uvs = piece.uvs.size() == piece.positions.size();
-      if ((resolved[piece_use[e][p]].texture || resolved[piece_use[e][p]].alpha_mask) && !has_uvs)
+      const Material& mat = resolved[piece_use[e][p]];
+      if ((mat.texture || (mat.alpha_mask && !mat.alpha_mask->is_constant())) && !has_uvs)
         no_uvs.add(piece.name, piece.triangles.size(), "");
       std::vector<std::uint32_t> remap(piece.positions.size(), kUnmapped);
       std::size_t skipped = 0, duplicates = 0;

@@ -388,8 +388,9 @@ std::string base64(const std::string& in) {
 }
 
 // A unit quad in z = 0 facing +z, texture coordinates (x, 1 - y) as glTF's
-// v runs down, its base colour texture `image`; `material` is the material's
-// JSON members after pbrMetallicRoughness.
+// v runs down, its base colour texture `image` (none and no coordinates
+// when empty); `material` is the material's JSON members after
+// pbrMetallicRoughness.
 class GltfMask : public AlphaMaskFile {
  protected:
   Scene load_gltf_quad(const std::string& image, const std::string& material,
@@ -401,14 +402,19 @@ class GltfMask : public AlphaMaskFile {
     for (const float f : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 1.f, 0.f, 0.f, 1.f, 0.f}) put(f);
     for (const float f : {0.f, 1.f, 1.f, 1.f, 1.f, 0.f, 0.f, 0.f}) put(f);
     for (const int i : {0, 1, 2, 0, 2, 3}) put(static_cast<std::uint16_t>(i));
+    const bool textured = !image.empty();
     const std::string json =
         R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
   "nodes": [{"mesh": 0}],
-  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0)" +
+        std::string(textured ? R"(, "TEXCOORD_0": 1)" : "") +
+        R"(}, "indices": 2, "material": 0}]}],
   "materials": [{"name": "leaf", "pbrMetallicRoughness": {"baseColorFactor": )" +
-        factor + R"(, "baseColorTexture": {"index": 0}})" + material + R"(}],
-  "textures": [{"source": 0}], "images": [{"uri": ")" +
-        image + R"("}],
+        factor + (textured ? R"(, "baseColorTexture": {"index": 0})" : "") + "}" + material +
+        "}]," +
+        (textured ? R"("textures": [{"source": 0}], "images": [{"uri": ")" + image + R"("}],)"
+                  : "") +
+        R"(
   "buffers": [{"byteLength": 92, "uri": "data:application/octet-stream;base64,)" +
         base64(buffer) + R"("}],
   "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
@@ -457,6 +463,19 @@ TEST_F(GltfMask, FactorBelowTheCutoffCutsEverything) {
   EXPECT_TRUE(diagnostics.warnings().empty()) << warnings_of(diagnostics);
   const RayTracer tracer(s);
   EXPECT_FALSE(tracer.intersect({0.5f / 8, 1 - 0.5f / 8, 1.0f}, {0, 0, -1}).hit);
+}
+
+TEST_F(GltfMask, FactorBelowTheCutoffWithoutTextureOrCoordinatesCutsEverything) {
+  const Scene s =
+      load_gltf_quad("", R"(, "alphaMode": "MASK", "alphaCutoff": 0.6)", "[0.5, 0.5, 0.5, 0.5]");
+  // Nothing to warn about: a constant mask needs no texture coordinates.
+  EXPECT_TRUE(diagnostics.warnings().empty()) << warnings_of(diagnostics);
+  const RayTracer tracer(s);
+  EXPECT_FALSE(tracer.intersect({0.5f, 0.5f, 1.0f}, {0, 0, -1}).hit);
+  // And one above the cutoff is whole: no mask at all.
+  EXPECT_FALSE(
+      load_gltf_quad("", R"(, "alphaMode": "MASK", "alphaCutoff": 0.4)", "[0.5, 0.5, 0.5, 0.5]")
+          .has_masks());
 }
 
 }  // namespace
