@@ -266,6 +266,11 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                 {"path", scene.path},
                 {"triangles", scene.triangle_count()},
                 {"materials", scene.materials.size()},
+                {"masked_materials",
+                 scene.has_masks()
+                     ? std::count_if(scene.materials.begin(), scene.materials.end(),
+                                     [](const Material& mat) { return mat.alpha_mask != nullptr; })
+                     : 0},
                 {"meshes", scene.meshes.size()},
                 {"bounds", {{"min", vec(b.lo)}, {"max", vec(b.hi)}}},
                 {"lights", lights}};
@@ -313,6 +318,7 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                    {"sampled_area", r.samples.sampled_area},
                    {"centre_sampled_area", r.samples.centre_sampled_area},
                    {"centre_samples", r.samples.centre_samples},
+                   {"cut_away_area", r.samples.cut_away_area},
                    {"voxels_without_samples", r.samples.voxels_without_samples}};
   if (s.patch_mode == PatchMode::Virtual)
     m["clustering"] = {{"feature_targets", r.clustering.feature_targets},

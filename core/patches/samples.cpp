@@ -92,7 +92,7 @@ glm::vec3 hit_on_plane(const Scene& scene, std::uint32_t triangle, const glm::ve
 
 VoxelSamples sample_voxel(const Scene& scene, const RayTracer& tracer, const Voxelization& vox,
                           std::uint32_t v, const SamplingSettings& settings, double& centred,
-                          std::size_t& centre_samples) {
+                          std::size_t& centre_samples, double& cut_away) {
   const OccupiedVoxel& voxel = vox.voxels[v];
   const Bounds box = vox.grid.cell_bounds(voxel.coord);
   const float cell = vox.grid.cell_size();
@@ -165,6 +165,7 @@ VoxelSamples sample_voxel(const Scene& scene, const RayTracer& tracer, const Vox
         vox.part_vertices.begin() + part.first_vertex,
         vox.part_vertices.begin() + part.first_vertex + part.vertex_count);
     const bool two_sided = scene.two_sided(part.triangle);
+    const bool masked = scene.masked(part.triangle);
     const glm::vec3 n_front = glm::normalize(scene.triangle_cross(part.triangle));
     glm::vec3 centroid = (scene.vertex(part.triangle, 0) + scene.vertex(part.triangle, 1) +
                           scene.vertex(part.triangle, 2)) /
@@ -185,8 +186,17 @@ VoxelSamples sample_voxel(const Scene& scene, const RayTracer& tracer, const Vox
           total += areas.back();
         }
         for (std::size_t c = 0; c < cells.size(); ++c) {
-          const float area = total > 0.0f ? areas[c] * part.area / total
-                                          : part.area / static_cast<float>(cells.size());
+          float area = total > 0.0f ? areas[c] * part.area / total
+                                    : part.area / static_cast<float>(cells.size());
+          if (masked) {
+            // Sampling rays pass the holes, so the cells tile the part with
+            // its cut-away pieces in them: each carries its solid share.
+            const std::vector<glm::vec3>& cell_polygon = areas[c] > 0.0f ? cells[c] : polygon;
+            const float solid =
+                scene.solid_fraction(part.triangle, cell_polygon.data(), cell_polygon.size());
+            cut_away += static_cast<double>(area * (1.0f - solid));
+            area *= solid;
+          }
           if (area > 0.0f)
             carry(it->second[c], part_index, !front, areas[c] > 0.0f ? cells[c] : polygon, area,
                   false);
@@ -201,6 +211,15 @@ VoxelSamples sample_voxel(const Scene& scene, const RayTracer& tracer, const Vox
       // another surface (the floor under a slab to the slab's top), it
       // would stand for light it does not receive, and rays that land on it
       // would find nothing.
+      // A cut-away part is not there: nothing carries it. A partly cut
+      // one is carried with its solid share of the area.
+      float part_area = part.area;
+      if (masked) {
+        const float solid = scene.solid_fraction(part.triangle, polygon.data(), polygon.size());
+        cut_away += static_cast<double>(part_area * (1.0f - solid));
+        part_area *= solid;
+        if (!(part_area > 0.0f)) continue;
+      }
       const glm::vec3 n_side = front ? n_front : -n_front;
       const float tolerance = kSameSurfaceCells * cell;
       glm::vec3 centre(0.0f);
@@ -236,10 +255,10 @@ VoxelSamples sample_voxel(const Scene& scene, const RayTracer& tracer, const Vox
         best_index = static_cast<std::int64_t>(samples.size());
         samples.push_back(own);
         carried.emplace_back();
-        centred += part.area;
+        centred += part_area;
         ++centre_samples;
       }
-      carry(static_cast<std::size_t>(best_index), part_index, !front, polygon, part.area, true);
+      carry(static_cast<std::size_t>(best_index), part_index, !front, polygon, part_area, true);
     }
   }
   // A hit exactly on the voxel's boundary can land on a triangle whose part
@@ -263,12 +282,13 @@ SampleSet generate_samples(const Scene& scene, const RayTracer& tracer, const Vo
   std::vector<VoxelSamples> per_voxel(nv);
   std::vector<double> centred(nv, 0.0);
   std::vector<std::size_t> centre_samples(nv, 0);
+  std::vector<double> cut_away(nv, 0.0);
 #pragma omp parallel for schedule(dynamic, 4)
   for (std::int64_t v = 0; v < static_cast<std::int64_t>(nv); ++v) {
     if (progress && progress->should_stop()) continue;
     const auto vi = static_cast<std::size_t>(v);
     per_voxel[vi] = sample_voxel(scene, tracer, vox, static_cast<std::uint32_t>(v), settings,
-                                 centred[vi], centre_samples[vi]);
+                                 centred[vi], centre_samples[vi], cut_away[vi]);
     if (progress) progress->advance();
   }
   if (progress) progress->check();
@@ -291,6 +311,7 @@ SampleSet generate_samples(const Scene& scene, const RayTracer& tracer, const Vo
     }
     set.centre_sampled_area += centred[v];
     set.centre_samples += centre_samples[v];
+    set.cut_away_area += cut_away[v];
     set.carried_vertices.insert(set.carried_vertices.end(), vs.vertices.begin(), vs.vertices.end());
   }
   set.first.push_back(static_cast<std::uint32_t>(set.samples.size()));

@@ -20,6 +20,15 @@
 // their own at their centre: every part of the surface is carried by a
 // sample that stands on it, so a voxel's sample areas add up to its surface
 // area and light found anywhere on the surface belongs to some sample.
+//
+// Alpha-masked triangles: sampling rays pass their holes, so no sample lands
+// on a cut-away point. Each piece of such a triangle (a Voronoi cell, or a
+// part no ray hit) is carried with its area times its solid fraction (the
+// share of it where the mask keeps the surface, from a lattice of mask
+// lookups), its polygon unchanged; a piece wholly cut away is carried by
+// nobody and gets no sample of its own. So a partly cut triangle's samples
+// stand for just its solid area, though their polygons (used to place
+// light over the surface) still span the holes within them.
 #include <cstdint>
 #include <vector>
 
@@ -76,6 +85,8 @@ struct SampleSet {
   // a sample of its own at its centre. Their area and how many.
   double centre_sampled_area = 0.0;
   std::size_t centre_samples = 0;
+  // Area of sampled sides that alpha masks cut away (not carried by any sample).
+  double cut_away_area = 0.0;
   std::uint32_t voxels_without_samples = 0;
 };
 

@@ -30,6 +30,19 @@ const char* error_name(RTCError code) {
   }
 }
 
+// Rejects hits on the cut-away parts of alpha-masked triangles, so that
+// every query (closest hit, occlusion, streams) sees through them. Embree
+// passes the hit's barycentric coordinates; the scene looks its mask up there.
+void alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* scene = static_cast<const Scene*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const unsigned tri = RTCHitN_primID(args->hit, args->N, i);
+    if (!scene->solid_at(tri, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i)))
+      args->valid[i] = 0;
+  }
+}
+
 }  // namespace
 
 struct RayTracer::Impl {
@@ -81,6 +94,13 @@ RayTracer::RayTracer(const Scene& scene) : scene_(scene), impl_(std::make_unique
     indices[3 * i + 0] = scene.triangles[i].x;
     indices[3 * i + 1] = scene.triangles[i].y;
     indices[3 * i + 2] = scene.triangles[i].z;
+  }
+  // Only a scene with masks pays for a filter call per hit; without one the
+  // BVH and every answer are those of plain triangles.
+  if (scene.has_masks()) {
+    rtcSetGeometryUserData(geom, const_cast<Scene*>(&scene));
+    rtcSetGeometryIntersectFilterFunction(geom, &alpha_filter);
+    rtcSetGeometryOccludedFilterFunction(geom, &alpha_filter);
   }
   rtcCommitGeometry(geom);
   rtcAttachGeometry(impl_->scene, geom);

@@ -3,6 +3,9 @@
 // The device error callback is set once, here, and turns every Embree error
 // into a RayTracer::EmbreeError (after the call that caused it returns).
 // Queries are thread-safe; callers parallelise over their own work.
+// Alpha-masked triangles are holes where their mask cuts them away: no query
+// reports a hit there (an Embree filter function, installed only when the
+// scene has masks).
 #include <cstdint>
 #include <limits>
 #include <memory>

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "io/atomic_file.h"
+#include "scene/alpha_mask.h"
 #include "scene/texture.h"
 
 namespace bounce {
@@ -72,6 +73,14 @@ void hash_scene(ContentHash& h, const Scene& scene) {
           .integer(static_cast<std::uint64_t>(l.width))
           .integer(static_cast<std::uint64_t>(l.height));
       h.bytes(l.texels.data(), l.texels.size() * sizeof(glm::vec3));
+    }
+    // Likewise the mask, only when there is one, so that results cached
+    // for a scene without masks stay valid.
+    if (m.alpha_mask) {
+      const AlphaMask& a = *m.alpha_mask;
+      h.integer(static_cast<std::uint64_t>(a.width)).integer(static_cast<std::uint64_t>(a.height));
+      h.bytes(a.values.data(), a.values.size() * sizeof(float));
+      h.bytes(&m.alpha_factor, sizeof(float)).bytes(&m.alpha_cutoff, sizeof(float));
     }
   }
   h.integer(scene.triangle_uv.size())

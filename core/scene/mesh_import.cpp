@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include <assimp/GltfMaterial.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -151,6 +152,7 @@ class FileImporter {
       if (m.Get(AI_MATKEY_EMISSIVE_INTENSITY, strength) == AI_SUCCESS) mat.emission *= strength;
 
       read_texture(m, mat);
+      read_alpha_mask(m, mat);
 
       if (mat.albedo && !finite(*mat.albedo))
         throw SceneLoader::LoadError(
@@ -164,6 +166,8 @@ class FileImporter {
     }
   }
 
+  static constexpr const char* kKdInstead = "; the material's diffuse colour is used instead";
+
   // glTF's base colour texture, else the diffuse one (OBJ map_Kd); the
   // factor is the diffuse colour read above either way.
   void read_texture(const aiMaterial& m, ImportedMaterial& mat) {
@@ -176,7 +180,8 @@ class FileImporter {
     if (mat.texture_name.front() == '*') {
       missing_textures_.emplace_back(out_.materials.size(),
                                      "material '" + mat.name + "': texture '" + mat.texture_name +
-                                         "' is embedded in the file, which is not supported");
+                                         "' is embedded in the file, which is not supported" +
+                                         kKdInstead);
       return;
     }
     mat.texture = resolve_texture_path(file_.parent_path(), mat.texture_name);
@@ -184,7 +189,67 @@ class FileImporter {
       missing_textures_.emplace_back(out_.materials.size(),
                                      "material '" + mat.name + "': texture file '" +
                                          (file_.parent_path() / mat.texture_name).string() +
-                                         "' not found");
+                                         "' not found" + kKdInstead);
+  }
+
+  // OBJ map_d (Assimp's opacity texture), cut at 0.5; glTF alphaMode MASK,
+  // cut at its alphaCutoff (0.5 unless stated). BLEND and OPAQUE are solid.
+  void read_alpha_mask(const aiMaterial& m, ImportedMaterial& mat) {
+    aiString mode;
+    if (m.Get(AI_MATKEY_GLTF_ALPHAMODE, mode) == AI_SUCCESS) {
+      if (std::string(mode.C_Str()) != "MASK") return;
+      mat.masked = true;
+      mat.mask_source = AlphaSource::AlphaOnly;
+      aiColor4D base(1.f, 1.f, 1.f, 1.f);
+      if (m.Get(AI_MATKEY_COLOR_DIFFUSE, base) == AI_SUCCESS) mat.alpha_factor = base.a;
+      if (!std::isfinite(mat.alpha_factor) || mat.alpha_factor < 0.f || mat.alpha_factor > 1.f) {
+        diagnostics_.warn(where_, "material '" + mat.name + "': baseColorFactor alpha " +
+                                      std::to_string(mat.alpha_factor) +
+                                      " is not in [0, 1]; 1 is used");
+        mat.alpha_factor = 1.f;
+      }
+      float cutoff = 0.5f;
+      if (m.Get(AI_MATKEY_GLTF_ALPHACUTOFF, cutoff) == AI_SUCCESS) {
+        if (std::isfinite(cutoff) && cutoff >= 0.f && cutoff <= 1.f)
+          mat.alpha_cutoff = cutoff;
+        else
+          diagnostics_.warn(where_, "material '" + mat.name + "': alphaCutoff " +
+                                        std::to_string(cutoff) +
+                                        " is not a number in [0, 1]; 0.5 is used");
+      }
+      // The mask is the base colour texture's alpha: found (or warned
+      // about) by read_texture.
+      if (mat.texture)
+        mat.mask = mat.texture;
+      else if (!mat.texture_name.empty()) {
+        mat.masked = false;
+        for (auto& [material, message] : missing_textures_)
+          if (material == out_.materials.size())
+            message += "; its alpha mask is that texture's alpha: the surface is kept whole";
+      }
+      return;
+    }
+    aiString name;
+    if (m.GetTexture(aiTextureType_OPACITY, 0, &name) != AI_SUCCESS) return;
+    const std::string file = name.C_Str();
+    if (file.empty()) return;
+    mat.mask_source = AlphaSource::AlphaOrGrey;
+    if (file.front() == '*') {
+      missing_textures_.emplace_back(out_.materials.size(),
+                                     "material '" + mat.name + "': alpha mask '" + file +
+                                         "' is embedded in the file, which is not supported; "
+                                         "the surface is kept whole");
+      return;
+    }
+    mat.mask = resolve_texture_path(file_.parent_path(), file);
+    if (!mat.mask) {
+      missing_textures_.emplace_back(out_.materials.size(),
+                                     "material '" + mat.name + "': alpha mask file '" +
+                                         (file_.parent_path() / file).string() +
+                                         "' not found; the surface is kept whole");
+      return;
+    }
+    mat.masked = true;
   }
 
   void walk(const aiNode* node, const glm::dmat4& parent) {
@@ -273,8 +338,7 @@ class FileImporter {
     for (const ImportedPiece& piece : out_.pieces)
       if (piece.material < used.size()) used[piece.material] = true;
     for (const auto& [material, message] : missing_textures_)
-      if (used[material])
-        diagnostics_.warn(where_, message + "; the material's diffuse colour is used instead");
+      if (used[material]) diagnostics_.warn(where_, message);
     if (!with_vertex_colours_.empty()) {
       // One line naming the first few meshes; the detail lists them all.
       constexpr std::size_t kFirstFew = 3;

@@ -16,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "base/diagnostics.h"
+#include "scene/alpha_mask.h"
 
 namespace bounce::scene_internal {
 
@@ -27,6 +28,15 @@ struct ImportedMaterial {
   // (nullopt: missing, already warned about; the albedo falls back).
   std::string texture_name;
   std::optional<std::filesystem::path> texture;
+  // Alpha-masked: OBJ map_d (its own file, alpha or grey) or glTF alphaMode
+  // MASK (the base colour texture's alpha; without a texture the mask is
+  // the constant alpha_factor). mask is where the file was found (nullopt:
+  // none, or missing and already warned about: the surface stays whole).
+  bool masked = false;
+  std::optional<std::filesystem::path> mask;
+  AlphaSource mask_source = AlphaSource::AlphaOrGrey;
+  float alpha_factor = 1.0f;  // glTF baseColorFactor's alpha
+  float alpha_cutoff = 0.5f;
 };
 
 struct ImportedPiece {

@@ -1,5 +1,8 @@
 #include "scene/scene.h"
 
+#include <algorithm>
+
+#include "scene/alpha_mask.h"
 #include "scene/texture.h"
 
 namespace bounce {
@@ -54,6 +57,48 @@ glm::vec3 Scene::mean_albedo(std::size_t tri, const glm::vec3* polygon, std::siz
   }
   if (!(total > 0.0)) return textured_albedo(m, m.texture->lookup(uv0));
   return textured_albedo(m, glm::vec3(sum / total));
+}
+
+bool Scene::has_masks() const {
+  if (triangle_uv.empty()) return false;
+  return std::any_of(materials.begin(), materials.end(),
+                     [](const Material& m) { return m.alpha_mask != nullptr; });
+}
+
+bool Scene::solid_at(std::size_t tri, float b1, float b2) const {
+  if (!masked(tri)) return true;
+  const Material& m = material_of(tri);
+  const auto& uv = triangle_uv[tri];
+  const glm::vec2 at = uv[0] + b1 * (uv[1] - uv[0]) + b2 * (uv[2] - uv[0]);
+  return m.alpha_mask->lookup(at) * m.alpha_factor >= m.alpha_cutoff;
+}
+
+float Scene::solid_fraction(std::size_t tri, const glm::vec3* polygon, std::size_t count) const {
+  if (!masked(tri)) return 1.0f;
+  const Material& m = material_of(tri);
+  if (count < 3)
+    return count > 0 && m.alpha_mask->lookup(uv_at(*this, tri, polygon[0])) * m.alpha_factor >=
+                            m.alpha_cutoff
+               ? 1.0f
+               : 0.0f;
+  // Fan of triangles, each weighted by its area, as mean_albedo.
+  double sum = 0.0, total = 0.0;
+  const glm::vec2 uv0 = uv_at(*this, tri, polygon[0]);
+  glm::vec2 prev = uv_at(*this, tri, polygon[1]);
+  for (std::size_t k = 2; k < count; ++k) {
+    const glm::vec2 next = uv_at(*this, tri, polygon[k]);
+    const double area = 0.5 * glm::length(glm::cross(glm::dvec3(polygon[k - 1] - polygon[0]),
+                                                     glm::dvec3(polygon[k] - polygon[0])));
+    if (area > 0.0) {
+      sum += area * static_cast<double>(m.alpha_mask->solid_fraction(
+                        {uv0, prev, next}, m.alpha_factor, m.alpha_cutoff));
+      total += area;
+    }
+    prev = next;
+  }
+  if (!(total > 0.0))
+    return m.alpha_mask->lookup(uv0) * m.alpha_factor >= m.alpha_cutoff ? 1.0f : 0.0f;
+  return static_cast<float>(sum / total);
 }
 
 glm::vec3 Scene::triangle_cross(std::size_t tri) const {

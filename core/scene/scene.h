@@ -15,6 +15,7 @@
 namespace bounce {
 
 struct Texture;
+struct AlphaMask;
 
 // Albedo 1 in a closed scene makes sum_h (rho F)^h diverge; keep it below.
 // Balanced form factors close a room's rows to float rounding (~1e-7), and
@@ -32,6 +33,13 @@ struct Material {
   // (OBJ Kd x map_Kd, glTF baseColorFactor x baseColorTexture), clamped.
   std::shared_ptr<const Texture> texture;
   glm::vec3 texture_factor{1.0f};
+  // Alpha-masked (a cut-out: leaves, fences, grilles): where alpha_mask x
+  // alpha_factor is below alpha_cutoff the surface is not there. Rays pass
+  // through it and no sample or patch stands on it (OBJ map_d, glTF
+  // alphaMode MASK). Null: the surface is whole.
+  std::shared_ptr<const AlphaMask> alpha_mask;
+  float alpha_factor = 1.0f;
+  float alpha_cutoff = 0.5f;
   glm::vec3 emission{0.0f};  // emitted radiosity (W/m^2 per channel); > 0 makes an area light
   bool is_emissive() const { return emission.r > 0.f || emission.g > 0.f || emission.b > 0.f; }
 };
@@ -122,6 +130,18 @@ struct Scene {
   bool textured(std::size_t tri) const {
     return !triangle_uv.empty() && material_of(tri).texture != nullptr;
   }
+  // Whether triangle tri has holes cut by an alpha mask.
+  bool masked(std::size_t tri) const {
+    return !triangle_uv.empty() && material_of(tri).alpha_mask != nullptr;
+  }
+  bool has_masks() const;
+  // Whether the surface is there at barycentric coordinates (b1, b2) of
+  // triangle tri, the point (1 - b1 - b2) v0 + b1 v1 + b2 v2 (as a ray
+  // tracer reports a hit).
+  bool solid_at(std::size_t tri, float b1, float b2) const;
+  // The fraction of a planar polygon lying on triangle tri where the
+  // surface is there (1 for an unmasked triangle).
+  float solid_fraction(std::size_t tri, const glm::vec3* polygon, std::size_t count) const;
   // Albedo at point p on triangle tri (the texel there when textured).
   glm::vec3 albedo_at(std::size_t tri, const glm::vec3& p) const;
   // Mean albedo over a planar polygon lying on triangle tri.

@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "scene/alpha_mask.h"
 #include "scene/scene_loader.h"
 #include "scene/texture.h"
 
@@ -25,7 +26,9 @@ std::string format_vec(const glm::vec3& v) {
 }
 
 bool same_colours(const ImportedMaterial& a, const ImportedMaterial& b) {
-  return a.albedo == b.albedo && a.emission == b.emission && a.texture == b.texture;
+  return a.albedo == b.albedo && a.emission == b.emission && a.texture == b.texture &&
+         a.masked == b.masked && a.mask == b.mask && a.alpha_factor == b.alpha_factor &&
+         a.alpha_cutoff == b.alpha_cutoff;
 }
 
 std::string plural(std::size_t n, const char* one, const char* many) {
@@ -114,7 +117,8 @@ std::uint32_t SceneBuilder::material_index(const std::string& name, const Entry&
 }
 
 Material SceneBuilder::resolve_material(const std::string& name,
-                                        std::shared_ptr<const Texture> texture) const {
+                                        std::shared_ptr<const Texture> texture,
+                                        std::shared_ptr<const AlphaMask> mask) const {
   const Use& use = uses_[use_index_.at(name)];
   const auto def_it = definitions_.find(name);
   const MaterialSpec* def = def_it == definitions_.end() ? nullptr : &def_it->second;
@@ -163,6 +167,17 @@ Material SceneBuilder::resolve_material(const std::string& name,
       m.emission = positive;
     }
   }
+  if (mask && m.is_emissive()) {
+    // Emitters are sampled over whole triangles (area lights, the
+    // reference's light picking); a holed emitter would shine from its holes.
+    diagnostics_.warn(file ? use.file : scene_file_,
+                      "material '" + name + "' is emissive: its alpha mask (" + mask->path +
+                          ") is ignored and the surface is kept whole");
+  } else if (mask) {
+    m.alpha_mask = std::move(mask);
+    m.alpha_factor = file->alpha_factor;
+    m.alpha_cutoff = file->alpha_cutoff;
+  }
   return m;
 }
 
@@ -203,11 +218,41 @@ void SceneBuilder::build(Scene& scene) {
     if (!textures[f])
       diagnostics_.warn(files[f].string(), "cannot read this texture (" + errors[f] +
                                                "); its materials use their diffuse colour");
+  // Alpha masks likewise, once per file and channel rule; a glTF mask
+  // without a texture is its constant factor.
+  std::vector<std::pair<std::filesystem::path, AlphaSource>> mask_files;
+  std::vector<std::size_t> use_mask(uses_.size(), SIZE_MAX);
+  for (std::size_t u = 0; u < uses_.size(); ++u) {
+    if (!uses_[u].from_file || !uses_[u].from_file->masked || !uses_[u].from_file->mask) continue;
+    const std::pair key(*uses_[u].from_file->mask, uses_[u].from_file->mask_source);
+    const auto at = std::find(mask_files.begin(), mask_files.end(), key);
+    use_mask[u] = static_cast<std::size_t>(at - mask_files.begin());
+    if (at == mask_files.end()) mask_files.push_back(key);
+  }
+  std::vector<std::shared_ptr<const AlphaMask>> masks(mask_files.size());
+  std::vector<std::string> mask_errors(mask_files.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t f = 0; f < static_cast<std::int64_t>(mask_files.size()); ++f) {
+    const auto i = static_cast<std::size_t>(f);
+    masks[i] = load_alpha_mask(mask_files[i].first, mask_files[i].second, mask_errors[i]);
+  }
+  for (std::size_t f = 0; f < mask_files.size(); ++f)
+    if (!masks[f])
+      diagnostics_.warn(mask_files[f].first.string(),
+                        "cannot read this alpha mask (" + mask_errors[f] +
+                            "); its materials' surfaces are kept whole");
   std::vector<Material> resolved;
   resolved.reserve(uses_.size());
-  for (std::size_t u = 0; u < uses_.size(); ++u)
-    resolved.push_back(
-        resolve_material(uses_[u].name, use_file[u] == SIZE_MAX ? nullptr : textures[use_file[u]]));
+  for (std::size_t u = 0; u < uses_.size(); ++u) {
+    std::shared_ptr<const AlphaMask> mask;
+    if (use_mask[u] != SIZE_MAX)
+      mask = masks[use_mask[u]];
+    else if (uses_[u].from_file && uses_[u].from_file->masked &&
+             uses_[u].from_file->alpha_factor < uses_[u].from_file->alpha_cutoff)
+      mask = AlphaMask::constant(1.0f);  // wholly cut away
+    resolved.push_back(resolve_material(
+        uses_[u].name, use_file[u] == SIZE_MAX ? nullptr : textures[use_file[u]], std::move(mask)));
+  }
   for (const auto& [name, def] : definitions_)
     if (!use_index_.count(name))
       diagnostics_.warn(scene_file_, def.key_path + ": no mesh uses this material; ignored");
@@ -254,7 +299,8 @@ void SceneBuilder::build(Scene& scene) {
                            "exact copies of triangles already in the scene, same winding: they "
                            "would count the same surface twice");
     WarningGroup no_uvs("found no texture coordinates for", "triangle", "triangles",
-                        "their material's texture is applied as its mean colour");
+                        "their material's texture is applied as its mean colour and an "
+                        "alpha mask keeps them whole");
     for (std::size_t p = 0; p < entry.file.pieces.size(); ++p) {
       const ImportedPiece& piece = entry.file.pieces[p];
       if (piece.non_triangles > 0) lines.add(piece.name, piece.non_triangles, "");
@@ -266,7 +312,8 @@ void SceneBuilder::build(Scene& scene) {
       info.first_triangle = static_cast<std::uint32_t>(scene.triangles.size());
 
       const bool has_uvs = piece.uvs.size() == piece.positions.size();
-      if (resolved[piece_use[e][p]].texture && !has_uvs)
+      const Material& mat = resolved[piece_use[e][p]];
+      if ((mat.texture || (mat.alpha_mask && !mat.alpha_mask->is_constant())) && !has_uvs)
         no_uvs.add(piece.name, piece.triangles.size(), "");
       std::vector<std::uint32_t> remap(piece.positions.size(), kUnmapped);
       std::size_t skipped = 0, duplicates = 0;
@@ -326,7 +373,7 @@ void SceneBuilder::build(Scene& scene) {
       group->emit(diagnostics_, where, label);
   }
   if (std::none_of(scene.materials.begin(), scene.materials.end(),
-                   [](const Material& m) { return m.texture != nullptr; }))
+                   [](const Material& m) { return m.texture || m.alpha_mask; }))
     scene.triangle_uv.clear();
   if (scene.triangles.empty())
     throw SceneLoader::LoadError(

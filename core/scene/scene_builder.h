@@ -47,7 +47,8 @@ class SceneBuilder {
 
   std::uint32_t material_index(const std::string& name, const Entry& entry,
                                const ImportedMaterial* from_file);
-  Material resolve_material(const std::string& name, std::shared_ptr<const Texture> texture) const;
+  Material resolve_material(const std::string& name, std::shared_ptr<const Texture> texture,
+                            std::shared_ptr<const AlphaMask> mask) const;
 
   std::string scene_file_;
   std::map<std::string, MaterialSpec> definitions_;

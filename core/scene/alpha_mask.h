@@ -1,0 +1,51 @@
+#pragma once
+// The coverage of an alpha-masked (cut-out) material: one value per texel,
+// read once per file through OpenImageIO, compared against the material's
+// cutoff where a ray lands. Where the value is below the cutoff the surface
+// is not there: rays pass, and no sample or patch stands on it. Values are
+// taken as stored (alpha is linear in every format we read, and a grey mask
+// is a coverage, not a colour), in [0, 1]. Addressing is the colour
+// texture's: wrapping, v up, image row 0 at v = 1.
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace bounce {
+
+struct AlphaMask {
+  std::string path;
+  int width = 0, height = 0;
+  std::vector<float> values;  // row-major, row 0 at the top of the image
+
+  // Bilinear lookup with wrapping; 1 (solid) where uv is not finite, so
+  // that a triangle without texture coordinates stays whole (a mask of one
+  // texel answers its value everywhere).
+  float lookup(glm::vec2 uv) const;
+  // The fraction of a triangle of texture space where lookup() * factor >=
+  // cutoff, from a regular lattice of 16 to 256 lookups (one per
+  // sub-triangle of a k x k split, k four times the texels across, 4 to 16).
+  float solid_fraction(const std::array<glm::vec2, 3>& uv, float factor, float cutoff) const;
+  // A mask of one texel: a constant coverage (glTF alpha without a texture).
+  static std::shared_ptr<const AlphaMask> constant(float value);
+  // One texel: the same everywhere, so it needs no texture coordinates.
+  bool is_constant() const { return width == 1 && height == 1; }
+};
+
+// Which channel holds the coverage.
+enum class AlphaSource {
+  // OBJ map_d: the alpha channel when the image has one, else the grey
+  // value (the mean of its colour channels).
+  AlphaOrGrey,
+  // glTF base colour texture: its alpha channel; 1 without one.
+  AlphaOnly,
+};
+
+// Reads `file`; null with `error` set when it cannot.
+std::shared_ptr<const AlphaMask> load_alpha_mask(const std::filesystem::path& file,
+                                                 AlphaSource source, std::string& error);
+
+}  // namespace bounce

@@ -1,0 +1,482 @@
+// Alpha-masked (cut-out) materials: rays pass the cut-away parts in every
+// query (shadow rays, the reference, camera rays), samples carry only the
+// solid area, and a mask that cuts everything away leaves the scene as if
+// the surface were not there. Masks here are checkers whose solid squares
+// are known by construction: a bilinear lookup of a checker crosses 0.5
+// exactly on the squares' edges, so a square's centre is solid or cut
+// according to its parity alone, and exactly half of the checker is solid.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "base/diagnostics.h"
+#include "base/random.h"
+#include "patches/samples.h"
+#include "raytrace/ray_tracer.h"
+#include "reference/path_tracer.h"
+#include "runtime/camera_image.h"
+#include "scene/alpha_mask.h"
+#include "scene/scene_loader.h"
+#include "scratch_dir.h"
+#include "test_scenes.h"
+#include "voxel/voxelization.h"
+
+namespace bounce {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kFloorScene = fs::path(BOUNCE_RESOURCE_DIR) / "scenes" / "textured-floor";
+
+// n x n texels, squares of one texel, solid (1) where x + y is even.
+std::shared_ptr<const AlphaMask> checker_mask(int n) {
+  auto m = std::make_shared<AlphaMask>();
+  m->path = "checker";
+  m->width = m->height = n;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) m->values.push_back((x + y) % 2 == 0 ? 1.0f : 0.0f);
+  return m;
+}
+
+// Whether the checker's square under texture point (u, v) is solid: row 0
+// of the image is at v = 1.
+bool checker_solid(int n, double u, double v) {
+  const int x = static_cast<int>(std::floor(u * n));
+  const int y = static_cast<int>(std::floor((1.0 - v) * n));
+  return (x + y) % 2 == 0;
+}
+
+constexpr int kTexels = 8;
+
+// An extent x extent floor at y = 0 and, unless `with_quad` is false, a
+// quad of the same size at y = 0.5 above it, both facing up; the quad is
+// mapped once onto `mask` (u = x / extent, v = z / extent). A vertical sun of
+// irradiance 1. With `ceiling`, a ceiling at y = 1 facing down (shading all).
+Scene floor_under_quad(std::shared_ptr<const AlphaMask> mask, bool with_quad = true,
+                       float extent = 1.0f, bool ceiling = false) {
+  Scene s;
+  const float e = extent;
+  test_scenes::add_quad(s, "floor", {0, 0, 0}, {0, 0, e}, {e, 0, e}, {e, 0, 0}, glm::vec3(0.8f));
+  if (ceiling)
+    test_scenes::add_quad(s, "ceiling", {0, 1, 0}, {e, 1, 0}, {e, 1, e}, {0, 1, e},
+                          glm::vec3(0.5f));
+  if (with_quad) {
+    test_scenes::add_quad(s, "quad", {0, 0.5f, 0}, {0, 0.5f, e}, {e, 0.5f, e}, {e, 0.5f, 0},
+                          glm::vec3(0.2f));
+    s.materials.back().alpha_mask = std::move(mask);
+  }
+  for (std::size_t t = 0; t < s.triangle_count(); ++t) {
+    std::array<glm::vec2, 3> uv;
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 p = s.vertex(t, k);
+      uv[static_cast<std::size_t>(k)] = glm::vec2(p.x / e, p.z / e);
+    }
+    s.triangle_uv.push_back(uv);
+  }
+  Light sun;
+  sun.type = Light::Type::Directional;
+  sun.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+  s.lights.push_back(sun);
+  return s;
+}
+
+TEST(AlphaMasks, ShadowRaysPassExactlyTheCutAwaySquares) {
+  const Scene s = floor_under_quad(checker_mask(kTexels));
+  const RayTracer tracer(s);
+  for (int i = 0; i < kTexels; ++i)
+    for (int j = 0; j < kTexels; ++j) {
+      const double u = (i + 0.5) / kTexels, v = (j + 0.5) / kTexels;
+      const glm::vec3 p(static_cast<float>(u), 0.0f, static_cast<float>(v));
+      const bool blocked = tracer.occluded(p, glm::vec3(0, 1, 0), 1e-4f, 0.9f);
+      EXPECT_EQ(blocked, checker_solid(kTexels, u, v)) << "square " << i << "," << j;
+    }
+}
+
+TEST(AlphaMasks, CheckerLetsHalfTheSunThrough) {
+  const Scene s = floor_under_quad(checker_mask(kTexels));
+  const RayTracer tracer(s);
+  // Uniform points on the floor, the batched (stream) query.
+  constexpr std::size_t kRays = 20000;
+  Rng rng(7, 0);
+  std::vector<ShadowRay> rays(kRays);
+  for (ShadowRay& r : rays) {
+    r.origin = glm::vec3(rng.uniform(), 0.0f, rng.uniform());
+    r.direction = glm::vec3(0, 1, 0);
+    r.t_near = 1e-4f;
+    r.t_far = 0.9f;
+  }
+  std::vector<std::uint8_t> blocked(kRays);
+  tracer.occluded(rays.data(), kRays, blocked.data());
+  double free = 0.0;
+  for (std::uint8_t b : blocked) free += b ? 0.0 : 1.0;
+  // Binomial: 4 standard deviations of the mean of kRays draws at p = 0.5.
+  const double tolerance = 4.0 * std::sqrt(0.25 / static_cast<double>(kRays));
+  EXPECT_NEAR(free / kRays, 0.5, tolerance);
+  // And a closest-hit query from above lands on the floor through the holes.
+  std::size_t on_floor = 0;
+  for (std::size_t k = 0; k < 2000; ++k) {
+    const Hit h = tracer.intersect(rays[k].origin + glm::vec3(0, 0.9f, 0), glm::vec3(0, -1, 0));
+    ASSERT_TRUE(h.hit);
+    const bool floor = s.material_of(h.triangle).name == "floor";
+    EXPECT_EQ(floor, blocked[k] == 0) << k;
+    on_floor += floor ? 1 : 0;
+  }
+  EXPECT_GT(on_floor, 0u);
+}
+
+TEST(AlphaMasks, ReferenceSeesTheSunThroughTheHolesOnly) {
+  const Scene s = floor_under_quad(checker_mask(kTexels));
+  const RayTracer tracer(s);
+  ReferenceSettings rs;
+  rs.samples = 16;
+  const ReferencePathTracer pt(tracer, rs);
+  std::vector<ReferencePoint> points;
+  std::vector<bool> solid;
+  for (int i = 0; i < kTexels; ++i)
+    for (int j = 0; j < kTexels; ++j) {
+      const double u = (i + 0.5) / kTexels, v = (j + 0.5) / kTexels;
+      ReferencePoint p;
+      p.position = glm::vec3(static_cast<float>(u), 0.0f, static_cast<float>(v));
+      p.normal = glm::vec3(0, 1, 0);
+      p.albedo = glm::vec3(0.8f);
+      points.push_back(p);
+      solid.push_back(checker_solid(kTexels, u, v));
+    }
+  const PointReference r = pt.estimate_points(points);
+  for (std::size_t k = 0; k < points.size(); ++k)
+    EXPECT_NEAR(r.direct_irradiance[k].g, solid[k] ? 0.0f : 1.0f, 1e-5f) << "point " << k;
+}
+
+TEST(AlphaMasks, CameraRaysPassTheHoles) {
+  Scene s = floor_under_quad(checker_mask(kTexels), true, 2.0f);
+  // Straight above the middle; the quad (2 x 2 at y = 0.5, 9.5 below the
+  // camera) fills the view: tan(fov / 2) = 1 / 9.5. A ray through a hole
+  // meets the floor 10 / 9.5 times as far from the middle, still on it for
+  // the squares' centres.
+  s.camera.position = glm::vec3(1.0f, 10.0f, 1.0f);
+  s.camera.target = glm::vec3(1.0f, 0.0f, 1.0f);
+  s.camera.up = glm::vec3(0.0f, 0.0f, -1.0f);
+  s.camera.fov_y_deg = static_cast<float>(2.0 * std::atan(1.0 / 9.5) * 180.0 / std::numbers::pi);
+  const RayTracer tracer(s);
+  CameraImageSettings settings;
+  settings.width = settings.height = 64;
+  std::vector<CameraHit> hits;
+  render_camera_direct(tracer, settings, hits);
+  std::vector<const CameraHit*> at(64 * 64, nullptr);
+  for (const CameraHit& h : hits)
+    if (h.pixel < at.size()) at[h.pixel] = &h;
+  // Pixel (x, y) looks at the quad point x = 2 (x + 0.5) / 64, z = 2 (y + 0.5) / 64
+  // (up is -z: image rows go +z). Check the centre pixel of every square:
+  // on a solid square the primary hit is the quad, in a hole the floor.
+  const int per_square = 64 / kTexels;
+  for (int i = 0; i < kTexels; ++i)
+    for (int j = 0; j < kTexels; ++j) {
+      const int px = per_square * i + per_square / 2, py = per_square * j + per_square / 2;
+      const double u = (px + 0.5) / 64.0, v = (py + 0.5) / 64.0;
+      const CameraHit* h = at[static_cast<std::size_t>(py * 64 + px)];
+      ASSERT_NE(h, nullptr);
+      const bool solid = checker_solid(kTexels, u, v);
+      EXPECT_NEAR(h->position.y, solid ? 0.5 : 0.0, 1e-4) << "square " << i << "," << j;
+      if (solid) {
+        EXPECT_NEAR(h->position.x, 2.0 * u, 1e-3);
+        EXPECT_NEAR(h->position.z, 2.0 * v, 1e-3);
+      }
+    }
+  // The reference's primary rays alike: a solid square shows the quad's
+  // albedo 0.2 under the sun, a hole the floor (0.8 where the sun reaches
+  // it through a hole, 0 in the quad's shadow).
+  ReferenceSettings rs;
+  rs.samples = 4;
+  const ReferencePathTracer pt(tracer, rs);
+  ReferenceRenderer renderer(pt, 64, 64);
+  renderer.add_samples(4);
+  const ReferenceImages ref = renderer.images();
+  for (int i = 0; i < kTexels; ++i)
+    for (int j = 0; j < kTexels; ++j) {
+      const int px = per_square * i + per_square / 2, py = per_square * j + per_square / 2;
+      const double u = (px + 0.5) / 64.0, v = (py + 0.5) / 64.0;
+      const glm::vec3 full = ref.full.at(px, py), indirect = ref.indirect.at(px, py);
+      const float direct = full.g - indirect.g;
+      if (checker_solid(kTexels, u, v))
+        EXPECT_NEAR(direct, 0.2f, 1e-3f) << "square " << i << "," << j;
+      else
+        EXPECT_TRUE(std::abs(direct) < 1e-3f || std::abs(direct - 0.8f) < 1e-3f)
+            << "square " << i << "," << j << ": " << direct;
+    }
+}
+
+TEST(AlphaMasks, SamplesCarryOnlyTheSolidArea) {
+  const Scene s = floor_under_quad(checker_mask(kTexels));
+  const RayTracer tracer(s);
+  const Voxelization vox = voxelize(s, VoxelGrid(s.bounds(), 4));
+  const SampleSet set = generate_samples(s, tracer, vox, SamplingSettings{});
+  double quad = 0.0, floor = 0.0;
+  for (const Sample& x : set.samples) {
+    const std::string& name = s.material_of(x.triangle).name;
+    if (name == "floor") floor += x.area;
+    if (name != "quad") continue;
+    quad += x.area;
+    // No sample stands on a hole (its position is where a ray stopped).
+    const float alpha = s.material_of(x.triangle).alpha_mask->lookup({x.position.x, x.position.z});
+    EXPECT_GE(alpha, 0.5f - 1e-3f) << x.position.x << " " << x.position.z;
+  }
+  EXPECT_NEAR(floor, 1.0, 1e-4);  // the floor under it is whole
+  // Half the quad, as the lattice of mask lookups measures each cell: 16 x 16
+  // lookups per cell at most, an error of a few tenths of a percent over
+  // many cells.
+  EXPECT_NEAR(quad, 0.5, 0.01);
+  EXPECT_NEAR(quad + set.cut_away_area, 1.0, 1e-4);
+}
+
+TEST(AlphaMasks, FullyCutQuadSamplesAsIfItWereNotThere) {
+  // The ceiling keeps the bounds (so the grid) the same without the quad.
+  const Scene with = floor_under_quad(AlphaMask::constant(0.0f), true, 1.0f, true);
+  const Scene without = floor_under_quad(nullptr, false, 1.0f, true);
+  ASSERT_EQ(with.bounds().lo, without.bounds().lo);
+  ASSERT_EQ(with.bounds().hi, without.bounds().hi);
+  const RayTracer tw(with), to(without);
+  const Voxelization vw = voxelize(with, VoxelGrid(with.bounds(), 4));
+  const Voxelization vo = voxelize(without, VoxelGrid(without.bounds(), 4));
+  const SampleSet a = generate_samples(with, tw, vw, SamplingSettings{});
+  const SampleSet b = generate_samples(without, to, vo, SamplingSettings{});
+  ASSERT_EQ(a.samples.size(), b.samples.size());
+  for (std::size_t k = 0; k < a.samples.size(); ++k) {
+    EXPECT_EQ(a.samples[k].position, b.samples[k].position) << k;
+    EXPECT_EQ(a.samples[k].area, b.samples[k].area) << k;
+    EXPECT_EQ(a.samples[k].triangle, b.samples[k].triangle) << k;
+  }
+  // Rays: nothing between the floor and the ceiling, as without the quad.
+  for (int i = 0; i < 16; ++i)
+    for (int j = 0; j < 16; ++j) {
+      const glm::vec3 p((static_cast<float>(i) + 0.5f) / 16, 0.0f,
+                        (static_cast<float>(j) + 0.5f) / 16);
+      EXPECT_FALSE(tw.occluded(p, glm::vec3(0, 1, 0), 1e-4f, 0.9f)) << i << "," << j;
+      const Hit h = tw.intersect(p + glm::vec3(0, 0.9f, 0), glm::vec3(0, -1, 0));
+      EXPECT_EQ(with.material_of(h.triangle).name, "floor") << i << "," << j;
+    }
+  EXPECT_NEAR(a.cut_away_area, 1.0, 1e-5);
+  EXPECT_EQ(b.cut_away_area, 0.0);
+  EXPECT_EQ(a.sampled_area, b.sampled_area);
+}
+
+TEST(AlphaMasks, SolidFractionOfACheckerIsHalf) {
+  const auto mask = checker_mask(kTexels);
+  // The whole map as two triangles, and a triangle of one square's size
+  // straddling four squares (any half-texel shift of a checker is half solid).
+  EXPECT_NEAR(mask->solid_fraction({{{0, 0}, {1, 0}, {1, 1}}}, 1.0f, 0.5f), 0.5f, 0.02f);
+  EXPECT_NEAR(mask->solid_fraction({{{0, 0}, {1, 1}, {0, 1}}}, 1.0f, 0.5f), 0.5f, 0.02f);
+  EXPECT_EQ(AlphaMask::constant(1.0f)->solid_fraction({{{0, 0}, {1, 0}, {1, 1}}}, 1.0f, 0.5f),
+            1.0f);
+  EXPECT_EQ(AlphaMask::constant(1.0f)->solid_fraction({{{0, 0}, {1, 0}, {1, 1}}}, 0.4f, 0.5f),
+            0.0f);
+  // Inside one solid square, and inside one cut square.
+  const float t = 1.0f / kTexels;
+  EXPECT_EQ(mask->solid_fraction(
+                {{{0.1f * t, 1 - 0.9f * t}, {0.9f * t, 1 - 0.9f * t}, {0.5f * t, 1 - 0.1f * t}}},
+                1.0f, 0.5f),
+            1.0f);
+  EXPECT_EQ(mask->solid_fraction(
+                {{{1.1f * t, 1 - 0.9f * t}, {1.9f * t, 1 - 0.9f * t}, {1.5f * t, 1 - 0.1f * t}}},
+                1.0f, 0.5f),
+            0.0f);
+}
+
+// Files: OBJ map_d and glTF alphaMode MASK through the loader.
+std::string warnings_of(const Diagnostics& d) {
+  std::string text;
+  for (const Diagnostic& w : d.warnings()) text += w.where + ": " + w.message + "\n";
+  return text;
+}
+
+TEST(AlphaMaskFiles, FloorScenesFenceIsHalfCutAway) {
+  Diagnostics d;
+  const Scene s = SceneLoader(d).load(kFloorScene);
+  EXPECT_TRUE(d.warnings().empty()) << warnings_of(d);
+  const Material* fence = nullptr;
+  for (const Material& m : s.materials)
+    if (m.name == "fence") fence = &m;
+  ASSERT_NE(fence, nullptr);
+  ASSERT_NE(fence->alpha_mask, nullptr);
+  EXPECT_EQ(fence->alpha_cutoff, 0.5f);
+  EXPECT_EQ(fence->texture, nullptr);
+  // fence-mask.png: 8 x 8, alpha 255 where (x / 2 + y / 2) is even, else 0.
+  ASSERT_EQ(fence->alpha_mask->width, 8);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x)
+      EXPECT_EQ(fence->alpha_mask->values[static_cast<std::size_t>(y * 8 + x)],
+                (x / 2 + y / 2) % 2 == 0 ? 1.0f : 0.0f);
+  for (std::size_t t = 0; t < s.triangle_count(); ++t)
+    EXPECT_EQ(s.masked(t), &s.material_of(t) == fence);
+}
+
+class AlphaMaskFile : public ::testing::Test {
+ protected:
+  test::ScratchDir dir{"bounce-alpha"};
+  Diagnostics diagnostics;
+
+  void write(const std::string& name, const std::string& bytes) {
+    std::ofstream(dir / name, std::ios::binary) << bytes;
+  }
+  Scene load_obj_quad(const std::string& mask_line) {
+    write("quad.mtl", "newmtl quad\nKd 0.5 0.5 0.5\n" + mask_line + "\n");
+    write("quad.obj",
+          "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+          "usemtl quad\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
+    return SceneLoader(diagnostics).load(dir / "quad.obj");
+  }
+  void expect_one_warning_naming(const std::string& what) const {
+    ASSERT_EQ(diagnostics.warnings().size(), 1u) << warnings_of(diagnostics);
+    const Diagnostic w = diagnostics.warnings()[0];
+    EXPECT_NE((w.where + w.message).find(what), std::string::npos) << w.where << ": " << w.message;
+  }
+};
+
+TEST_F(AlphaMaskFile, GreyMapDIsItsValue) {
+  // A 2 x 1 grey image without alpha (PGM): white, black.
+  write("grey.pgm", std::string("P5\n2 1\n255\n") + '\xff' + '\x00');
+  const Scene s = load_obj_quad("map_d grey.pgm");
+  EXPECT_TRUE(diagnostics.warnings().empty()) << warnings_of(diagnostics);
+  const Material& m = s.materials.at(0);
+  ASSERT_NE(m.alpha_mask, nullptr);
+  EXPECT_EQ(m.alpha_mask->values, (std::vector<float>{1.0f, 0.0f}));
+  // Left half of the quad solid, right half cut (bilinear, wrapping: the
+  // value crosses 0.5 at u = 0.5 and u = 0 / 1).
+  const RayTracer tracer(s);
+  EXPECT_TRUE(tracer.intersect({0.25f, 0.5f, 1.0f}, {0, 0, -1}).hit);
+  EXPECT_FALSE(tracer.intersect({0.75f, 0.5f, 1.0f}, {0, 0, -1}).hit);
+}
+
+TEST_F(AlphaMaskFile, MissingMaskWarnsOnceNamingItAndKeepsTheSurfaceWhole) {
+  const Scene s = load_obj_quad("map_d nowhere.png");
+  expect_one_warning_naming("nowhere.png");
+  EXPECT_EQ(s.materials.at(0).alpha_mask, nullptr);
+  EXPECT_FALSE(s.has_masks());
+}
+
+TEST_F(AlphaMaskFile, UnreadableMaskWarnsOnceNamingIt) {
+  write("broken.png", "\x89PNG\r\n\x1a\nthis is not an image");
+  const Scene s = load_obj_quad("map_d broken.png");
+  expect_one_warning_naming("broken.png");
+  EXPECT_EQ(s.materials.at(0).alpha_mask, nullptr);
+}
+
+std::string base64(const std::string& in) {
+  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  std::size_t i = 0;
+  for (; i + 2 < in.size(); i += 3) {
+    const unsigned n = (static_cast<unsigned char>(in[i]) << 16) |
+                       (static_cast<unsigned char>(in[i + 1]) << 8) |
+                       static_cast<unsigned char>(in[i + 2]);
+    out += {k[(n >> 18) & 63], k[(n >> 12) & 63], k[(n >> 6) & 63], k[n & 63]};
+  }
+  if (i + 1 == in.size()) {
+    const unsigned n = static_cast<unsigned char>(in[i]) << 16;
+    out += {k[(n >> 18) & 63], k[(n >> 12) & 63], '=', '='};
+  } else if (i + 2 == in.size()) {
+    const unsigned n =
+        (static_cast<unsigned char>(in[i]) << 16) | (static_cast<unsigned char>(in[i + 1]) << 8);
+    out += {k[(n >> 18) & 63], k[(n >> 12) & 63], k[(n >> 6) & 63], '='};
+  }
+  return out;
+}
+
+// A unit quad in z = 0 facing +z, texture coordinates (x, 1 - y) as glTF's
+// v runs down, its base colour texture `image` (none and no coordinates
+// when empty); `material` is the material's JSON members after
+// pbrMetallicRoughness.
+class GltfMask : public AlphaMaskFile {
+ protected:
+  Scene load_gltf_quad(const std::string& image, const std::string& material,
+                       const std::string& factor = "[0.5, 0.5, 0.5, 1]") {
+    std::string buffer;
+    const auto put = [&](const auto& value) {
+      buffer.append(reinterpret_cast<const char*>(&value), sizeof(value));
+    };
+    for (const float f : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 1.f, 0.f, 0.f, 1.f, 0.f}) put(f);
+    for (const float f : {0.f, 1.f, 1.f, 1.f, 1.f, 0.f, 0.f, 0.f}) put(f);
+    for (const int i : {0, 1, 2, 0, 2, 3}) put(static_cast<std::uint16_t>(i));
+    const bool textured = !image.empty();
+    const std::string json =
+        R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0)" +
+        std::string(textured ? R"(, "TEXCOORD_0": 1)" : "") +
+        R"(}, "indices": 2, "material": 0}]}],
+  "materials": [{"name": "leaf", "pbrMetallicRoughness": {"baseColorFactor": )" +
+        factor + (textured ? R"(, "baseColorTexture": {"index": 0})" : "") + "}" + material +
+        "}]," +
+        (textured ? R"("textures": [{"source": 0}], "images": [{"uri": ")" + image + R"("}],)"
+                  : "") +
+        R"(
+  "buffers": [{"byteLength": 92, "uri": "data:application/octet-stream;base64,)" +
+        base64(buffer) + R"("}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                  {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+                  {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+                {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]})";
+    write("quad.gltf", json);
+    return SceneLoader(diagnostics).load(dir / "quad.gltf");
+  }
+};
+
+TEST_F(GltfMask, MaskModeCutsWhereTheBaseColoursAlphaIsBelowTheCutoff) {
+  fs::copy_file(kFloorScene / "fence-mask.png", dir / "mask.png");
+  const Scene s = load_gltf_quad("mask.png", R"(, "alphaMode": "MASK", "alphaCutoff": 0.25)");
+  EXPECT_TRUE(diagnostics.warnings().empty()) << warnings_of(diagnostics);
+  const Material& m = s.materials.at(0);
+  ASSERT_NE(m.alpha_mask, nullptr);
+  EXPECT_EQ(m.alpha_cutoff, 0.25f);
+  EXPECT_NE(m.texture, nullptr);
+  // Texel (0, 0), the top left of the image (glTF texture coordinates
+  // (0, 0): the quad's corner x = 0, y = 1), is solid, texel (2, 0) cut.
+  const RayTracer tracer(s);
+  EXPECT_TRUE(tracer.intersect({0.5f / 8, 1 - 0.5f / 8, 1.0f}, {0, 0, -1}).hit);
+  EXPECT_FALSE(tracer.intersect({2.5f / 8, 1 - 0.5f / 8, 1.0f}, {0, 0, -1}).hit);
+}
+
+TEST_F(GltfMask, OpaqueAndBlendAreWhole) {
+  fs::copy_file(kFloorScene / "fence-mask.png", dir / "mask.png");
+  EXPECT_FALSE(load_gltf_quad("mask.png", R"(, "alphaMode": "BLEND")").has_masks());
+  EXPECT_FALSE(load_gltf_quad("mask.png", "").has_masks());
+}
+
+TEST_F(GltfMask, CutoffOutsideZeroToOneWarnsNamingTheFile) {
+  fs::copy_file(kFloorScene / "fence-mask.png", dir / "mask.png");
+  const Scene s = load_gltf_quad("mask.png", R"(, "alphaMode": "MASK", "alphaCutoff": 2.5)");
+  expect_one_warning_naming("quad.gltf");
+  EXPECT_NE(diagnostics.warnings()[0].message.find("alphaCutoff"), std::string::npos);
+  EXPECT_EQ(s.materials.at(0).alpha_cutoff, 0.5f);
+}
+
+TEST_F(GltfMask, FactorBelowTheCutoffCutsEverything) {
+  fs::copy_file(kFloorScene / "fence-mask.png", dir / "mask.png");
+  const Scene s = load_gltf_quad("mask.png", R"(, "alphaMode": "MASK")", "[0.5, 0.5, 0.5, 0.3]");
+  EXPECT_TRUE(diagnostics.warnings().empty()) << warnings_of(diagnostics);
+  const RayTracer tracer(s);
+  EXPECT_FALSE(tracer.intersect({0.5f / 8, 1 - 0.5f / 8, 1.0f}, {0, 0, -1}).hit);
+}
+
+TEST_F(GltfMask, FactorBelowTheCutoffWithoutTextureOrCoordinatesCutsEverything) {
+  const Scene s =
+      load_gltf_quad("", R"(, "alphaMode": "MASK", "alphaCutoff": 0.6)", "[0.5, 0.5, 0.5, 0.5]");
+  // Nothing to warn about: a constant mask needs no texture coordinates.
+  EXPECT_TRUE(diagnostics.warnings().empty()) << warnings_of(diagnostics);
+  const RayTracer tracer(s);
+  EXPECT_FALSE(tracer.intersect({0.5f, 0.5f, 1.0f}, {0, 0, -1}).hit);
+  // And one above the cutoff is whole: no mask at all.
+  EXPECT_FALSE(
+      load_gltf_quad("", R"(, "alphaMode": "MASK", "alphaCutoff": 0.4)", "[0.5, 0.5, 0.5, 0.5]")
+          .has_masks());
+}
+
+}  // namespace
+}  // namespace bounce
