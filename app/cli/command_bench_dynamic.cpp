@@ -20,7 +20,7 @@
 #include "base/error.h"
 #include "bench_commands.h"
 #include "console_progress.h"
-#include "dynamic/dynamic_bench.h"
+#include "dynamic_bench.h"
 #include "io/npy.h"
 #include "metrics/image_metrics.h"
 #include "raytrace/ray_tracer.h"

@@ -13,7 +13,7 @@
 #include "bench_commands.h"
 #include "bounce/bake_folder.h"
 #include "io/npy.h"
-#include "runtime/runtime_bench.h"
+#include "runtime_bench.h"
 
 namespace bounce::cli {
 

@@ -12,7 +12,7 @@
 
 #include "base/error.h"
 #include "bench_commands.h"
-#include "transport/transport_bench.h"
+#include "transport_bench.h"
 
 namespace bounce::cli {
 

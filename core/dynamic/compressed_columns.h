@@ -1,5 +1,5 @@
 #pragma once
-// Reading a compressed multi-bounce matrix T~ (runtime/compressed_transport_
+// Reading a compressed multi-bounce matrix T~ (compress/compressed_transport_
 // tables.h: BC1/BC4 blocks plus kept entries, stored order) by block
 // columns instead of whole: what light-importance temporal radiosity
 // (dynamic/light_temporal_radiosity.h) multiplies each frame. A block
@@ -12,7 +12,7 @@
 #include <span>
 #include <vector>
 
-#include "runtime/compressed_transport_tables.h"
+#include "compress/compressed_transport_tables.h"
 
 namespace bounce {
 

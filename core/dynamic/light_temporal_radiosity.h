@@ -37,10 +37,10 @@
 
 #include <glm/glm.hpp>
 
+#include "compress/compressed_transport_tables.h"
 #include "dynamic/adaptive_history.h"
 #include "dynamic/compressed_columns.h"
 #include "dynamic/systematic_draw.h"
-#include "runtime/compressed_transport_tables.h"
 
 namespace bounce {
 

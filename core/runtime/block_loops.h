@@ -10,8 +10,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include "compress/compressed_transport_tables.h"
 #include "runtime/compressed_transport.h"
-#include "runtime/compressed_transport_tables.h"
 
 #if defined(__x86_64__) || defined(__i386__)
 #define BOUNCE_AVX2_BLOCK_LOOP 1

@@ -11,7 +11,7 @@
 // order (and for the bfloat16 loop rounded) on all threads, every block row
 // is multiplied (OpenMP over bands of 8 block rows; per block, the 2- or
 // 3-bit indices select values from the block's palette, see
-// runtime/compressed_transport_tables.h) into a stored-order buffer, then
+// compress/compressed_transport_tables.h) into a stored-order buffer, then
 // the corrections of the kept entries are added and the rows scattered back
 // to patch order. The corrections run as a pass of their own after the
 // block loop: run between its bands, their random reads of b evicted the
@@ -28,7 +28,7 @@
 #include <glm/glm.hpp>
 
 #include "compress/codec.h"
-#include "runtime/compressed_transport_tables.h"
+#include "compress/compressed_transport_tables.h"
 
 namespace bounce {
 

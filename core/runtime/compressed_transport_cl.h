@@ -19,7 +19,7 @@
 #include <glm/glm.hpp>
 
 #include "compress/codec.h"
-#include "runtime/compressed_transport_tables.h"
+#include "compress/compressed_transport_tables.h"
 
 namespace bounce {
 

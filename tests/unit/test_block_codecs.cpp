@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "base/error.h"
+#include "block_bench.h"
 #include "compress/block_bc1.h"
 #include "compress/block_bc4.h"
 #include "compress/block_image.h"

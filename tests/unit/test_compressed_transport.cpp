@@ -34,7 +34,7 @@
 #include "runtime/compressed_transport.h"
 #include "runtime/compressed_transport_cl.h"
 #include "runtime/dense_transport.h"
-#include "runtime/runtime_bench.h"
+#include "runtime_bench.h"
 
 namespace bounce {
 

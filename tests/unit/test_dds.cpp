@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "block_bench.h"
 #include "compress/block_bc1.h"
 #include "compress/block_bc4.h"
 #include "compress/block_image.h"

@@ -20,11 +20,11 @@
 
 #include "base/error.h"
 #include "compress/codec.h"
+#include "compress/compressed_transport_tables.h"
 #include "dynamic/adaptive_history.h"
 #include "dynamic/compressed_columns.h"
 #include "dynamic/light_temporal_radiosity.h"
 #include "dynamic/systematic_draw.h"
-#include "runtime/compressed_transport_tables.h"
 
 namespace bounce {
 namespace {

@@ -14,9 +14,9 @@
 #include "compute/opencl_context.h"
 #include "dynamic/alias_table.h"
 #include "dynamic/counter_hash.h"
-#include "dynamic/dynamic_bench.h"
 #include "dynamic/temporal_radiosity.h"
 #include "dynamic/temporal_radiosity_cl.h"
+#include "dynamic_bench.h"
 
 namespace bounce {
 namespace {

@@ -1,4 +1,4 @@
-#include "dynamic/dynamic_bench.h"
+#include "dynamic_bench.h"
 
 #include <algorithm>
 #include <chrono>

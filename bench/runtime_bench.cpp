@@ -1,4 +1,4 @@
-#include "runtime/runtime_bench.h"
+#include "runtime_bench.h"
 
 #include <algorithm>
 #include <chrono>
@@ -245,8 +245,8 @@ std::string runtime_bench_table(const RuntimeBench& bench) {
                      static_cast<double>(g.bytes) / (1024.0 * 1024.0), g.gb_per_s,
                      100.0 * of_memory, g.max_rel_diff);
   }
-  // The targets for the default C++ loop: >= 8x dense sgemv, and
-  // within 2x of the time its bytes take at the measured bandwidth.
+  // What the default C++ loop is to reach: >= 8x dense sgemv, and within 2x
+  // of the time its bytes take at the measured bandwidth.
   for (const RuntimeBenchEntry& e : bench.entries) {
     if (!e.available || !e.default_loop || e.best_ms <= 0.0) continue;
     s += text_format("  %s, the default loop: %.3f ms", e.what.c_str(), e.best_ms);

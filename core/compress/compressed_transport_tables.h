@@ -2,7 +2,8 @@
 // What the run-time product of a compressed multi-bounce matrix reads each
 // frame, laid out once from a CompressedMatrix (compress/codec.h) for both
 // the C++ path (runtime/compressed_transport.h) and the OpenCL one
-// (runtime/compressed_transport_cl.h). Everything is in stored order: block
+// (runtime/compressed_transport_cl.h), and what light-importance temporal
+// radiosity reads by block columns (dynamic/compressed_columns.h). Everything is in stored order: block
 // rows and columns as in the DDS, rows and columns of the matrix permuted.
 //
 // Palettes in value space: the 4 (BC1) or 8 (BC4) values a block's indices

@@ -1,4 +1,4 @@
-#include "runtime/compressed_transport_tables.h"
+#include "compress/compressed_transport_tables.h"
 
 #include <algorithm>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "transport/transport_bench.h"
+#include "transport_bench.h"
 
 #include <algorithm>
 #include <chrono>

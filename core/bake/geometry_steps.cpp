@@ -1,0 +1,95 @@
+// The geometry stage of a bake: voxel grid, ray tracer, samples, their
+// texture albedo and the patches.
+#include <string>
+
+#include "bake/bake_steps.h"
+
+namespace bounce {
+
+namespace {
+
+void voxelize_step(BakeRun& run) {
+  BakeResult& r = run.result;
+  int resolution = BakeSettings::kDefaultVoxelResolution;
+  if (r.settings.voxel_resolution) {
+    resolution = *r.settings.voxel_resolution;
+  } else if (r.settings.patches_total) {
+    run.progress.begin_stage("choose grid resolution", 1);
+    resolution = Baker::resolution_for_patch_count(
+        run.scene, *r.settings.patches_total, *r.settings.patches_per_voxel, r.settings.patch_mode);
+    run.progress.end_stage();
+  }
+  r.settings.voxel_resolution = resolution;
+  r.voxels = voxelize(run.scene, VoxelGrid(run.scene.bounds(), resolution), &run.progress);
+  const auto empty = r.voxels.grid.cell_count() - r.voxels.voxels.size();
+  if (empty > 0)
+    run.diagnostics.left_out("voxelize", std::to_string(empty) + " of " +
+                                             std::to_string(r.voxels.grid.cell_count()) +
+                                             " grid cells are empty and get no samples or patches");
+}
+
+void build_tracer_step(BakeRun& run) { run.tracer.emplace(run.scene); }
+
+void sample_step(BakeRun& run) {
+  BakeResult& r = run.result;
+  SamplingSettings s;
+  s.samples_per_face = *r.settings.samples_per_face;
+  s.seed = r.settings.seed;
+  r.samples = generate_samples(run.scene, *run.tracer, r.voxels, s, &run.progress);
+  if (r.samples.samples.empty())
+    throw Error(run.scene.path,
+                "no surface samples: no ray hit the scene's surfaces from inside any voxel");
+}
+
+// A step of its own, so that what textures cost shows in the manifest.
+bool has_texture_coordinates(const BakeRun& run) { return !run.scene.triangle_uv.empty(); }
+
+void texture_step(BakeRun& run) {
+  apply_texture_albedo(run.scene, run.result.voxels, run.result.samples, &run.progress);
+}
+
+void patches_step(BakeRun& run) {
+  BakeResult& r = run.result;
+  if (r.settings.patch_mode == PatchMode::Virtual) {
+    ClusteringSettings c;
+    c.patches_per_voxel = *r.settings.patches_per_voxel;
+    // A total patch count is a total: the grid was chosen for it at
+    // patches_per_voxel, the merges then go where they cost least.
+    if (r.settings.patches_total)
+      c.total_patches = static_cast<std::size_t>(*r.settings.patches_total);
+    c.mesh_density = patch_densities(run.scene);
+    if (run.distribution) c.sharing = run.distribution->sample_row_sharing();
+    r.patches =
+        cluster_virtual_patches(*run.tracer, r.voxels, r.samples, c, r.clustering, &run.progress);
+    if (r.clustering.voxels_above_target > 0)
+      run.diagnostics.warn("patches", std::to_string(r.clustering.voxels_above_target) +
+                                          " voxels kept more than " +
+                                          std::to_string(*r.settings.patches_per_voxel) +
+                                          " patches: their samples face opposite ways and are "
+                                          "never merged");
+  } else {
+    run.progress.begin_stage("voxel patches", 1);
+    r.patches = voxel_patches(r.samples);
+    run.progress.end_stage();
+  }
+  r.patch_density = patch_densities(run.scene);
+}
+
+constexpr BakeStep kGeometrySteps[] = {
+    {"voxelize", nullptr, voxelize_step}, {"ray tracer (BVH build)", nullptr, build_tracer_step},
+    {"sample", nullptr, sample_step},     {"texture", has_texture_coordinates, texture_step},
+    {"patches", nullptr, patches_step},
+};
+
+}  // namespace
+
+std::span<const BakeStep> geometry_steps() { return kGeometrySteps; }
+
+std::vector<float> patch_densities(const Scene& scene) {
+  std::vector<float> d;
+  d.reserve(scene.meshes.size());
+  for (const MeshInfo& m : scene.meshes) d.push_back(m.patch_density);
+  return d;
+}
+
+}  // namespace bounce
