@@ -9,7 +9,7 @@
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 
-#include "runtime/bc1_palette_offsets.h"
+#include "compress/bc1_palette_offsets.h"
 #endif
 
 namespace bounce {
@@ -152,7 +152,7 @@ namespace {
 // Accumulators per row pair and colour; the 4 columns are summed at the end.
 // Block rows go in groups of 8: a drawn column's 8 blocks of the group are
 // consecutive, so their palette offsets are computed 8 at once
-// (runtime/bc1_palette_offsets.h) before the rows read them; one block at a
+// (compress/bc1_palette_offsets.h) before the rows read them; one block at a
 // time, the scalar keys cost as much as the rest of the block.
 __attribute__((target("avx2,fma"))) void multiply_bc1_avx2(
     const Tables& t, const std::uint8_t* column_blocks, const float* xs,

@@ -5,7 +5,7 @@
 #ifdef BOUNCE_AVX2_BLOCK_LOOP
 #include <immintrin.h>
 
-#include "runtime/bc1_palette_offsets.h"
+#include "compress/bc1_palette_offsets.h"
 #endif
 
 namespace bounce::block_loops {

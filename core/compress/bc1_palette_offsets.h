@@ -1,6 +1,6 @@
 #pragma once
 // Where the BC1 blocks' palettes are in the palette tables of
-// runtime/compressed_transport_tables.h, computed for 8 consecutive blocks at
+// compress/compressed_transport_tables.h, computed for 8 consecutive blocks at
 // once. Scalar, bc1_palette_key costs ~10 integer instructions per slot, as
 // much as the rest of a block's work in a product loop; in AVX2 vectors,
 // about 2 per block for all three slots. Shared by the run-time product
@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "runtime/compressed_transport_tables.h"
+#include "compress/compressed_transport_tables.h"
 
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
