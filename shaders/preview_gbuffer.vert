@@ -11,6 +11,7 @@ layout(location = 2) in vec3 albedo;    // textured: the factor the texel is mul
 layout(location = 3) in vec3 emission;
 layout(location = 4) in vec3 indirect;  // irradiance gathered at the vertex
 layout(location = 5) in vec2 uv;
+layout(location = 6) in float mapped;  // 1: uv holds the triangle's coordinates; 0: it has none
 
 uniform mat4 view;
 uniform mat4 projection;
@@ -21,6 +22,7 @@ out vec3 frag_albedo;
 out vec3 frag_emission;
 out vec3 frag_indirect;
 out vec2 frag_uv;
+flat out float frag_mapped;
 
 void main() {
   vec4 p = view * vec4(position, 1.0);
@@ -30,5 +32,6 @@ void main() {
   frag_emission = emission;
   frag_indirect = indirect;
   frag_uv = uv;
+  frag_mapped = mapped;
   gl_Position = projection * p;
 }

@@ -398,28 +398,37 @@ void PreviewWidget::upload_mesh() {
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
     faces_of[scene.triangle_material[mesh.source_triangle[f]]].push_back(
         static_cast<std::uint32_t>(f));
-  constexpr int kFloats = 14;  // position, normal, albedo, emission (3 each), uv (2)
+  // position, normal, albedo, emission (3 each), uv (2), whether uv is known (1)
+  constexpr int kFloats = 15;
   std::vector<float> corners;
   corners.reserve(mesh.triangles.size() * 3 * kFloats);
   for (std::size_t material = 0; material < faces_of.size(); ++material) {
     if (faces_of[material].empty()) continue;
     const Material& m = scene.materials[material];
-    const bool textured = !scene.triangle_uv.empty() && m.texture != nullptr;
-    // Textured, the shader multiplies the texel by this factor (and clamps
-    // to the core's albedo range, as Scene::albedo_at does).
-    const glm::vec3 albedo = textured ? m.texture_factor : m.albedo;
     MaterialDraw draw;
     draw.first = static_cast<GLint>(corner_vertex_.size());
     draw.material = material;
     for (const std::uint32_t f : faces_of[material]) {
       const std::uint32_t source = mesh.source_triangle[f];
+      // A piece without texture coordinates has NaN ones in the core, where
+      // lookups answer the texture's mean and a mask keeps the surface
+      // (a constant mask still applies): the shaders are told per corner,
+      // as OpenGL lookups at NaN are undefined.
+      bool mapped = !scene.triangle_uv.empty();
+      if (mapped)
+        for (const glm::vec2& uv : scene.triangle_uv[source])
+          mapped = mapped && std::isfinite(uv.x) && std::isfinite(uv.y);
+      // Textured, the shader multiplies the texel by this factor (and
+      // clamps to the core's albedo range, as Scene::albedo_at does).
+      const glm::vec3 albedo = mapped && m.texture ? m.texture_factor : m.albedo;
       for (int c = 0; c < 3; ++c) {
         const std::uint32_t v = mesh.triangles[f][c];
         corner_vertex_.push_back(v);
         for (const glm::vec3& a : {mesh.positions[v], mesh.normals[v], albedo, m.emission})
           corners.insert(corners.end(), {a.x, a.y, a.z});
-        const glm::vec2 uv = texture_coordinates(scene, source, mesh.positions[v]);
-        corners.insert(corners.end(), {uv.x, uv.y});
+        const glm::vec2 uv =
+            mapped ? texture_coordinates(scene, source, mesh.positions[v]) : glm::vec2(0.0f);
+        corners.insert(corners.end(), {uv.x, uv.y, mapped ? 1.0f : 0.0f});
       }
     }
     draw.count = static_cast<GLsizei>(corner_vertex_.size()) - draw.first;
@@ -444,6 +453,10 @@ void PreviewWidget::upload_mesh() {
   glVertexAttribPointer(
       5, 2, GL_FLOAT, GL_FALSE, stride,
       reinterpret_cast<const void*>(static_cast<std::uintptr_t>(12 * sizeof(float))));
+  glEnableVertexAttribArray(6);
+  glVertexAttribPointer(
+      6, 1, GL_FLOAT, GL_FALSE, stride,
+      reinterpret_cast<const void*>(static_cast<std::uintptr_t>(14 * sizeof(float))));
   glGenBuffers(1, &indirect_vbo_);
   glBindBuffer(GL_ARRAY_BUFFER, indirect_vbo_);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(corner_vertex_.size() * sizeof(glm::vec3)),
@@ -522,6 +535,8 @@ void PreviewWidget::draw_mesh(QOpenGLShaderProgram& program) {
     glBindTexture(GL_TEXTURE_2D, draw.mask);
     program.setUniformValue("has_texture", draw.texture != 0);
     program.setUniformValue("has_mask", draw.mask != 0);
+    program.setUniformValue("constant_mask",
+                            m.alpha_mask != nullptr && m.alpha_mask->is_constant());
     program.setUniformValue("alpha_factor", m.alpha_factor);
     program.setUniformValue("alpha_cutoff", m.alpha_cutoff);
     glDrawArrays(GL_TRIANGLES, draw.first, draw.count);
