@@ -1,10 +1,12 @@
 #version 330 core
 // Lighting and composite. Units are those of `bounce solve`: a surface sends
-// out emission + albedo * E_direct + T b (runtime/patch_lighting.h). The
-// direct part is computed here per pixel from the light, with the shadow
-// cube map and percentage-closer filtering; the indirect part is the runtime
-// solve's T b transferred to the vertices and interpolated; the ambient
-// occlusion map scales the indirect part only (it stands for occlusion of
+// out emission + albedo * (E_direct + E_indirect) (runtime/patch_lighting.h),
+// with the albedo under the pixel (the texel of a textured material), as
+// `bounce solve`'s camera pictures. The direct irradiance is computed here
+// per pixel from the light, with the shadow cube map and percentage-closer
+// filtering; the indirect irradiance is the runtime solve's, transferred to
+// the vertices and interpolated; the ambient occlusion map scales the
+// indirect part only (it stands for occlusion of
 // light arriving from everywhere, the paper's I_amb; the direct light has
 // its own shadow). Then one fixed exposure and the sRGB curve.
 // linear_output skips both: the widget reads that picture back once to set
@@ -96,7 +98,7 @@ void main() {
   }
   if (show_indirect) {
     float open = use_ao ? texture(ao, uv).r : 1.0;
-    light += texture(g_indirect, uv).rgb * open;
+    light += albedo.rgb * texture(g_indirect, uv).rgb * open;
   }
   colour = vec4(linear_output ? light : srgb(exposure * light), 1.0);
 }

@@ -2,13 +2,16 @@
 // G-buffer pass of the preview (docs/studio.md): view-space position and normal
 // (V_vcs = M_mv V, N_vcs = (M_mv^-1)^T N; the view matrix is rigid, so its
 // rotation part is its own inverse transpose), plus what the lighting pass
-// needs per pixel: albedo, emission and the indirect light the runtime
+// needs per pixel: albedo (or the texture factor of a textured material),
+// emission, texture coordinates and the indirect irradiance the runtime
 // solve left on this vertex.
 layout(location = 0) in vec3 position;  // world space
 layout(location = 1) in vec3 normal;    // world space, unit
-layout(location = 2) in vec3 albedo;
+layout(location = 2) in vec3 albedo;    // textured: the factor the texel is multiplied by
 layout(location = 3) in vec3 emission;
-layout(location = 4) in vec3 indirect;  // T b gathered at the vertex
+layout(location = 4) in vec3 indirect;  // irradiance gathered at the vertex
+layout(location = 5) in vec2 uv;
+layout(location = 6) in float mapped;  // 1: uv holds the triangle's coordinates; 0: it has none
 
 uniform mat4 view;
 uniform mat4 projection;
@@ -18,6 +21,8 @@ out vec3 view_normal;
 out vec3 frag_albedo;
 out vec3 frag_emission;
 out vec3 frag_indirect;
+out vec2 frag_uv;
+flat out float frag_mapped;
 
 void main() {
   vec4 p = view * vec4(position, 1.0);
@@ -26,5 +31,7 @@ void main() {
   frag_albedo = albedo;
   frag_emission = emission;
   frag_indirect = indirect;
+  frag_uv = uv;
+  frag_mapped = mapped;
   gl_Position = projection * p;
 }

@@ -56,8 +56,14 @@ PreviewLighting::PreviewLighting(std::shared_ptr<const BakeViewData> data)
                       " vertices, the scene's lit mesh "
                       "has " +
                       std::to_string(geometry_.positions.size()) + ": not this scene");
-    for (const std::uint32_t t : vertex_source_triangles(geometry_))
-      vertex_albedo_.push_back(scene.material_of(t).albedo);
+  } else {
+    for (const std::uint32_t t : vertex_source_triangles(geometry_)) {
+      const glm::vec3 albedo = scene.material_of(t).albedo;
+      glm::vec3 inverse(0.0f);
+      for (int c = 0; c < 3; ++c)
+        if (albedo[c] > 1e-4f) inverse[c] = 1.0f / albedo[c];
+      vertex_inverse_albedo_.push_back(inverse);
+    }
   }
 }
 
@@ -73,18 +79,19 @@ PreviewLighting::Solve PreviewLighting::solve(const glm::vec3& light_position) {
   t = Clock::now();
   if (gather_) {
     // The bake's final gather: each vertex sums the reflected light b + T b
-    // of the patches it sees, reflected with its own albedo (the shaders add
-    // the direct light themselves).
-    relighter_->gather(*gather_, s.vertex_indirect);
-    for (std::size_t v = 0; v < s.vertex_indirect.size(); ++v)
-      s.vertex_indirect[v] *= vertex_albedo_[v];
+    // of the patches it sees, the irradiance it receives (the shaders
+    // reflect it with the albedo under each pixel and add the direct light
+    // themselves).
+    relighter_->gather(*gather_, s.vertex_irradiance);
   } else {
     // Without one, the nearest patches' T b (the camera of `bounce solve`
-    // does the same).
+    // does the same), turned back into irradiance.
     const PatchGather gather(data_->bake.patches.patches, relighter_->frame().indirect(), grid_,
                              tracer_.get(), GatherSettings{});
     relight(work_, gather);
-    s.vertex_indirect = work_.radiosity;
+    s.vertex_irradiance = work_.radiosity;
+    for (std::size_t v = 0; v < s.vertex_irradiance.size(); ++v)
+      s.vertex_irradiance[v] *= vertex_inverse_albedo_[v];
   }
   s.transfer_seconds = since(t);
   return s;

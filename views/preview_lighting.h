@@ -6,7 +6,9 @@
 // the transfer of the patches' indirect light to the vertices of the
 // refined scene mesh (runtime/mesh_transfer.h, runtime/patch_gather.h).
 // The preview draws the direct light itself per pixel (shadow map), so
-// what it takes from here per frame is T b on the vertices.
+// what it takes from here per frame is the indirect irradiance on the
+// vertices: the preview reflects it with the albedo under each pixel (the
+// texel of a textured material), as `bounce solve`'s camera pictures do.
 //
 // The preview lights the scene with one movable light: the scene's first
 // point or spot light. Other lights and emissive triangles (area lights) are
@@ -31,9 +33,11 @@ class PreviewLighting {
  public:
   struct Solve {
     glm::vec3 light_position{0.0f};
-    std::vector<glm::vec3> vertex_indirect;  // T b at each mesh vertex
-    double frame_seconds = 0.0;              // the frame graph: direct light, first hit, T b
-    double transfer_seconds = 0.0;           // patches -> vertices (gather with occlusion rays)
+    // Indirect irradiance at each mesh vertex (light arriving, not yet
+    // reflected: times the albedo it is the vertex's T b).
+    std::vector<glm::vec3> vertex_irradiance;
+    double frame_seconds = 0.0;     // the frame graph: direct light, first hit, T b
+    double transfer_seconds = 0.0;  // patches -> vertices (gather with occlusion rays)
   };
 
   // Throws bounce::Error when the bake's scene is not loaded, the scene has
@@ -66,10 +70,13 @@ class PreviewLighting {
   TransferGrid grid_;
   LitMesh geometry_;  // read by the UI thread, never written after construction
   LitMesh work_;      // relit by solve()
-  // The bake's final gather of these vertices, when it stored one, and the
-  // albedo each vertex's light is reflected with.
+  // The bake's final gather of these vertices, when it stored one.
   std::optional<FinalGather> gather_;
-  std::vector<glm::vec3> vertex_albedo_;
+  // Without it, one over the mean albedo of each vertex's material: the
+  // nearest patches' T b is light they reflected with their mean albedo,
+  // and this turns it back into the irradiance they received (0 where a
+  // channel reflects nothing).
+  std::vector<glm::vec3> vertex_inverse_albedo_;
   Light light_;
   std::vector<Light> lights_;  // the one light, moved per solve
 };

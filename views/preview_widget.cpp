@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <random>
 #include <string>
 
@@ -24,6 +25,9 @@
 #include "io/tone_map.h"
 #include "preview_lighting.h"
 #include "preview_programs.h"
+#include "scene/alpha_mask.h"
+#include "scene/surface_texture.h"
+#include "scene/texture.h"
 
 namespace bounce::views {
 
@@ -108,7 +112,7 @@ void PreviewWidget::set_data(std::shared_ptr<const BakeViewData> bake) {
   const double first = s.frame_seconds + s.transfer_seconds;
   s = lighting_->solve(light_position_);
   solve_on_worker_ = std::min(first, s.frame_seconds + s.transfer_seconds) > kUiSolveBudget;
-  apply({s.light_position, s.vertex_indirect, s.frame_seconds, s.transfer_seconds});
+  apply({s.light_position, s.vertex_irradiance, s.frame_seconds, s.transfer_seconds});
   mesh_dirty_ = true;
   if (solve_on_worker_) start_worker();
   update();
@@ -142,7 +146,7 @@ void PreviewWidget::set_light_position(const glm::vec3& position, bool wait) {
   if (wait || !solve_on_worker_) {
     std::lock_guard<std::mutex> lock(lighting_mutex_);
     const PreviewLighting::Solve s = lighting_->solve(position);
-    apply({s.light_position, s.vertex_indirect, s.frame_seconds, s.transfer_seconds});
+    apply({s.light_position, s.vertex_irradiance, s.frame_seconds, s.transfer_seconds});
   } else {
     {
       std::lock_guard<std::mutex> lock(request_mutex_);
@@ -179,7 +183,7 @@ void PreviewWidget::start_worker() {
       try {
         std::lock_guard<std::mutex> lock(lighting_mutex_);
         const PreviewLighting::Solve s = lighting_->solve(position);
-        r = {s.light_position, s.vertex_indirect, s.frame_seconds, s.transfer_seconds};
+        r = {s.light_position, s.vertex_irradiance, s.frame_seconds, s.transfer_seconds};
       } catch (const std::exception& e) {
         const QString message = QString::fromStdString(e.what());
         QMetaObject::invokeMethod(
@@ -356,6 +360,10 @@ void PreviewWidget::release_gl() {
   if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
   if (static_vbo_) glDeleteBuffers(1, &static_vbo_);
   if (indirect_vbo_) glDeleteBuffers(1, &indirect_vbo_);
+  if (!material_images_.empty())
+    glDeleteTextures(static_cast<GLsizei>(material_images_.size()), material_images_.data());
+  material_images_.clear();
+  draws_.clear();
   if (shadow_fbo_) glDeleteFramebuffers(1, &shadow_fbo_);
   if (shadow_cube_) glDeleteTextures(1, &shadow_cube_);
   if (noise_texture_) glDeleteTextures(1, &noise_texture_);
@@ -372,25 +380,61 @@ void PreviewWidget::upload_mesh() {
   if (mesh_vao_) glDeleteVertexArrays(1, &mesh_vao_);
   if (static_vbo_) glDeleteBuffers(1, &static_vbo_);
   if (indirect_vbo_) glDeleteBuffers(1, &indirect_vbo_);
+  if (!material_images_.empty())
+    glDeleteTextures(static_cast<GLsizei>(material_images_.size()), material_images_.data());
   mesh_vao_ = static_vbo_ = indirect_vbo_ = 0;
+  material_images_.clear();
+  draws_.clear();
   corner_count_ = 0;
   corner_vertex_.clear();
   if (!lighting_) return;
-  // One vertex per triangle corner: albedo and emission belong to the
-  // scene triangle, and neighbours of another material share mesh vertices.
+  // One vertex per triangle corner: albedo, emission and texture
+  // coordinates belong to the scene triangle, and neighbours of another
+  // material share mesh vertices. Corners are grouped by material so each
+  // material is one draw with its own textures bound.
   const LitMesh& mesh = lighting_->mesh();
   const Scene& scene = lighting_->scene();
+  std::vector<std::vector<std::uint32_t>> faces_of(scene.materials.size());
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    faces_of[scene.triangle_material[mesh.source_triangle[f]]].push_back(
+        static_cast<std::uint32_t>(f));
+  // position, normal, albedo, emission (3 each), uv (2), whether uv is known (1)
+  constexpr int kFloats = 15;
   std::vector<float> corners;
-  corners.reserve(mesh.triangles.size() * 3 * 12);
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
-    const Material& m = scene.material_of(mesh.source_triangle[f]);
-    for (int c = 0; c < 3; ++c) {
-      const std::uint32_t v = mesh.triangles[f][c];
-      corner_vertex_.push_back(v);
-      for (const glm::vec3& a : {mesh.positions[v], mesh.normals[v], m.albedo, m.emission})
-        corners.insert(corners.end(), {a.x, a.y, a.z});
+  corners.reserve(mesh.triangles.size() * 3 * kFloats);
+  for (std::size_t material = 0; material < faces_of.size(); ++material) {
+    if (faces_of[material].empty()) continue;
+    const Material& m = scene.materials[material];
+    MaterialDraw draw;
+    draw.first = static_cast<GLint>(corner_vertex_.size());
+    draw.material = material;
+    for (const std::uint32_t f : faces_of[material]) {
+      const std::uint32_t source = mesh.source_triangle[f];
+      // A piece without texture coordinates has NaN ones in the core, where
+      // lookups answer the texture's mean and a mask keeps the surface
+      // (a constant mask still applies): the shaders are told per corner,
+      // as OpenGL lookups at NaN are undefined.
+      bool mapped = !scene.triangle_uv.empty();
+      if (mapped)
+        for (const glm::vec2& uv : scene.triangle_uv[source])
+          mapped = mapped && std::isfinite(uv.x) && std::isfinite(uv.y);
+      // Textured, the shader multiplies the texel by this factor (and
+      // clamps to the core's albedo range, as Scene::albedo_at does).
+      const glm::vec3 albedo = mapped && m.texture ? m.texture_factor : m.albedo;
+      for (int c = 0; c < 3; ++c) {
+        const std::uint32_t v = mesh.triangles[f][c];
+        corner_vertex_.push_back(v);
+        for (const glm::vec3& a : {mesh.positions[v], mesh.normals[v], albedo, m.emission})
+          corners.insert(corners.end(), {a.x, a.y, a.z});
+        const glm::vec2 uv =
+            mapped ? texture_coordinates(scene, source, mesh.positions[v]) : glm::vec2(0.0f);
+        corners.insert(corners.end(), {uv.x, uv.y, mapped ? 1.0f : 0.0f});
+      }
     }
+    draw.count = static_cast<GLsizei>(corner_vertex_.size()) - draw.first;
+    draws_.push_back(draw);
   }
+  upload_material_images();
   corner_count_ = static_cast<GLsizei>(corner_vertex_.size());
   glGenVertexArrays(1, &mesh_vao_);
   glBindVertexArray(mesh_vao_);
@@ -398,13 +442,21 @@ void PreviewWidget::upload_mesh() {
   glBindBuffer(GL_ARRAY_BUFFER, static_vbo_);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(corners.size() * sizeof(float)),
                corners.data(), GL_STATIC_DRAW);
-  const GLsizei stride = 12 * sizeof(float);
+  const GLsizei stride = kFloats * sizeof(float);
   for (GLuint k = 0; k < 4; ++k) {
     glEnableVertexAttribArray(k);
     glVertexAttribPointer(
         k, 3, GL_FLOAT, GL_FALSE, stride,
         reinterpret_cast<const void*>(static_cast<std::uintptr_t>(k * 3 * sizeof(float))));
   }
+  glEnableVertexAttribArray(5);
+  glVertexAttribPointer(
+      5, 2, GL_FLOAT, GL_FALSE, stride,
+      reinterpret_cast<const void*>(static_cast<std::uintptr_t>(12 * sizeof(float))));
+  glEnableVertexAttribArray(6);
+  glVertexAttribPointer(
+      6, 1, GL_FLOAT, GL_FALSE, stride,
+      reinterpret_cast<const void*>(static_cast<std::uintptr_t>(14 * sizeof(float))));
   glGenBuffers(1, &indirect_vbo_);
   glBindBuffer(GL_ARRAY_BUFFER, indirect_vbo_);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(corner_vertex_.size() * sizeof(glm::vec3)),
@@ -413,6 +465,84 @@ void PreviewWidget::upload_mesh() {
   glVertexAttribPointer(4, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
   glBindVertexArray(0);
   indirect_dirty_ = true;
+}
+
+void PreviewWidget::upload_material_images() {
+  // The core's decoded images, uploaded as they are: the albedo texture in
+  // linear RGB with the core's own MIP pyramid (each level half the last,
+  // as OpenGL expects), the alpha mask's coverage at its one level. Both are
+  // stored row 0 first, the top of the image, which is v = 1: the shaders
+  // look up (u, 1 - v). R11F_G11F_B10F keeps linear light in 4 bytes a
+  // texel, so a scene with many large textures fits; a mask needs 8 bits.
+  const Scene& scene = lighting_->scene();
+  if (scene.triangle_uv.empty()) return;
+  std::map<const void*, GLuint> uploaded;  // a texture shared by materials is uploaded once
+  auto make = [this](GLint min_filter) {
+    GLuint name = 0;
+    glGenTextures(1, &name);
+    glBindTexture(GL_TEXTURE_2D, name);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, min_filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);  // the core's wrapping
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    material_images_.push_back(name);
+    return name;
+  };
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  for (MaterialDraw& draw : draws_) {
+    const Material& m = scene.materials[draw.material];
+    if (const Texture* t = m.texture.get(); t != nullptr && !t->levels.empty()) {
+      GLuint& name = uploaded[t];
+      if (name == 0) {
+        name = make(GL_LINEAR_MIPMAP_LINEAR);
+        for (std::size_t level = 0; level < t->levels.size(); ++level) {
+          const Texture::Level& l = t->levels[level];
+          glTexImage2D(GL_TEXTURE_2D, static_cast<GLint>(level), GL_R11F_G11F_B10F, l.width,
+                       l.height, 0, GL_RGB, GL_FLOAT, l.texels.data());
+        }
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL,
+                        static_cast<GLint>(t->levels.size()) - 1);
+      }
+      draw.texture = name;
+    }
+    if (const AlphaMask* a = m.alpha_mask.get(); a != nullptr && !a->values.empty()) {
+      GLuint& name = uploaded[a];
+      if (name == 0) {
+        // No MIP levels: the core cuts with the full-resolution mask, and
+        // averaged coverage would fade holes away with distance.
+        name = make(GL_LINEAR);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, a->width, a->height, 0, GL_RED, GL_FLOAT,
+                     a->values.data());
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+      }
+      draw.mask = name;
+    }
+  }
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+void PreviewWidget::draw_mesh(QOpenGLShaderProgram& program) {
+  const Scene& scene = lighting_->scene();
+  program.setUniformValue("albedo_texture", 0);
+  program.setUniformValue("alpha_mask", 1);
+  glBindVertexArray(mesh_vao_);
+  for (const MaterialDraw& draw : draws_) {
+    const Material& m = scene.materials[draw.material];
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, draw.texture);
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, draw.mask);
+    program.setUniformValue("has_texture", draw.texture != 0);
+    program.setUniformValue("has_mask", draw.mask != 0);
+    program.setUniformValue("constant_mask",
+                            m.alpha_mask != nullptr && m.alpha_mask->is_constant());
+    program.setUniformValue("alpha_factor", m.alpha_factor);
+    program.setUniformValue("alpha_cutoff", m.alpha_cutoff);
+    glDrawArrays(GL_TRIANGLES, draw.first, draw.count);
+  }
+  glActiveTexture(GL_TEXTURE0);
+  glBindVertexArray(0);
 }
 
 void PreviewWidget::upload_indirect() {
@@ -440,7 +570,6 @@ void PreviewWidget::render_shadow_map() {
   programs_.shadow->setUniformValue("far_plane", far_plane);
   glUniform3fv(programs_.shadow->uniformLocation("light_position"), 1,
                glm::value_ptr(light_position_));
-  glBindVertexArray(mesh_vao_);
   for (int f = 0; f < 6; ++f) {
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT,
                            static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), shadow_cube_,
@@ -451,9 +580,8 @@ void PreviewWidget::render_shadow_map() {
     const glm::mat4 vp = projection * view;
     glUniformMatrix4fv(programs_.shadow->uniformLocation("light_view_projection"), 1, GL_FALSE,
                        glm::value_ptr(vp));
-    glDrawArrays(GL_TRIANGLES, 0, corner_count_);
+    draw_mesh(*programs_.shadow);  // alpha-tested: light passes where masks cut away
   }
-  glBindVertexArray(0);
 }
 
 void PreviewWidget::render(GLuint target) {
@@ -490,8 +618,7 @@ void PreviewWidget::render(GLuint target) {
   glUniformMatrix4fv(programs_.gbuffer->uniformLocation("view"), 1, GL_FALSE, glm::value_ptr(view));
   glUniformMatrix4fv(programs_.gbuffer->uniformLocation("projection"), 1, GL_FALSE,
                      glm::value_ptr(projection));
-  glBindVertexArray(mesh_vao_);
-  glDrawArrays(GL_TRIANGLES, 0, corner_count_);
+  draw_mesh(*programs_.gbuffer);
   glDisable(GL_CULL_FACE);
   glDisable(GL_DEPTH_TEST);
 

@@ -3,12 +3,15 @@
 // core with
 //   1. a shadow cube map of the light (distance to the light per texel),
 //   2. a G-buffer (view-space position and normal, albedo, emission, and the
-//      runtime solve's indirect light per vertex, interpolated),
+//      runtime solve's indirect irradiance per vertex, interpolated), with the
+//      albedo looked up in the material's texture and alpha-masked
+//      materials cut away (also in the shadow map),
 //   3. SSAO (hemisphere kernel of 32 samples rotated per
 //      pixel by a tiled 4 x 4 noise texture, depth test with bias delta),
 //   4. a 4 x 4 box blur of the occlusion map,
-//   5. the composite: direct light with percentage-closer filtering, the
-//      indirect light scaled by the blurred occlusion, emission, one fixed
+//   5. the composite: albedo x (direct irradiance with percentage-closer
+//      filtering + indirect irradiance scaled by the blurred occlusion),
+//      plus emission, one fixed
 //      exposure, sRGB; each of direct / indirect / AO can be switched off,
 // and an overlay with the frame rate and the solve time.
 //
@@ -118,6 +121,11 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   void draw_overlay();
   void release_gl();
   void upload_mesh();
+  void upload_material_images();
+  // Draws the mesh one material at a time with `program`, its textures bound
+  // to units 0 (albedo) and 1 (alpha mask) and the uniforms that say which
+  // of them the material has.
+  void draw_mesh(QOpenGLShaderProgram& program);
   void upload_indirect();
   void render_shadow_map();
   void apply(SolveResult result);
@@ -144,7 +152,7 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   Passes passes_;
   bool overlay_ = true;
   glm::vec3 light_position_{0.0f}, solved_light_{0.0f};
-  std::vector<glm::vec3> vertex_indirect_;
+  std::vector<glm::vec3> vertex_indirect_;  // indirect irradiance per mesh vertex
   double frame_seconds_ = 0.0, transfer_seconds_ = 0.0;
 
   // Camera: orbit around target_.
@@ -165,6 +173,16 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   GLuint mesh_vao_ = 0, static_vbo_ = 0, indirect_vbo_ = 0, empty_vao_ = 0;
   GLsizei corner_count_ = 0;
   std::vector<std::uint32_t> corner_vertex_;  // mesh vertex of each drawn corner
+  // The corners are grouped by material: one draw per material, with the
+  // OpenGL images of its albedo texture and alpha mask (0: none).
+  struct MaterialDraw {
+    GLint first = 0;
+    GLsizei count = 0;
+    std::size_t material = 0;
+    GLuint texture = 0, mask = 0;
+  };
+  std::vector<MaterialDraw> draws_;
+  std::vector<GLuint> material_images_;  // every texture draws_ names, each once
   GLuint shadow_fbo_ = 0, shadow_cube_ = 0;
   PreviewTargets targets_{*this};
   GLuint noise_texture_ = 0;

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "scene/alpha_mask.h"
+#include "scene/surface_texture.h"
 #include "scene/texture.h"
 
 namespace bounce {
@@ -30,6 +31,11 @@ glm::vec3 textured_albedo(const Material& m, const glm::vec3& texel) {
 }
 
 }  // namespace
+
+glm::vec2 texture_coordinates(const Scene& scene, std::size_t tri, const glm::vec3& p) {
+  if (scene.triangle_uv.empty()) return glm::vec2(0.0f);
+  return uv_at(scene, tri, p);
+}
 
 glm::vec3 Scene::albedo_at(std::size_t tri, const glm::vec3& p) const {
   const Material& m = material_of(tri);

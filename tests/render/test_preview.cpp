@@ -247,4 +247,108 @@ TEST_F(Preview, AmbientOcclusionDarkensCorners) {
   }
 }
 
+// The textured preview on resources/scenes/textured-floor with a lamp and a
+// green backdrop behind the fence (tests/render/scenes/textured-floor-lamp):
+// the camera by the wall looks over the far half of the checker floor at the
+// fence. The floor is checker.png (8 x 8 squares of sRGB (224, 96, 64),
+// orange, and (48, 128, 192), blue, orange at the texture's top left, i.e.
+// x = -1, z = -1) times Kd 0.9; the fence (z = 1, x in [-1, 1], y in [0, 1])
+// is cut by fence-mask.png into 4 x 4 squares, solid where column + row
+// (counted from the top left) is even.
+class TexturedPreview : public RenderTest {
+ protected:
+  void SetUp() override {
+    RenderTest::SetUp();
+    data_ = views::load_bake_view_data(BOUNCE_RENDER_TEXTURED_BAKE);
+    ASSERT_TRUE(data_->scene) << "the textured bake's scene is not on disk";
+    view_.resize(400, 300);
+    view_.set_overlay(false);
+    view_.show();
+    settle();
+    view_.set_data(data_);
+    settle();
+  }
+  // Whether a world point lands inside the picture, `margin` pixels clear
+  // of its edges.
+  bool inside(QPointF p, double margin = 6.0) const {
+    return p.x() >= margin && p.y() >= margin && p.x() < view_.width() - margin &&
+           p.y() < view_.height() - margin;
+  }
+  std::shared_ptr<const views::BakeViewData> data_;
+  views::PreviewWidget view_;
+};
+
+namespace {
+
+// (R - B) / (R + B) of a pixel's 8-bit colour: the texture's orange is
+// clearly positive, its blue clearly negative, their mean (what a surface
+// without its texture shows) near zero. A ratio, so it holds whatever the
+// exposure makes of the light.
+double warmth(const Rgb& c) { return (c.r - c.b) / std::max(1.0, c.r + c.b); }
+
+}  // namespace
+
+TEST_F(TexturedPreview, FloorShowsTheCheckerInPlace) {
+  const QImage image = view_.render_image();
+  ASSERT_TRUE(view_.gl_error().isEmpty()) << view_.gl_error().toStdString();
+  int orange = 0, blue = 0;
+  for (int i = 0; i < 8; ++i)      // column, along +x
+    for (int j = 0; j < 8; ++j) {  // row, along +z (row 0 at z = -1)
+      const glm::vec3 centre(-1.0f + (static_cast<float>(i) + 0.5f) / 4.0f, 0.0f,
+                             -1.0f + (static_cast<float>(j) + 0.5f) / 4.0f);
+      const QPointF at = view_.project(centre);
+      if (!inside(at)) continue;
+      const Rgb c = mean_around(image, at, 1);
+      const bool expect_orange = (i + j) % 2 == 0;
+      if (expect_orange) {
+        EXPECT_GT(warmth(c), 0.3) << "square " << i << "," << j << " should be orange: " << c.r
+                                  << " " << c.g << " " << c.b;
+        EXPECT_GT(c.r, c.g) << "square " << i << "," << j;
+        ++orange;
+      } else {
+        EXPECT_LT(warmth(c), -0.3)
+            << "square " << i << "," << j << " should be blue: " << c.r << " " << c.g << " " << c.b;
+        EXPECT_GT(c.b, c.g) << "square " << i << "," << j;
+        ++blue;
+      }
+    }
+  // The camera sees the far half of the floor: several squares of each.
+  EXPECT_GE(orange, 6);
+  EXPECT_GE(blue, 6);
+}
+
+TEST_F(TexturedPreview, FenceHolesShowTheBackdrop) {
+  const QImage image = view_.render_image();
+  ASSERT_TRUE(view_.gl_error().isEmpty()) << view_.gl_error().toStdString();
+  int solid = 0, holes = 0;
+  for (int sx = 0; sx < 4; ++sx)      // along +x
+    for (int sy = 0; sy < 4; ++sy) {  // from the top (y = 1) down
+      const glm::vec3 centre(-1.0f + 0.5f * static_cast<float>(sx) + 0.25f,
+                             1.0f - 0.25f * static_cast<float>(sy) - 0.125f, 1.0f);
+      const QPointF at = view_.project(centre);
+      if (!inside(at)) continue;
+      const Rgb c = mean_around(image, at, 2);
+      if ((sx + sy) % 2 == 0) {
+        // The fence's grey (Kd 0.5 under a white light): no channel far
+        // above the others.
+        EXPECT_LT(c.g, 1.2 * std::max(c.r, c.b) + 4.0)
+            << "solid square " << sx << "," << sy << ": " << c.r << " " << c.g << " " << c.b;
+        EXPECT_GT(c.luminance(), 20.0) << "solid square " << sx << "," << sy;
+        ++solid;
+      } else {
+        // Cut away: the green backdrop behind it.
+        EXPECT_GT(c.g, 1.5 * std::max(c.r, c.b))
+            << "hole " << sx << "," << sy << ": " << c.r << " " << c.g << " " << c.b;
+        EXPECT_GT(c.g, 20.0) << "hole " << sx << "," << sy;
+        ++holes;
+      }
+    }
+  EXPECT_GE(solid, 6);
+  EXPECT_GE(holes, 6);
+  const double ms = view_.measure_frame_ms(10);
+  std::cout << "[ measured ] textured preview 400x300, " << data_->patch_count() << " patches, "
+            << view_.vertex_count() << " vertices: " << ms << " ms per frame (shadow map "
+            << "included)\n";
+}
+
 }  // namespace bounce::render_test
