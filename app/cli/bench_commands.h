@@ -23,7 +23,7 @@ void register_bench_compress(CLI::App& bench);
 void register_bench_ordering(CLI::App& bench);
 // `bench runtime`: ms per light update, compressed (OpenCL, C++) vs dense vs classic.
 void register_bench_runtime(CLI::App& bench);
-// `bench dynamic`: local matrix, temporal radiosity, frame-graph aliasing (paper 003).
+// `bench dynamic`: local matrix, temporal radiosity, frame-graph aliasing.
 void register_bench_dynamic(CLI::App& bench);
 
 }  // namespace bounce::cli

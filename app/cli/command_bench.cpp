@@ -24,7 +24,7 @@ void run_bench_bake(const BakeOptions& opt) {
     const BakeResult ours = Baker(scene, opt.settings(), diagnostics).run(console.progress());
     const nlohmann::json m = make_manifest(scene, ours, diagnostics);
     // Baseline in the same run: the other patch mode on the same grid (the
-    // voxel approximation of paper 000 ref. [1] when we bake virtual patches).
+    // voxel approximation of the published method when we bake virtual patches).
     BakeSettings other = ours.settings;
     other.patch_mode =
         ours.settings.patch_mode == PatchMode::Virtual ? PatchMode::Voxel : PatchMode::Virtual;

@@ -1,6 +1,6 @@
 // `bounce bench compress`: every BC1 encoder with every ordering on one real
 // transport matrix, side by side in one run, against the published pipeline
-// (paper 000, section 4.2: libsquish cluster fit, the greedy L1 tour in two
+// (the published pipeline: libsquish cluster fit, the greedy L1 tour in two
 // passes, 4% kept) and with our default codec as the last row.
 //
 // The grid rows are the published pipeline (CodecKind::Paper: its kept split
@@ -353,7 +353,7 @@ BenchResult run_one(const ExactTransport& exact, double kept,
   weighted.kept_passes = CodecSettings{}.kept_passes;
   b.ours_default = runner.run("ours, light-weighted (default codec)", weighted, nullptr, true);
 
-  // The other block format that might win (issue 3): BC4 per channel, 8 bytes
+  // The other block format that might win: BC4 per channel, 8 bytes
   // per block and channel where BC1 spends 8 on all three. Once at the same
   // kept fraction (3x the block bytes), once at the same total size: the two
   // extra images (2 x padded^2 / 2 bytes) paid for by keeping padded^2 / 8

@@ -1,4 +1,4 @@
-// `bounce bench dynamic BAKE`: the dynamic variants of paper 003 (local
+// `bounce bench dynamic BAKE`: the dynamic variants (local
 // matrix, temporal radiosity, frame graph with transient-memory aliasing)
 // against the full multi-bounce product and classic radiosity, as one table
 // like the paper's Table 2, then the local-matrix update against LU
@@ -304,7 +304,7 @@ void register_bench_dynamic(CLI::App& bench) {
   auto opt = std::make_shared<DynamicBenchOptions>();
   CLI::App* cmd = bench.add_subcommand(
       "dynamic",
-      "Dynamic radiosity (paper 003): full multi-bounce product vs temporal radiosity (alias "
+      "Dynamic radiosity: full multi-bounce product vs temporal radiosity (alias "
       "tables, C++ and OpenCL, with and without frame-graph memory aliasing) vs classic; ms per "
       "frame, error after 1/4/16/64 frames (per patch, and SSIM / relative RMSE of the scene "
       "camera's picture), ghosting after a light jump, error and SSIM against the path-traced "

@@ -1,6 +1,6 @@
 #pragma once
-// BC1 (DXT1) 4x4 blocks: the block format of the compressed transport matrix
-// (DESIGN 1.7). A block is 8 bytes: two RGB565 endpoints c0, c1 (little-endian)
+// BC1 (DXT1) 4x4 blocks: the block format of the compressed transport matrix.
+// A block is 8 bytes: two RGB565 endpoints c0, c1 (little-endian)
 // and 16 2-bit indices (texel y*4+x at bits 2(y*4+x) of the little-endian
 // word in bytes 4..7). c0 > c1 (as 16-bit numbers) selects 4-colour mode
 // {c0, c1, (2c0+c1)/3, (c0+2c1)/3}; c0 <= c1 selects 3-colour mode

@@ -1,5 +1,5 @@
 #pragma once
-// The compressed multi-bounce matrix (paper 000, section 4.2, and ours):
+// The compressed multi-bounce matrix (the published pipeline, and ours):
 // largest entries kept exactly (CSR, float32), the rest log-quantised to
 // 8-bit codes, rows and columns reordered by one permutation, block-encoded.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // What compression costs in accuracy, measured against the exact transport
-// matrix: the matrix figures of paper 000 (mean, max, sum of |error|) plus
+// matrix: the matrix figures of the published method (mean, max, sum of |error|) plus
 // the relative Frobenius error, and the error of the indirect light itself,
 // the thing a user sees, for a fixed set of first-hit light vectors.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // DirectDraw Surface files for block-compressed images: the compressed
-// transport matrix of a bake (DESIGN 4: "any DDS reader must open it").
+// transport matrix of a bake (a standard DDS, so any DDS reader opens it).
 //
 // Written: the classic 128-byte header (magic "DDS " + DDS_HEADER), one mip
 // level, linear size set, DDPF_FOURCC pixel format:

@@ -1,5 +1,5 @@
 #pragma once
-// The log step of the published compression (paper 000, section 4.2): values
+// The log step of the published compression: values
 // below the kept threshold are divided by their maximum, their logarithm is
 // taken, 25 is added and [0, 25] is scaled to [0, 255]:
 //   q = round(255 (ln(v / vmax) + R) / R),  R = 25,  clamped to [0, 255];

@@ -1,6 +1,6 @@
 #pragma once
 // Errors of a decompressed matrix against the exact one: the three figures
-// of paper 000 (mean, max and sum of |error| over all entries) and the
+// of the published compression method (mean, max and sum of |error| over all entries) and the
 // relative Frobenius error. Channels are added one after another.
 #include <cstddef>
 

@@ -1,6 +1,6 @@
 #pragma once
-// Reordering of the quantised transport image before BC1 (paper 000,
-// section 4.2): one permutation of rows and columns that puts patches with
+// Reordering of the quantised transport image before BC1 (as the
+// published compression does): one permutation of rows and columns that puts patches with
 // similar rows (and columns) into the same 4x4 blocks.
 //
 //   paper_ordering()  the published greedy L1 tour, O(n^3): the baseline,

@@ -1,5 +1,5 @@
 #pragma once
-// The published reordering (paper 000, section 4.2), kept exactly as printed
+// The published reordering of the compression method, kept exactly as printed
 // so every other ordering can be compared with it: a greedy nearest-neighbour
 // tour by L1 row distance, first over rows, then over columns.
 //

@@ -1,6 +1,6 @@
 #pragma once
-// Symmetric reordering of the quantised transport image (paper 000, section
-// 4.2): ONE permutation is applied to rows and columns, so a patch keeps the
+// Symmetric reordering of the quantised transport image, as the
+// published compression does: ONE permutation is applied to rows and columns, so a patch keeps the
 // same index as receiver and as source and the run-time product only needs the
 // light vector permuted once.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// OpenCL C sources of Bounce's kernels (kernels/*.cl, DESIGN 3). They are
+// OpenCL C sources of Bounce's kernels (kernels/*.cl). They are
 // embedded in the library at build time (core/CMakeLists.txt turns each file
 // into a raw string), so a binary runs from anywhere; for kernel work without
 // a rebuild, BOUNCE_KERNEL_DIR=<folder> makes <folder>/<name>.cl override the

@@ -1,5 +1,5 @@
 #pragma once
-// The distributed bake (issue 9, part 1): Baker's stages shared over the
+// The distributed bake: Baker's stages shared over the
 // ranks of an MPI job. Every rank loads the scene, builds its own Embree BVH
 // and computes the voxels, samples and patches itself (deterministic, checked
 // by a fingerprint); form-factor rows are dealt out cyclically (row p to rank

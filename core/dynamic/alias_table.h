@@ -3,7 +3,7 @@
 // construction): a discrete distribution over n outcomes as n (probability,
 // alias) pairs, sampled in O(1) with one uniform index i and one uniform u:
 // outcome i if u < probability[i], else alias[i]. Temporal radiosity turns
-// every row of the multi-bounce matrix into one (paper 003, DESIGN.md 1.9).
+// every row of the multi-bounce matrix into one, as published temporal radiosity does.
 #include <cstddef>
 #include <cstdint>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// A small frame graph (paper 003, after O'Donnell's FrameGraph): passes run
+// A small frame graph (after O'Donnell's FrameGraph): passes run
 // in the order they are added, each declaring the resources it reads and
 // writes. Resources are either imported (persistent: owned by the caller,
 // e.g. the matrix, the temporal history, the output) or transient (live
@@ -99,7 +99,7 @@ class FrameGraph {
 };
 
 // The per-frame graph of dynamic radiosity for n patches and `channels`
-// stored channels, resources as paper 003 Fig. 5/6 (sizes only, no work):
+// stored channels, resources as the published dynamic method lays them out (sizes only, no work):
 // local-matrix update (f_c, f_r, a = g''_c + f_c, b = g''_r + f_r: one float
 // per patch and channel each), direct light E and indirect B (a vec3 per
 // patch), the temporal history (imported) when `temporal`, applied to the

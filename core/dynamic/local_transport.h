@@ -1,5 +1,5 @@
 #pragma once
-// The local matrix of paper 003 (DESIGN.md 1.9): the multi-bounce matrix of a
+// The local matrix of dynamic radiosity: the multi-bounce matrix of a
 // set of active patches, kept up to date as patches join or leave the set
 // (a window of patches that follows the camera, an object added to the
 // scene) by a rank-1 update instead of a new factorisation.

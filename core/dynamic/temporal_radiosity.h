@@ -1,5 +1,5 @@
 #pragma once
-// Temporal radiosity (paper 003, DESIGN.md 1.9): instead of the full
+// Temporal radiosity as published: instead of the full
 // product T b every frame, each patch p draws S columns q_1..q_S from the
 // alias table of row p of T (probability T_pq / sum_q T_pq) and estimates
 //   B_new[p] = (sum_q T_pq) / S * sum_s b[q_s],

@@ -1,5 +1,5 @@
 #pragma once
-// Transient-memory aliasing for the frame graph (paper 003, DESIGN.md 1.9):
+// Transient-memory aliasing for the frame graph:
 // buffers whose lifetimes (the passes between the first and the last that
 // touch them) do not overlap may share memory. Placing them is interval-graph
 // colouring with sizes (dynamic storage allocation, NP-hard in general); we

@@ -1,5 +1,5 @@
 #pragma once
-// The unoccluded far-field part of the form factors (issue 2): for every
+// The unoccluded far-field part of the form factors: for every
 // patch pair (p, q >= p), the sum over the far-field representative points
 // i of p and j of q of A_i A_j cos_i cos_j / (pi r^2) for points that face
 // each other, skipping i == j when q == p. It is the sum compute_form_factors

@@ -89,7 +89,7 @@ FormFactorRows compute_form_factor_rows(const Scene& scene, const RayTracer& tra
                                         const PatchSet& patches, const FormFactorSettings& settings,
                                         Progress* progress = nullptr);
 
-// The checks every bake reports (DESIGN.md, numerics).
+// The checks every bake reports (energy, reciprocity, NaN/Inf).
 struct FormFactorChecks {
   double row_sum_max = 0.0;
   double row_sum_mean = 0.0;

@@ -1,6 +1,6 @@
 #pragma once
 // Virtual patches: greedy clustering of the samples inside each voxel with the
-// metric of paper 001,
+// metric of the virtual-patch method,
 //   M(i,j) = (1 + |C_i - C_j|) (2 - n_i.n_j) (1 + sqrt(sum_h (F_ih - F_jh)^2 + (F_hi - F_hj)^2)),
 // merging the closest pair until `patches_per_voxel` remain, or, with a total
 // budget (`--patches-total`), taking the cheapest next merge of any voxel
@@ -82,7 +82,7 @@ PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vo
                                  const SampleSet& samples, const ClusteringSettings& settings,
                                  ClusteringStats& stats, Progress* progress = nullptr);
 
-// The baseline of paper 000 ref [1]: one patch per occupied voxel and dominant
+// The voxel baseline of the published method: one patch per occupied voxel and dominant
 // normal direction (+x, -x, +y, -y, +z, -z).
 PatchSet voxel_patches(const SampleSet& samples);
 

@@ -1,6 +1,6 @@
 #pragma once
 // Patches: clusters of samples inside one voxel, with no geometry of their
-// own (paper 001): a position (area-weighted centroid, for display and
+// own: a position (area-weighted centroid, for display and
 // transfer), a normal, an albedo, an emission and an area. Each keeps the list
 // of its member samples, from which form factors are computed.
 #include <cstdint>
@@ -32,7 +32,7 @@ struct PatchSet {
   std::size_t size() const { return patches.size(); }
   std::size_t member_count(std::size_t p) const { return member_first[p + 1] - member_first[p]; }
 
-  // Builds a patch from the given samples with the merge rules of paper 001:
+  // Builds a patch from the given samples with the virtual-patch merge rules:
   // area-weighted normal (normalised), colour and emission; areas add.
   void add_patch(const std::vector<Sample>& samples, const std::vector<std::uint32_t>& members);
   // Keeps only the patches for which keep[p] is true, in order.

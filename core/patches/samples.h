@@ -1,5 +1,5 @@
 #pragma once
-// Surface samples inside each occupied voxel (paper 001, section 3): points
+// Surface samples inside each occupied voxel: points
 // spread evenly over the voxel's six faces, rays traced into the voxel, hits
 // inside the voxel kept with the hit triangle's normal and material.
 //
@@ -9,15 +9,13 @@
 // cell is hit with a density proportional to its area whatever its
 // orientation; every hit along a ray inside the cell is kept, not just the first.
 //
-// Area of a sample: paper 001 gives each of the K samples on a triangle part
-// S = S_tri∩voxel / K. We split the part into the Voronoi cells of its K
-// samples instead: the same areas on average (they add up to S exactly), but
-// each sample now stands for the piece of surface around it, a polygon the
-// form factors integrate over near edges and corners. Triangle parts that no
-// ray hit (tiny triangles) go whole to the nearest sample of the same voxel
-// on the same surface (facing the same way, the part within
-// kSameSurfaceCells of the sample's plane), or, without one, to a sample of
-// their own at their centre: every part of the surface is carried by a
+// Area of a sample: the published virtual-patch method gives each of the K samples on a triangle
+// part S = S_tri∩voxel / K. We split the part into the Voronoi cells of its K samples instead: the
+// same areas on average (they add up to S exactly), but each sample now stands for the piece of
+// surface around it, a polygon the form factors integrate over near edges and corners. Triangle
+// parts that no ray hit (tiny triangles) go whole to the nearest sample of the same voxel on the
+// same surface (facing the same way, the part within kSameSurfaceCells of the sample's plane), or,
+// without one, to a sample of their own at their centre: every part of the surface is carried by a
 // sample that stands on it, so a voxel's sample areas add up to its surface
 // area and light found anywhere on the surface belongs to some sample.
 //

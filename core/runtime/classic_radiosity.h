@@ -2,8 +2,8 @@
 // The classic runtime baseline: no precomputed multi-bounce matrix, just the
 // form factors and K gathering iterations per frame,
 //   y = sum_(h=1..K) M^h b,  M = diag(rho_c) F,
-// K matrix-vector products per colour channel. What paper 000 compares its
-// one-product runtime against.
+// K matrix-vector products per colour channel. What the published precomputed-radiosity
+// method compares its one-product runtime against.
 #include <cstddef>
 #include <vector>
 

@@ -1,6 +1,6 @@
 #pragma once
 // The run-time product of the compressed multi-bounce matrix on the CPU
-// (DESIGN 1.8, issue 4 section 2): for each colour channel k,
+// (the run-time product): for each colour channel k,
 //   indirect_k = T~_c(k) b_k,
 // with T~ the matrix decompress_channel() gives (kept entries exact, the rest
 // decoded from the blocks), computed straight from the blocks: the dense

@@ -3,7 +3,7 @@
 // baseline the compressed product (runtime/compressed_transport.h) is
 // measured against, and the product for matrices stored dense (--codec dense).
 // It streams 4 n^2 bytes per colour and is bound by memory bandwidth
-// (DESIGN 6: ~45-50 GB/s here).
+// (~45-50 GB/s on the development machine).
 #include <array>
 #include <cstddef>
 #include <span>

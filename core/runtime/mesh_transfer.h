@@ -1,6 +1,6 @@
 #pragma once
 // Light on virtual patches -> light on the scene's own triangles, for display
-// (DESIGN 1.8) and export (PLY). The scene's triangle soup becomes an OpenMesh
+// and export (PLY). The scene's triangle soup becomes an OpenMesh
 // half-edge mesh that is refined until every edge is shorter than half a
 // voxel (a Cornell wall is two triangles: four vertices cannot carry light
 // that changes voxel by voxel), gets normals that respect creases, and each

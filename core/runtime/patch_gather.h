@@ -1,6 +1,6 @@
 #pragma once
-// Light on virtual patches -> light at any surface point (DESIGN 1.8, "transfer
-// from patches back to the original mesh"). A patch has no geometry, only a
+// Light on virtual patches -> light at any surface point (the
+// transfer from patches back to the original mesh). A patch has no geometry, only a
 // position inside its voxel, a normal and the light leaving it, so a point x
 // with normal n takes a normalised weighted mean of the patches around it:
 //

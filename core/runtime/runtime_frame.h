@@ -1,7 +1,7 @@
 #pragma once
 // The runtime's per-frame work on the patches run through the frame graph
-// (dynamic/frame_graph.h, issue 8 section 3: "the runtime solve runs through
-// this graph"). The graph is built and compiled once per bake and multiply
+// (dynamic/frame_graph.h: the runtime solve runs through this graph, so its
+// transient buffers can share memory). The graph is built and compiled once per bake and multiply
 // path, so its transient arena is allocated once; solve() then executes it
 // once per light configuration without allocating:
 //

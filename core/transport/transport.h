@@ -1,5 +1,5 @@
 #pragma once
-// The multi-bounce transport matrix, one per colour channel c (DESIGN.md 1.6):
+// The multi-bounce transport matrix, one per colour channel c:
 //   T_c = sum_(h=1..K) (diag(rho_c) F)^h,   K -> infinity: (I - diag(rho_c) F)^-1 - I.
 // At run time the indirect light after the first hit is T_c b_c, with b_c the
 // light leaving each patch after the first hit. F is the gathering form-factor

@@ -1,5 +1,5 @@
 // `mpirun -np R bounce bake` against the single-process bake of the same
-// scene and settings (issue 9): form factors bit for bit, the transport
+// scene and settings: form factors bit for bit, the transport
 // matrix within a tolerance derived from the floating-point error of the two
 // summation orders, the manifest's checks equal; the compression (block rows
 // encoded by every rank) byte for byte; and errors reported once by rank 0

@@ -1,4 +1,4 @@
-// Hostile input to `bounce bake` (issue 7, part 3): malformed and truncated
+// Hostile input to `bounce bake`: malformed and truncated
 // OBJ, PLY, glTF and scene.json files, and exports onto a read-only folder or
 // a full disk. Every case must end the same way: exit code 1 (not a signal,
 // not the "internal error" code 3), before the timeout, with exactly one

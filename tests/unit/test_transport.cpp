@@ -1,6 +1,6 @@
 // The multi-bounce transport stage (core/transport) against independent
 // computations: repeated matrix-vector products, a Gauss-Jordan inverse in
-// double, closed-form furnaces (white furnace, DESIGN.md section 7: a closed
+// double, closed-form furnaces (white furnace: a closed
 // enclosure with uniform albedo rho gives B = E / (1 - rho), i.e. the light
 // after the first hit is T 1 = rho / (1 - rho) for unit first-hit light), and
 // the real pipeline's furnace bake.
