@@ -22,12 +22,10 @@
 
 #include "base/error.h"
 #include "bounce/export.h"
+#include "bounce/scene.h"
 #include "io/tone_map.h"
 #include "preview_lighting.h"
 #include "preview_programs.h"
-#include "scene/alpha_mask.h"
-#include "scene/surface_texture.h"
-#include "scene/texture.h"
 
 namespace bounce::views {
 
