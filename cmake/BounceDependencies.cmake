@@ -111,6 +111,12 @@ endif()
 option(BOUNCE_PYTHON "Build the Python module `bounce` (needs pybind11-dev and python3-dev)" ON)
 set(BOUNCE_PYTHON_ENABLED OFF)
 if(BOUNCE_PYTHON)
+  # The distribution's interpreter, whose packages (python3-numpy) the tests
+  # use, rather than one found first on PATH (pyenv, a virtualenv); give
+  # -DPython3_EXECUTABLE=... for another.
+  if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+    set(Python3_EXECUTABLE /usr/bin/python3)
+  endif()
   find_package(Python3 COMPONENTS Interpreter Development.Module QUIET)
   set(missing "")
   if(NOT Python3_Development.Module_FOUND)

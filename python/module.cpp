@@ -133,25 +133,28 @@ PYBIND11_MODULE(bounce, m) {
       .def_property_readonly("lights", [](const PyScene& s) { return light_list(s.scene->lights); })
       .def_property_readonly("warnings", [](const PyScene& s) { return s.warnings; })
       .def("__repr__", [](const PyScene& s) {
-        return "<bounce.Scene '" + s.scene->name + "': " +
-               std::to_string(s.scene->triangle_count()) + " triangles, " +
+        return "<bounce.Scene '" + s.scene->name +
+               "': " + std::to_string(s.scene->triangle_count()) + " triangles, " +
                std::to_string(s.scene->lights.size()) + " lights>";
       });
 
   m.def("load_scene", &load_scene, py::arg("path"),
         "Loads a scene folder, scene.json or mesh file; raises bounce.Error naming the file.");
 
-  m.def("settings", []() {
-    py::list out;
-    for (const SettingRow& row : settings_table()) {
-      py::dict d;
-      d["name"] = row.name;
-      d["default"] = setting_text(row, row.get(BakeSettings{}));
-      d["help"] = row.help;
-      out.append(d);
-    }
-    return out;
-  }, "The bake settings: name, default (as text) and help, one dict each.");
+  m.def(
+      "settings",
+      []() {
+        py::list out;
+        for (const SettingRow& row : settings_table()) {
+          py::dict d;
+          d["name"] = row.name;
+          d["default"] = setting_text(row, row.get(BakeSettings{}));
+          d["help"] = row.help;
+          out.append(d);
+        }
+        return out;
+      },
+      "The bake settings: name, default (as text) and help, one dict each.");
 
   m.def("bake", &bake, py::arg("scene"), py::arg("out_dir"),
         "bake(scene, out_dir, progress=None, **settings) -> manifest dict.\n"
@@ -177,24 +180,25 @@ PYBIND11_MODULE(bounce, m) {
                                }
                                return rows_of_three(mesh->positions);
                              })
-      .def_property_readonly("triangles",
-                             [](OpenedBake& b) {
-                               const LitMesh* mesh = nullptr;
-                               {
-                                 py::gil_scoped_release release;
-                                 mesh = &b.mesh();
-                               }
-                               py::array_t<std::uint32_t> a(
-                                   {static_cast<py::ssize_t>(mesh->triangles.size()),
-                                    py::ssize_t{3}});
-                               std::uint32_t* out = a.mutable_data();
-                               for (std::size_t i = 0; i < mesh->triangles.size(); ++i)
-                                 for (int k = 0; k < 3; ++k) out[3 * i + k] = mesh->triangles[i][k];
-                               return a;
-                             })
+      .def_property_readonly(
+          "triangles",
+          [](OpenedBake& b) {
+            const LitMesh* mesh = nullptr;
+            {
+              py::gil_scoped_release release;
+              mesh = &b.mesh();
+            }
+            py::array_t<std::uint32_t> a(
+                {static_cast<py::ssize_t>(mesh->triangles.size()), py::ssize_t{3}});
+            std::uint32_t* out = a.mutable_data();
+            for (std::size_t i = 0; i < mesh->triangles.size(); ++i)
+              for (int k = 0; k < 3; ++k) out[3 * i + k] = mesh->triangles[i][k];
+            return a;
+          })
       .def(
           "relight",
-          [](OpenedBake& b, const std::optional<std::map<std::string, std::array<float, 3>>>& lights) {
+          [](OpenedBake& b,
+             const std::optional<std::map<std::string, std::array<float, 3>>>& lights) {
             std::map<std::string, glm::vec3> moved;
             if (lights)
               for (const auto& [name, p] : *lights) moved[name] = glm::vec3(p[0], p[1], p[2]);
@@ -225,6 +229,7 @@ PYBIND11_MODULE(bounce, m) {
       },
       py::arg("folder"), py::arg("scene") = "",
       "Opens a bake folder for relighting; scene: the scene path when the manifest's is gone.");
-  m.def("is_bake_folder", [](const std::string& folder) { return is_bake_folder(folder); },
-        py::arg("folder"));
+  m.def(
+      "is_bake_folder", [](const std::string& folder) { return is_bake_folder(folder); },
+      py::arg("folder"));
 }

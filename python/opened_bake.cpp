@@ -88,9 +88,9 @@ RelitFrame OpenedBake::relight(const std::map<std::string, glm::vec3>& moved) {
     out.vertex_light = std::move(lit.radiosity);
   } else {
     const TransferGrid grid = TransferGrid::from_manifest(bake_.manifest);
-    out.vertex_light = transfer_to_mesh(*tracer_, bake_.patches.patches, grid, out.exitance,
-                                        TransferSettings{})
-                           .radiosity;
+    out.vertex_light =
+        transfer_to_mesh(*tracer_, bake_.patches.patches, grid, out.exitance, TransferSettings{})
+            .radiosity;
   }
   return out;
 }

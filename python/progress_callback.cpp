@@ -9,11 +9,11 @@ namespace bounce::python {
 
 ProgressCallback::ProgressCallback(py::object callable)
     : callable_(std::move(callable)),
-      progress_(callable_.is_none() ? Progress::Callback{}
-                                    : Progress::Callback([this](const std::string& stage,
-                                                                double fraction) {
-                                        return report(stage, fraction);
-                                      })) {}
+      progress_(callable_.is_none()
+                    ? Progress::Callback{}
+                    : Progress::Callback([this](const std::string& stage, double fraction) {
+                        return report(stage, fraction);
+                      })) {}
 
 ProgressCallback::~ProgressCallback() {
   // Dropping the callable needs the GIL; the owner may hold it or not.

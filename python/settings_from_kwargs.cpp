@@ -16,7 +16,8 @@ const SettingRow* find_row(const std::string& name) {
 
 std::string known_names() {
   std::string names;
-  for (const SettingRow& row : settings_table()) names += (names.empty() ? "" : ", ") + std::string(row.name);
+  for (const SettingRow& row : settings_table())
+    names += (names.empty() ? "" : ", ") + std::string(row.name);
   return names;
 }
 
@@ -47,8 +48,8 @@ BakeSettings settings_from_kwargs(const py::dict& kwargs) {
       const std::string name = py::str(key).cast<std::string>();
       const SettingRow* row = find_row(name);
       if (!row)
-        throw py::value_error("setting '" + name + "': not a bake setting (the settings: " +
-                              known_names() + ")");
+        throw py::value_error("setting '" + name +
+                              "': not a bake setting (the settings: " + known_names() + ")");
       row->set(settings, value_for(*row, value));
     }
     settings.validate();

@@ -129,8 +129,8 @@ def test_relight(folder, tmp):
     b_error = np.abs(light["first_hit"] - b).max() / scale
     error = np.abs(light["patch_light"] - expected).max() / scale
     print(f"relit b + T b against numpy: max error {error:.2e} of the largest value (b: {b_error:.2e})")
-    check(b_error < 1e-3, f"first-hit light differs from lights_first_hit.npy by {b_error:.2e}")
-    check(error < 1e-3, f"b + T b differs from numpy's by {error:.2e}")
+    check(b_error < 1e-5, f"first-hit light differs from lights_first_hit.npy by {b_error:.2e}")
+    check(error < 1e-5, f"b + T b differs from numpy's by {error:.2e}")
     check(np.allclose(light["patch_light"], light["first_hit"] + light["indirect"], rtol=1e-5, atol=1e-6 * scale),
           "patch_light is first_hit + indirect")
 
