@@ -111,17 +111,19 @@ PYBIND11_MODULE(bounce, m) {
   using namespace bounce::python;
   m.doc() = "Bounce: bake a scene's radiosity transport and relight the bake (docs/python.md)";
 
-  static py::exception<Error> error(m, "Error", PyExc_RuntimeError);
-  static py::exception<Cancelled> cancelled(m, "Cancelled", error.ptr());
+  // The exception types live as long as the interpreter: never released, so
+  // that no reference is dropped after Python has shut down.
+  static const auto* error = new py::exception<Error>(m, "Error", PyExc_RuntimeError);
+  static const auto* cancelled = new py::exception<Cancelled>(m, "Cancelled", error->ptr());
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const BakeSettings::InvalidSetting& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const Cancelled& e) {
-      cancelled(e.what());
+      PyErr_SetString(cancelled->ptr(), e.what());
     } catch (const Error& e) {
-      error(e.what());
+      PyErr_SetString(error->ptr(), e.what());
     }
   });
 

@@ -66,12 +66,13 @@ def test_cancel(scene, tmp):
     check(len(calls) >= 3, "the callable was called until it said stop")
     check(sorted(os.listdir(tmp)) == [], f"a cancelled bake leaves nothing: {os.listdir(tmp)}")
 
-    # An exception in the callable stops the bake and comes out as itself.
+    # An exception in the callable stops the bake and comes out as itself
+    # (the scene given by its path this time).
     def broken(stage, fraction):
         raise KeyError("from the callable")
 
     expect_raises(KeyError, ["from the callable"],
-                  lambda: bounce.bake(scene, out, progress=broken, **SETTINGS))
+                  lambda: bounce.bake(CORNELL, out, progress=broken, **SETTINGS))
     check(sorted(os.listdir(tmp)) == [], f"a failed bake leaves nothing: {os.listdir(tmp)}")
 
 
