@@ -31,7 +31,7 @@ find_path(STB_INCLUDE_DIR stb/stb_dxt.h REQUIRED)
 # all be built. Without it a missing package only drops its part (with a
 # warning), and the tests of that part vanish from ctest without failing
 # anything; with it, configuring fails and names each missing component.
-option(BOUNCE_REQUIRE_ALL "Fail configuring unless the studio (Qt 5, VTK) and the distributed bake (MPI, ScaLAPACK) can be built" OFF)
+option(BOUNCE_REQUIRE_ALL "Fail configuring unless the studio (Qt 5, VTK), the distributed bake (MPI, ScaLAPACK) and the Python module (pybind11) can be built" OFF)
 set(BOUNCE_MISSING_COMPONENTS "")
 # Turns `flag` ON when the list `missing` is empty; else warns that `part` is
 # skipped, naming every missing component, and records them. A macro, so
@@ -104,6 +104,34 @@ if(BOUNCE_STUDIO)
   bounce_enable_unless_missing("Bounce Studio" BOUNCE_STUDIO_ENABLED)
 elseif(BOUNCE_REQUIRE_ALL)
   list(APPEND BOUNCE_MISSING_COMPONENTS "Bounce Studio (BOUNCE_STUDIO is OFF)")
+endif()
+
+# The Python module (python/, docs/python.md): pybind11 and the Python
+# headers. Built by default when both are installed.
+option(BOUNCE_PYTHON "Build the Python module `bounce` (needs pybind11-dev and python3-dev)" ON)
+set(BOUNCE_PYTHON_ENABLED OFF)
+if(BOUNCE_PYTHON)
+  # The distribution's interpreter, whose packages (python3-numpy) the tests
+  # use, rather than one found first on PATH (pyenv, a virtualenv); give
+  # -DPython3_EXECUTABLE=... for another.
+  if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+    set(Python3_EXECUTABLE /usr/bin/python3)
+  endif()
+  find_package(Python3 COMPONENTS Interpreter Development.Module QUIET)
+  set(missing "")
+  if(NOT Python3_Development.Module_FOUND)
+    list(APPEND missing "Python 3 headers (python3-dev)")
+  else()
+    # pybind11's own config finds Python through FindPython, as above.
+    set(PYBIND11_FINDPYTHON ON)
+    find_package(pybind11 2.10 CONFIG QUIET)
+    if(NOT pybind11_FOUND)
+      list(APPEND missing "pybind11 (pybind11-dev)")
+    endif()
+  endif()
+  bounce_enable_unless_missing("The Python module" BOUNCE_PYTHON_ENABLED)
+elseif(BOUNCE_REQUIRE_ALL)
+  list(APPEND BOUNCE_MISSING_COMPONENTS "the Python module (BOUNCE_PYTHON is OFF)")
 endif()
 
 if(BOUNCE_REQUIRE_ALL AND BOUNCE_MISSING_COMPONENTS)

@@ -2,7 +2,7 @@
 #
 #   cmake -DSOURCE_DIR=<repository> -P tools/check_public_headers.cmake
 #
-# Scans every header and source of the front ends (app/, views/) for
+# Scans every header and source of the front ends (app/, views/, python/) for
 # #include "MODULE/NAME.h" where MODULE is a folder of core/: those are the
 # library's private headers. The public ones are included as "bounce/NAME.h"
 # (core/bounce/). Each private include must be listed, as
@@ -26,7 +26,8 @@ endforeach()
 list(JOIN modules "|" module_pattern)
 
 file(GLOB_RECURSE front_end_files RELATIVE ${SOURCE_DIR}
-     ${SOURCE_DIR}/app/*.h ${SOURCE_DIR}/app/*.cpp ${SOURCE_DIR}/views/*.h ${SOURCE_DIR}/views/*.cpp)
+     ${SOURCE_DIR}/app/*.h ${SOURCE_DIR}/app/*.cpp ${SOURCE_DIR}/views/*.h ${SOURCE_DIR}/views/*.cpp
+     ${SOURCE_DIR}/python/*.h ${SOURCE_DIR}/python/*.cpp)
 list(SORT front_end_files)
 
 set(found)
