@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
-#include <OpenImageIO/imageio.h>
+#include "scene/texture.h"
 
 namespace bounce {
 
@@ -71,28 +72,12 @@ std::shared_ptr<const AlphaMask> AlphaMask::constant(float value) {
 
 std::shared_ptr<const AlphaMask> load_alpha_mask(const std::filesystem::path& file,
                                                  AlphaSource source, std::string& error) {
-  auto in = OIIO::ImageInput::open(file.string());
-  if (!in) {
-    error = OIIO::geterror();
-    if (error.empty()) error = "OpenImageIO cannot open it";
-    return nullptr;
-  }
-  const OIIO::ImageSpec& spec = in->spec();
-  const int w = spec.width, h = spec.height, channels = spec.nchannels;
-  if (w <= 0 || h <= 0 || channels <= 0 || static_cast<long long>(w) * h > (1ll << 28)) {
-    error = "unusable image size " + std::to_string(w) + " x " + std::to_string(h) + " x " +
-            std::to_string(channels);
-    return nullptr;
-  }
-  std::vector<float> pixels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) *
-                            static_cast<std::size_t>(channels));
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data())) {
-    error = in->geterror();
-    if (error.empty()) error = "OpenImageIO cannot read its pixels";
-    return nullptr;
-  }
+  const std::optional<ImagePixels> image = read_image_pixels(file, error);
+  if (!image) return nullptr;
+  const int w = image->width, h = image->height, channels = image->channels;
+  const std::vector<float>& pixels = image->pixels;
   // The alpha channel: as the file names it, else the last of two or four.
-  int alpha = spec.alpha_channel;
+  int alpha = image->alpha_channel;
   if (alpha < 0 && (channels == 2 || channels == 4)) alpha = channels - 1;
   const int colours = alpha >= 0 ? std::min(alpha, 3) : std::min(channels, 3);
   auto mask = std::make_shared<AlphaMask>();

@@ -96,33 +96,47 @@ glm::vec3 Texture::mean_over_triangle(const std::array<glm::vec2, 3>& uv) const 
   return sum / static_cast<float>(k * k);
 }
 
-std::shared_ptr<const Texture> load_texture(const fs::path& file, std::string& error) {
+std::optional<ImagePixels> read_image_pixels(const fs::path& file, std::string& error) {
   auto in = OIIO::ImageInput::open(file.string());
   if (!in) {
     error = OIIO::geterror();
     if (error.empty()) error = "OpenImageIO cannot open it";
-    return nullptr;
+    return std::nullopt;
   }
   const OIIO::ImageSpec& spec = in->spec();
-  const int w = spec.width, h = spec.height, channels = spec.nchannels;
+  ImagePixels image;
+  image.width = spec.width;
+  image.height = spec.height;
+  image.channels = spec.nchannels;
+  const int w = image.width, h = image.height, channels = image.channels;
   if (w <= 0 || h <= 0 || channels <= 0 || static_cast<long long>(w) * h > (1ll << 28)) {
     error = "unusable image size " + std::to_string(w) + " x " + std::to_string(h) + " x " +
             std::to_string(channels);
-    return nullptr;
+    return std::nullopt;
   }
-  std::vector<float> pixels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) *
-                            static_cast<std::size_t>(channels));
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data())) {
+  image.pixels.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) *
+                      static_cast<std::size_t>(channels));
+  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
     error = in->geterror();
     if (error.empty()) error = "OpenImageIO cannot read its pixels";
-    return nullptr;
+    return std::nullopt;
   }
+  image.alpha_channel = spec.alpha_channel;
   // Integer images are sRGB unless the file says linear; float images are linear.
   const bool is_float = spec.format.basetype == OIIO::TypeDesc::FLOAT ||
                         spec.format.basetype == OIIO::TypeDesc::HALF ||
                         spec.format.basetype == OIIO::TypeDesc::DOUBLE;
   const std::string space = lower(spec.get_string_attribute("oiio:ColorSpace"));
-  const bool srgb = !is_float && space.find("linear") == std::string::npos;
+  image.srgb = !is_float && space.find("linear") == std::string::npos;
+  return image;
+}
+
+std::shared_ptr<const Texture> load_texture(const fs::path& file, std::string& error) {
+  const std::optional<ImagePixels> image = read_image_pixels(file, error);
+  if (!image) return nullptr;
+  const int w = image->width, h = image->height, channels = image->channels;
+  const std::vector<float>& pixels = image->pixels;
+  const bool srgb = image->srgb;
 
   auto texture = std::make_shared<Texture>();
   texture->path = file.string();

@@ -35,6 +35,18 @@ struct Texture {
 };
 
 // Reads and decodes `file`; null with `error` set when it cannot.
+// An image file's pixels as float, channels interleaved, as OpenImageIO
+// reads them (not decoded from sRGB), and what the file says of them.
+struct ImagePixels {
+  int width = 0, height = 0, channels = 0;
+  int alpha_channel = -1;  // the channel the file names alpha, -1 if none
+  bool srgb = false;       // integer pixels not marked linear
+  std::vector<float> pixels;
+};
+// Reads `file` whole; on failure returns nothing and sets `error` (the
+// reason, without the file's name).
+std::optional<ImagePixels> read_image_pixels(const std::filesystem::path& file, std::string& error);
+
 std::shared_ptr<const Texture> load_texture(const std::filesystem::path& file, std::string& error);
 
 // `name` as written in a material, relative to `folder` unless absolute.
