@@ -85,6 +85,23 @@ ImagePixels file_pixels(const fs::path& file) {
   return pixels.value_or(ImagePixels{});
 }
 
+// Both images have the same size, and the same values in `channels`.
+void expect_same_pixels(const ImagePixels& got, const ImagePixels& want,
+                        const std::vector<std::size_t>& channels) {
+  ASSERT_EQ(got.width, want.width);
+  ASSERT_EQ(got.height, want.height);
+  const auto got_channels = static_cast<std::size_t>(got.channels);
+  const auto want_channels = static_cast<std::size_t>(want.channels);
+  for (const std::size_t c : channels) {
+    ASSERT_LT(c, got_channels);
+    ASSERT_LT(c, want_channels);
+  }
+  for (std::size_t p = 0; p < static_cast<std::size_t>(want.width * want.height); ++p)
+    for (const std::size_t c : channels)
+      ASSERT_NEAR(got.pixels[p * got_channels + c], want.pixels[p * want_channels + c], 1e-6)
+          << "texel " << p << " channel " << c;
+}
+
 const aiMaterial* material_named(const aiScene* scene, const std::string& name) {
   for (unsigned m = 0; m < scene->mNumMaterials; ++m)
     if (scene->mMaterials[m]->GetName().C_Str() == name) return scene->mMaterials[m];
@@ -125,15 +142,7 @@ void check_textured_floor_glb(const fs::path& glb, const PlyVertices& ply,
 
   // The floor's texture is the checker, pixel for pixel.
   const ImagePixels checker = file_pixels(kScenes / "textured-floor" / "checker.png");
-  const ImagePixels embedded = embedded_pixels(scene, floor, scratch);
-  ASSERT_EQ(embedded.width, checker.width);
-  ASSERT_EQ(embedded.height, checker.height);
-  ASSERT_GE(embedded.channels, 3);
-  for (std::size_t p = 0; p < static_cast<std::size_t>(checker.width * checker.height); ++p)
-    for (std::size_t c = 0; c < 3; ++c)
-      ASSERT_NEAR(embedded.pixels[p * static_cast<std::size_t>(embedded.channels) + c],
-                  checker.pixels[p * static_cast<std::size_t>(checker.channels) + c], 1e-6)
-          << "texel " << p << " channel " << c;
+  expect_same_pixels(embedded_pixels(scene, floor, scratch), checker, {0, 1, 2});
   aiColor4D factor;
   ASSERT_EQ(floor->Get(AI_MATKEY_BASE_COLOR, factor), aiReturn_SUCCESS);
   EXPECT_NEAR(factor.r, 0.9f, 1e-6f) << "Kd";
@@ -146,12 +155,7 @@ void check_textured_floor_glb(const fs::path& glb, const PlyVertices& ply,
   ASSERT_EQ(fence->Get(AI_MATKEY_GLTF_ALPHACUTOFF, cutoff), aiReturn_SUCCESS);
   EXPECT_FLOAT_EQ(cutoff, 0.5f);
   const ImagePixels mask = file_pixels(kScenes / "textured-floor" / "fence-mask.png");
-  const ImagePixels fence_image = embedded_pixels(scene, fence, scratch);
-  ASSERT_EQ(fence_image.width, mask.width);
-  ASSERT_EQ(fence_image.height, mask.height);
-  ASSERT_EQ(fence_image.channels, 4);
-  for (std::size_t p = 0; p < static_cast<std::size_t>(mask.width * mask.height); ++p)
-    ASSERT_NEAR(fence_image.pixels[p * 4 + 3], mask.pixels[p * 4 + 3], 1e-6) << "texel " << p;
+  expect_same_pixels(embedded_pixels(scene, fence, scratch), mask, {3});
   aiString floor_mode;
   if (floor->Get(AI_MATKEY_GLTF_ALPHAMODE, floor_mode) == aiReturn_SUCCESS) {
     EXPECT_STREQ(floor_mode.C_Str(), "OPAQUE");
