@@ -27,7 +27,7 @@ void BakeOptions::add_to(CLI::App& cmd, bool with_output) {
                  "Also light each bake with its scene's lights and write the lit mesh as binary "
                  "glTF beside the bake folder (bakes/box -> bakes/box.glb): vertex colours, the "
                  "scene's materials with their textures embedded, texture coordinates; Blender "
-                 "and glTF viewers open it (docs/bake-format.md)");
+                 "and glTF viewers open it (docs/export.md)");
   for (const SettingRow& row : settings_table()) {
     if (row.writer_only && !with_output) continue;
     CLI::Option* o = nullptr;
