@@ -37,9 +37,11 @@ struct Outcome {
   std::string glb;        // --export-glb: the file written
 };
 
-// FOLDER.glb beside the bake folder FOLDER ("bakes/box/" -> "bakes/box.glb").
+// FOLDER.glb beside the bake folder FOLDER ("bakes/box/" -> "bakes/box.glb";
+// "." -> "../NAME.glb" as an absolute path).
 fs::path glb_beside(const fs::path& folder) {
   fs::path p = folder.lexically_normal();
+  if (p.filename() == "." || p.filename() == "..") p = fs::absolute(p).lexically_normal();
   if (p.filename().empty()) p = p.parent_path();
   return p.parent_path() / (p.filename().string() + ".glb");
 }

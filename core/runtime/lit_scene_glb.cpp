@@ -78,6 +78,8 @@ float write_lit_scene_glb(const std::filesystem::path& path, const Scene& scene,
   if (mesh.normals.size() != n || mesh.radiosity.size() != n ||
       mesh.source_triangle.size() != mesh.triangles.size())
     throw Error(where, "glTF: the lit mesh's arrays differ in count");
+  if (n == 0 || mesh.triangles.empty())
+    throw Error(where, "glTF: the mesh has no vertices or no triangles to export");
   for (const std::uint32_t t : mesh.source_triangle)
     if (t >= scene.triangle_count())
       throw Error(where, "glTF: the lit mesh names a triangle the scene does not have");
