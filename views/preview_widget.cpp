@@ -123,8 +123,8 @@ void PreviewWidget::export_lit_glb(const std::string& path) {
     std::lock_guard<std::mutex> lock(lighting_mutex_);
     mesh = lighting_->lit_mesh(light_position_);
   }
-  write_lit_glb(path, {mesh.positions, mesh.normals, mesh.radiosity, mesh.triangles,
-                       std::filesystem::path(path).stem().string()});
+  // The scene is never changed after construction: no lock needed to read it.
+  write_lit_scene_glb(path, lighting_->scene(), mesh, std::filesystem::path(path).stem().string());
 }
 
 void PreviewWidget::set_passes(Passes passes) {

@@ -96,9 +96,10 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   double last_frame_graph_ms() const { return 1e3 * frame_seconds_; }
   double last_transfer_ms() const { return 1e3 * transfer_seconds_; }
   std::size_t vertex_count() const;
-  // Writes the lit mesh at the current light position as binary glTF (the
-  // light `bounce solve` writes to lit.glb). Throws bounce::Error when no
-  // bake is shown or the file cannot be written.
+  // Writes the lit mesh at the current light position as binary glTF with
+  // the scene's materials and textures (what `bounce solve` writes to
+  // lit.glb). Throws bounce::Error when no bake is shown or the file cannot
+  // be written.
   void export_lit_glb(const std::string& path);
   std::size_t triangle_count() const;
 

@@ -22,6 +22,12 @@ void BakeOptions::add_to(CLI::App& cmd, bool with_output) {
                  "Also print the bake's error against the path-traced reference "
                  "(docs/reference.md) and its run time; the first run per scene renders the "
                  "reference (seconds), later runs read it from the cache");
+  if (with_output)
+    cmd.add_flag("--export-glb", export_glb,
+                 "Also light each bake with its scene's lights and write the lit mesh as binary "
+                 "glTF beside the bake folder (bakes/box -> bakes/box.glb): vertex colours, the "
+                 "scene's materials with their textures embedded, texture coordinates; Blender "
+                 "and glTF viewers open it (docs/export.md)");
   for (const SettingRow& row : settings_table()) {
     if (row.writer_only && !with_output) continue;
     CLI::Option* o = nullptr;

@@ -13,6 +13,7 @@
 #include "base/error.h"
 #include "commands.h"
 #include "console_progress.h"
+#include "lit_bake_mesh.h"
 #include "reference_check.h"
 #include "scene/scene_loader.h"
 #ifdef BOUNCE_HAVE_MPI
@@ -33,7 +34,17 @@ struct Outcome {
   std::string detail;  // error message, or a one-line summary
   json manifest;
   std::string reference;  // --reference: one line against the path-traced reference
+  std::string glb;        // --export-glb: the file written
 };
+
+// FOLDER.glb beside the bake folder FOLDER ("bakes/box/" -> "bakes/box.glb";
+// "." -> "../NAME.glb" as an absolute path).
+fs::path glb_beside(const fs::path& folder) {
+  fs::path p = folder.lexically_normal();
+  if (p.filename() == "." || p.filename() == "..") p = fs::absolute(p).lexically_normal();
+  if (p.filename().empty()) p = p.parent_path();
+  return p.parent_path() / (p.filename().string() + ".glb");
+}
 
 // A distributed bake (mpirun): this process's share, and the agreement on
 // errors every rank must see. Null members: a single-process bake.
@@ -83,11 +94,17 @@ Outcome bake_one(const std::string& path, const fs::path& out, bool nest, const 
   if (opt.reference)
     o.manifest["reference_check"] =
         check_bake_against_reference(scene, result, console.progress(), o.reference);
+  if (opt.export_glb) {
+    const fs::path glb = glb_beside(target);
+    export_bake_glb(target, scene, glb, console.progress());
+    o.glb = glb.string();
+  }
   o.ok = true;
   char line[256];
   std::snprintf(line, sizeof line, "%zu patches, %.2fs", result.patches.size(),
                 result.total_seconds);
   o.detail = line;
+  if (!o.glb.empty()) o.detail += ", lit mesh " + o.glb;
   return o;
 }
 
@@ -97,6 +114,7 @@ void print_single(const BakeOptions& opt, const Outcome& o) {
   else
     print_bake_report(stdout, o.manifest);
   if (!opt.json && !o.reference.empty()) std::printf("%s\n", o.reference.c_str());
+  if (!opt.json && !o.glb.empty()) std::printf("lit mesh (binary glTF): %s\n", o.glb.c_str());
 }
 
 #ifdef BOUNCE_HAVE_MPI
@@ -194,7 +212,9 @@ int run_bake(const BakeOptions& opt) {
   json summary = json::array();
   for (const Outcome& o : outcomes) {
     failed += o.ok ? 0 : 1;
-    summary.push_back({{"scene", o.scene}, {"ok", o.ok}, {"detail", o.detail}});
+    json entry = {{"scene", o.scene}, {"ok", o.ok}, {"detail", o.detail}};
+    if (!o.glb.empty()) entry["glb"] = o.glb;
+    summary.push_back(std::move(entry));
   }
   if (opt.json) {
     std::cout << json{{"scenes", summary}, {"failed", failed}}.dump(2) << '\n';
@@ -217,7 +237,8 @@ void register_bake(CLI::App& app) {
       "Bake scenes: voxel grid, virtual patches, form factors, the multi-bounce transport matrix "
       "and its compression, written to a bake folder "
       "(manifest.json + .npy arrays, see docs/bake-format.md). Exit codes: 0 ok, 1 error "
-      "(or every scene of a batch failed), 2 some scenes of a batch failed, 130 cancelled.");
+      "(or every scene of a batch failed), 2 some scenes of a batch failed, 130 cancelled. "
+      "With --export-glb, a scene whose export fails counts as failed.");
   opt->add_to(*cmd, true);
   cmd->callback([opt]() {
     const int code = run_bake(*opt);

@@ -24,6 +24,7 @@
 #include "commands.h"
 #include "console_progress.h"
 #include "io/npy.h"
+#include "lit_bake_mesh.h"
 #include "metrics/error_heat_map.h"
 #include "metrics/image_metrics.h"
 #include "metrics/patch_light_error.h"
@@ -209,37 +210,10 @@ void run_solve(const SolveOptions& opt) {
   const TransferGrid grid = TransferGrid::from_manifest(bake.manifest);
   ConsoleProgress console(opt.quiet || opt.json);
   if (!opt.no_mesh) {
-    LitMesh mesh;
-    if (gather) {
-      // Each vertex: its own direct light, plus albedo x the irradiance it
-      // gathers from the patches' reflected light b + T b (the bake's final
-      // gather), plus its emission.
-      mesh = build_transfer_mesh(scene, grid, TransferSettings{}, &console.progress());
-      if (mesh.positions.size() != gather->points())
-        throw Error((fs::path(opt.bake) / bake_file::kGatherFirst).string(),
-                    "holds " + std::to_string(gather->points()) +
-                        " vertices, the scene's lit "
-                        "mesh has " +
-                        std::to_string(mesh.positions.size()) + ": not this scene");
-      std::vector<glm::vec3> reflected, gathered, sample_light;
-      relighter.reflected(reflected);
-      if (gather->samples > 0)
-        sample_light =
-            sample_exitance(bake.samples, bake.patches, frame.sample_irradiance(), indirect);
-      // The per-frame part: the sparse product to every vertex, best of 5.
-      double product = 1e30;
-      for (int rep = 0; rep < 5; ++rep) {
-        const auto t0 = Clock::now();
-        gather->irradiance(reflected, sample_light, gathered);
-        product = std::min(product, since(t0));
-      }
-      timings["final_gather_product"] = product;
-      light_vertices(tracer, scene.lights, area, gathered, mesh);
-    } else {
-      // The mesh shows everything the patches send out: emission + b + T b.
-      mesh = transfer_to_mesh(tracer, bake.patches.patches, grid, frame.exitance(),
-                              TransferSettings{}, &console.progress());
-    }
+    double product = 0.0;
+    const LitMesh mesh = light_bake_mesh(tracer, bake, opt.bake, relighter, area, gather,
+                                         console.progress(), gather ? &product : nullptr);
+    if (gather) timings["final_gather_product"] = product;
     std::vector<float> error_abs, error_rel;
     std::vector<PlyScalar> scalars;
     if (opt.compare_exact) {
@@ -275,8 +249,7 @@ void run_solve(const SolveOptions& opt) {
                   scalars);
     files.push_back("lit.ply");
     // The same light for Blender and web viewers, without the error columns.
-    write_lit_glb(out / "lit.glb", {mesh.positions, mesh.normals, mesh.radiosity, mesh.triangles,
-                                    bake_display_name(opt.bake)});
+    write_lit_scene_glb(out / "lit.glb", scene, mesh, bake_display_name(opt.bake));
     files.push_back("lit.glb");
     timings["mesh_transfer"] = since(t);
   }

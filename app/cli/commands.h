@@ -23,6 +23,10 @@ struct BakeOptions {
   std::vector<std::string> scenes;
   std::string out;
   bool reference = false;  // bake: also measure against the path-traced reference
+  // bake: also light each bake with its scene's lights and write the lit
+  // mesh, materials and textures as binary glTF beside the bake folder
+  // (FOLDER.glb). Not a bake setting: it changes nothing in the folder.
+  bool export_glb = false;
   bool json = false;
   bool quiet = false;
   // Each setting's text as given on the command line, and its option.

@@ -3,13 +3,15 @@
 //
 //   bounce::write_lit_ply(out / "lit.ply", {mesh.positions, mesh.normals, mesh.radiosity,
 //                                           mesh.triangles});
-//   bounce::write_lit_glb(out / "lit.glb", {mesh.positions, mesh.normals, mesh.radiosity,
-//                                           mesh.triangles});
+//   bounce::write_lit_scene_glb(out / "lit.glb", scene, mesh, "my-scene");
 //
 // PLY for mesh tools and scripts (exact linear light per vertex beside the
 // tone-mapped colours, extra per-vertex figures); binary glTF for Blender and
-// web viewers (tone-mapped linear COLOR_0 on an unlit material, the exact
-// light as _RADIANCE). Both tone-map with the same exposure and are written
-// atomically.
+// web viewers: the scene's materials, their textures embedded and texture
+// coordinates, tone-mapped linear COLOR_0 on unlit materials (the light
+// without the albedo where a texture carries it), the exact light as
+// _RADIANCE. write_lit_glb writes a bare mesh without materials. All are
+// written atomically.
 #include "io/glb_writer.h"
 #include "io/ply_writer.h"
+#include "runtime/lit_scene_glb.h"
