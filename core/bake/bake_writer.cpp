@@ -398,7 +398,12 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
         {"rays_per_vertex", fg.rays},
         {"kept_per_vertex_max", FinalGatherSettings{}.kept},
         {"coverage", FinalGatherSettings{}.coverage},
-        {"samples_kept_per_vertex_max", FinalGatherSettings{}.sample_kept},
+        {"samples_kept_per_vertex_max",
+         [&fg] {
+           FinalGatherSettings settings;
+           settings.rays = fg.rays;
+           return settings.sample_cap();
+         }()},
         {"sample_coverage", FinalGatherSettings{}.sample_coverage},
         {"sample_entries",
          std::count_if(fg.source.begin(), fg.source.end(),

@@ -93,6 +93,12 @@ void FinalGather::validate(const std::string& what) const {
   }
 }
 
+std::size_t FinalGatherSettings::sample_cap() const {
+  if (sample_kept <= 0 || rays <= 0) return 0;
+  return static_cast<std::size_t>(
+      std::ceil(static_cast<double>(sample_kept) * static_cast<double>(rays) / 256.0));
+}
+
 std::vector<glm::vec3> gather_points_of_vertices(const std::vector<glm::vec3>& positions,
                                                  const std::vector<glm::uvec3>& triangles) {
   std::vector<glm::vec3> out = positions;
@@ -188,7 +194,7 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   const std::size_t n = positions.size();
   const auto rays = static_cast<std::size_t>(settings.rays);
   const auto kept = static_cast<std::size_t>(settings.kept);
-  const auto sample_kept = static_cast<std::size_t>(settings.sample_kept);
+  const std::size_t sample_kept = settings.sample_cap();
   const bool sample_sources = sample_kept > 0 && settings.sample_coverage > 0.0;
   if (sample_sources) g.samples = lookup.sample_count();
   const std::size_t sample_base = patch_count + g.clusters;

@@ -341,9 +341,10 @@ TEST(Closure, EmptyCornellBoxIndirectOverDirectPerWallMatchesThePathTracer) {
       std::printf("empty box %-8s channel %c: %s %.4f, reference %.4f +- %.4f (%+.2f%%)\n", w.name,
                   "RGB"[c], lit ? "indirect/direct" : "indirect", ours, theirs, sigma,
                   100.0 * (ours / theirs - 1.0));
-      // Measured -1.6% .. -2.7% (the raw quadrature: +2.5% .. +5%); 3% is
-      // the bound held, the 1.5% aimed at is not reached yet.
-      EXPECT_NEAR(ours, theirs, 0.03 * theirs + 3.0 * sigma) << w.name << " channel " << c;
+      // Measured -0.2% .. -1.3% (the raw quadrature: +2.5% .. +5%; with the
+      // gather's sample entries capped at 64 whatever the rays: -1.5% ..
+      // -2.4%).
+      EXPECT_NEAR(ours, theirs, 0.015 * theirs + 3.0 * sigma) << w.name << " channel " << c;
     }
   }
 }
