@@ -44,7 +44,7 @@ TEST(CliReportBatch, OneComparisonTableOfEveryScenesRows) {
                                    (dir / "missing").string(),
                                    "--out",
                                    (dir / "r").string()};
-  for (const std::string& a : tiny_sweep(dir)) args.push_back(a);
+  for (const std::string& a : tiny_sweep(dir.path())) args.push_back(a);
   const RunResult r = run(args, dir.path(), 120.0);
   // One scene of three failed: exit 2, its error names it.
   EXPECT_EQ(r.exit_code, 2) << r;
@@ -96,7 +96,7 @@ TEST(CliReportBatch, EverySceneFailingIsExitOneAndHelpNamesTheOption) {
   std::vector<std::string> args = {
       "report", "--scene",           (dir / "a").string(), (dir / "b").string(),
       "--out",  (dir / "r").string()};
-  for (const std::string& a : tiny_sweep(dir)) args.push_back(a);
+  for (const std::string& a : tiny_sweep(dir.path())) args.push_back(a);
   const RunResult r = run(args, dir.path(), 60.0);
   EXPECT_EQ(r.exit_code, 1) << r;
   EXPECT_TRUE(contains(r.err, (dir / "a").string()) && contains(r.err, (dir / "b").string())) << r;
