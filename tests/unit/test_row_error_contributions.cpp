@@ -13,25 +13,11 @@
 #include "base/error.h"
 #include "compress/codec.h"
 #include "compress/row_error_contributions.h"
+#include "transport_like.h"
 
 namespace bounce {
 
 namespace {
-
-// Light exchange between random points of a box's walls, in random order.
-std::vector<float> transport_like(std::size_t n, float scale, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  std::vector<glm::vec3> p(n);
-  for (auto& x : p) x = glm::vec3(u(rng), u(rng), u(rng) < 0.5f ? 0.0f : 1.0f);
-  std::vector<float> t(n * n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j)
-      t[i * n + j] = i == j ? 0.0f
-                            : scale * 0.02f * std::exp(-glm::length(p[i] - p[j]) / 0.2f) *
-                                  (1.0f + 0.3f * u(rng));
-  return t;
-}
 
 std::vector<glm::vec3> random_light(std::size_t n, unsigned seed) {
   std::mt19937 rng(seed);
