@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include <QGraphicsPixmapItem>
+#include <QGraphicsRectItem>
 #include <QGraphicsScene>
 #include <QGraphicsSimpleTextItem>
 #include <QMouseEvent>
@@ -31,6 +32,12 @@ std::pair<std::size_t, std::size_t> MatrixPictureLayout::entries(int pixel) cons
   return {first, std::max(first + 1, (p + 1) * n / s)};
 }
 
+int MatrixPictureLayout::pixel(std::size_t entry) const {
+  // The smallest pixel p with floor((p + 1) n / size) > entry.
+  const auto s = static_cast<std::size_t>(size);
+  return n == 0 ? 0 : static_cast<int>(((entry + 1) * s + n - 1) / n - 1);
+}
+
 QImage to_qimage(const Rgb8Image& picture) {
   QImage image(picture.pixels.data(), picture.width, picture.height, picture.width * 3,
                QImage::Format_RGB888);
@@ -49,6 +56,7 @@ MatrixPanel::MatrixPanel(QWidget* parent) : QGraphicsView(parent) {
 
 void MatrixPanel::set_picture(const Rgb8Image& picture, const MatrixPictureLayout& layout) {
   scene()->clear();
+  highlights_.clear();
   layout_ = layout;
   item_ = scene()->addPixmap(QPixmap::fromImage(to_qimage(picture)));
   scene()->setSceneRect(item_->boundingRect());
@@ -56,11 +64,43 @@ void MatrixPanel::set_picture(const Rgb8Image& picture, const MatrixPictureLayou
 
 void MatrixPanel::clear_picture(const QString& message) {
   scene()->clear();
+  highlights_.clear();
   item_ = nullptr;
   layout_ = {};
   auto* text = scene()->addSimpleText(message);
   text->setBrush(Qt::white);
   scene()->setSceneRect(text->boundingRect());
+}
+
+void MatrixPanel::set_highlights(const std::vector<EntryRect>& rects, bool centre) {
+  for (QGraphicsRectItem* r : highlights_) {
+    scene()->removeItem(r);
+    delete r;
+  }
+  highlights_.clear();
+  if (!item_ || layout_.n == 0) return;
+  for (const EntryRect& e : rects) {
+    if (e.row_first >= e.row_last || e.col_first >= e.col_last || e.row_last > layout_.n ||
+        e.col_last > layout_.n)
+      continue;
+    const int x0 = layout_.pixel(e.col_first), x1 = layout_.pixel(e.col_last - 1) + 1;
+    const int y0 = layout_.pixel(e.row_first), y1 = layout_.pixel(e.row_last - 1) + 1;
+    // A cosmetic pen: two screen pixels wide at any zoom, white over black so
+    // it shows on every colour of the map.
+    QPen pen(Qt::white, 2.0);
+    pen.setCosmetic(true);
+    auto* item = scene()->addRect(QRectF(layout_.left + x0, layout_.top + y0, x1 - x0, y1 - y0),
+                                  pen, Qt::NoBrush);
+    item->setZValue(1.0);
+    highlights_.push_back(item);
+  }
+  if (centre && !highlights_.empty()) centerOn(highlights_.front());
+}
+
+std::vector<QRectF> MatrixPanel::highlight_rects() const {
+  std::vector<QRectF> out;
+  for (const QGraphicsRectItem* r : highlights_) out.push_back(r->rect());
+  return out;
 }
 
 void MatrixPanel::set_zoom(double zoom) {

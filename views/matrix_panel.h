@@ -2,12 +2,16 @@
 // One matrix picture (compress/matrix_picture.h: log colour map, colour bar
 // with decade labels) in a zoomable, pannable view. Reports which matrix
 // entry is under the mouse; zoom and scroll position can be mirrored onto
-// another panel so two pictures move together.
+// another panel so two pictures move together. Rectangles of entries can be
+// outlined on top of the picture (what another view points at).
+#include <vector>
+
 #include <QGraphicsView>
 
 #include "io/png_writer.h"
 
 class QGraphicsPixmapItem;
+class QGraphicsRectItem;
 
 namespace bounce::views {
 
@@ -23,6 +27,14 @@ struct MatrixPictureLayout {
   static MatrixPictureLayout of(std::size_t n, int max_size, const std::string& title);
   // Matrix rows/columns [first, last) drawn in pixel row/column `pixel`.
   std::pair<std::size_t, std::size_t> entries(int pixel) const;
+  // The first pixel row/column that draws matrix row/column `entry` (the
+  // inverse of entries()).
+  int pixel(std::size_t entry) const;
+};
+
+// Matrix rows [row_first, row_last) x columns [col_first, col_last).
+struct EntryRect {
+  std::size_t row_first = 0, row_last = 0, col_first = 0, col_last = 0;
 };
 
 class MatrixPanel : public QGraphicsView {
@@ -41,6 +53,11 @@ class MatrixPanel : public QGraphicsView {
   // The picture's rectangle in viewport coordinates.
   QRect picture_rect() const;
   const MatrixPictureLayout& layout() const { return layout_; }
+  // Outlines these entry rectangles (replacing the previous outlines; none
+  // clears them) and, with `centre`, scrolls the first into view.
+  void set_highlights(const std::vector<EntryRect>& rects, bool centre);
+  // The outlines, in picture pixels (scene coordinates).
+  std::vector<QRectF> highlight_rects() const;
 
  signals:
   // Stored row/column range under the mouse; first == last when off the matrix.
@@ -60,6 +77,7 @@ class MatrixPanel : public QGraphicsView {
   bool entry_at(const QPoint& pos, std::size_t& row, std::size_t& col) const;
   QGraphicsPixmapItem* item_ = nullptr;
   MatrixPictureLayout layout_;
+  std::vector<QGraphicsRectItem*> highlights_;
 };
 
 QImage to_qimage(const Rgb8Image& picture);

@@ -1,5 +1,7 @@
 #include "matrix_view.h"
 
+#include <algorithm>
+
 #include <QComboBox>
 #include <QHBoxLayout>
 #include <QLabel>
@@ -24,7 +26,9 @@ MatrixView::MatrixView(QWidget* parent)
       source_(new QLabel(this)),
       hover_(new QLabel(this)),
       before_(new MatrixPanel(this)),
-      after_(new MatrixPanel(this)) {
+      after_(new MatrixPanel(this)),
+      mark_(new QLabel(this)),
+      back_(new QPushButton(tr("Show patch in the patch view"), this)) {
   channel_box_->addItems({tr("Mean of channels"), tr("Red"), tr("Green"), tr("Blue")});
   channel_box_->setToolTip(tr("Which colour channel's matrix T_c to show"));
   auto* fit_button = new QPushButton(tr("Fit"), this);
@@ -48,7 +52,26 @@ MatrixView::MatrixView(QWidget* parent)
   layout->addWidget(bar);
   layout->addLayout(panels, 1);
   layout->addWidget(hover_);
+  auto* mark_bar = new QWidget(this);
+  mark_bar->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
+  auto* mark_layout = new QHBoxLayout(mark_bar);
+  mark_layout->setContentsMargins(0, 0, 0, 0);
+  mark_layout->addWidget(mark_, 1);
+  mark_layout->addWidget(back_);
+  layout->addWidget(mark_bar);
   hover_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  mark_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  back_->setEnabled(false);
+  back_->setToolTip(
+      tr("Pick the marked row's patch in the patch view (click an entry to mark "
+         "its row)"));
+  connect(back_, &QPushButton::clicked, this, [this] {
+    if (marked_patch_ >= 0) emit patch_requested(marked_patch_);
+  });
+  connect(before_, &MatrixPanel::clicked, this,
+          [this](std::size_t r, std::size_t c) { pick_entry(false, r, c); });
+  connect(after_, &MatrixPanel::clicked, this,
+          [this](std::size_t r, std::size_t c) { pick_entry(true, r, c); });
   before_->mirror(after_);
   after_->mirror(before_);
   connect(channel_box_, qOverload<int>(&QComboBox::currentIndexChanged), this,
@@ -67,6 +90,7 @@ MatrixView::MatrixView(QWidget* parent)
 
 void MatrixView::set_data(std::shared_ptr<const BakeViewData> bake) {
   data_ = std::move(bake);
+  marked_patch_ = -1;
   rebuild();
   fit();
 }
@@ -133,6 +157,80 @@ void MatrixView::rebuild() {
   }
   source_->setText(exact_ ? tr("exact T (T.npy)")
                           : tr("T decoded from T.dds + kept entries (no T.npy in this bake)"));
+  restore_mark();
+}
+
+void MatrixView::mark_row(int patch, std::size_t stored_row, std::size_t stored_col_first,
+                          std::size_t stored_col_last) {
+  const std::size_t n = data_ ? data_->patch_count() : 0;
+  marked_patch_ = patch >= 0 && static_cast<std::size_t>(patch) < n ? patch : -1;
+  marked_row_ = stored_row;
+  marked_col_first_ = std::min(stored_col_first, n);
+  marked_col_last_ = std::min(stored_col_last, n);
+  restore_mark();
+}
+
+QString MatrixView::mark_text() const { return mark_->text(); }
+
+void MatrixView::restore_mark() {
+  back_->setEnabled(marked_patch_ >= 0);
+  if (marked_patch_ < 0 || !data_) {
+    before_->set_highlights({}, false);
+    after_->set_highlights({}, false);
+    mark_->clear();
+    return;
+  }
+  const std::size_t n = data_->patch_count(), p = static_cast<std::size_t>(marked_patch_);
+  const CompressedMatrix* c = data_->bake.compressed ? &*data_->bake.compressed : nullptr;
+  // Patch order: the whole row, and the block's entries where the
+  // permutation scattered them.
+  std::vector<EntryRect> before{{p, p + 1, 0, n}};
+  QString patches;
+  if (c)
+    for (std::size_t k = marked_col_first_; k < marked_col_last_; ++k) {
+      const std::size_t j = c->permutation[k];
+      before.push_back({p, p + 1, j, j + 1});
+      patches += (patches.isEmpty() ? "" : ", ") + QString::number(j);
+    }
+  before_->set_highlights(before, !c);
+  QString text = tr("Marked: row of patch %1").arg(marked_patch_);
+  if (c && marked_row_ < n && c->permutation[marked_row_] == p) {
+    std::vector<EntryRect> after{{marked_row_, marked_row_ + 1, 0, n}};
+    text += tr(" (stored row %1)").arg(marked_row_);
+    if (marked_col_first_ < marked_col_last_) {
+      const std::size_t top = marked_row_ / 4 * 4;
+      after.insert(after.begin(), {top, std::min(top + 4, n), marked_col_first_, marked_col_last_});
+      text += tr(", block %1, %2: stored columns %3..%4 = patches %5")
+                  .arg(marked_row_ / 4)
+                  .arg(marked_col_first_ / 4)
+                  .arg(marked_col_first_)
+                  .arg(marked_col_last_ - 1)
+                  .arg(patches);
+    }
+    after_->set_highlights(after, true);
+  } else {
+    after_->set_highlights({}, false);
+  }
+  mark_->setText(text);
+}
+
+void MatrixView::pick_entry(bool after, std::size_t row, std::size_t col) {
+  if (!data_) return;
+  const CompressedMatrix* c = data_->bake.compressed ? &*data_->bake.compressed : nullptr;
+  if (!c) {
+    mark_row(static_cast<int>(row));
+    return;
+  }
+  // Stored (reordered) row and column of the entry, and the patch of its row.
+  std::size_t stored_row = row, stored_col = col;
+  if (!after) {
+    const auto& perm = c->permutation;
+    stored_row = static_cast<std::size_t>(std::find(perm.begin(), perm.end(), row) - perm.begin());
+    stored_col = static_cast<std::size_t>(std::find(perm.begin(), perm.end(), col) - perm.begin());
+  }
+  const std::size_t first = stored_col / 4 * 4;
+  mark_row(static_cast<int>(c->permutation[stored_row]), stored_row, first,
+           std::min(first + 4, data_->patch_count()));
 }
 
 float MatrixView::value(std::size_t row, std::size_t col) const {

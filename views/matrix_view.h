@@ -3,7 +3,10 @@
 // row/column reordering, side by side, with one log colour map and its
 // legend (compress/matrix_picture.h, the pictures the bake writes), zoom and
 // pan shared by both sides, a channel selector, and the entry under the mouse
-// (row, column, value, patch ids) in a status line.
+// (row, column, value, patch ids) in a status line. One patch's row can be
+// marked (another view asks for it, or a click on an entry picks its row):
+// the row in patch order, one 4x4 block of the reordered matrix, and a
+// button that asks to show that patch elsewhere.
 #include <memory>
 
 #include <QWidget>
@@ -13,6 +16,7 @@
 
 class QComboBox;
 class QLabel;
+class QPushButton;
 
 namespace bounce::views {
 
@@ -31,8 +35,24 @@ class MatrixView : public QWidget {
   QString hover_text() const;
   // Both sides fitted into their panels.
   void fit();
+  // Marks patch `patch`'s row: the whole row in patch order, and in the
+  // reordered picture the block of stored row `stored_row` and stored columns
+  // [stored_col_first, stored_col_last) (the row alone when the range is
+  // empty), scrolled into view. -1 clears the mark.
+  void mark_row(int patch, std::size_t stored_row = 0, std::size_t stored_col_first = 0,
+                std::size_t stored_col_last = 0);
+  int marked_patch() const { return marked_patch_; }
+  QString mark_text() const;
+  // The button that emits patch_requested for the marked patch.
+  QPushButton* back_button() const { return back_; }
+
+ signals:
+  // The user asks to see this patch in the patch view.
+  void patch_requested(int patch);
 
  private:
+  void restore_mark();
+  void pick_entry(bool after, std::size_t row, std::size_t col);
   void rebuild();
   void show_hover(bool after, std::size_t r0, std::size_t r1, std::size_t c0, std::size_t c1);
   float value(std::size_t row, std::size_t col) const;
@@ -45,6 +65,10 @@ class MatrixView : public QWidget {
   QLabel* hover_;
   MatrixPanel* before_;
   MatrixPanel* after_;
+  QLabel* mark_;
+  QPushButton* back_;
+  int marked_patch_ = -1;
+  std::size_t marked_row_ = 0, marked_col_first_ = 0, marked_col_last_ = 0;
 };
 
 }  // namespace bounce::views

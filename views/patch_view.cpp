@@ -23,8 +23,11 @@
 #include <vtkUnsignedCharArray.h>
 #include <QComboBox>
 #include <QHBoxLayout>
+#include <QHeaderView>
 #include <QLabel>
 #include <QMouseEvent>
+#include <QPushButton>
+#include <QTableWidget>
 #include <QVBoxLayout>
 
 #include "compress/codec.h"
@@ -54,6 +57,10 @@ std::array<unsigned char, 3> id_colour(std::size_t id) {
           static_cast<unsigned char>(rgb[k][2] * 255)};
 }
 
+QString rgb_text(const glm::dvec3& v) {
+  return QString("(%1, %2, %3)").arg(v.r, 0, 'g', 4).arg(v.g, 0, 'g', 4).arg(v.b, 0, 'g', 4);
+}
+
 }  // namespace
 
 PatchView::PatchView(QWidget* parent)
@@ -62,6 +69,10 @@ PatchView::PatchView(QWidget* parent)
       colour_box_(new QComboBox(this)),
       light_box_(new QComboBox(this)),
       status_(new QLabel(this)),
+      explain_(new QWidget(this)),
+      explain_text_(new QLabel(explain_)),
+      sources_(new QTableWidget(explain_)),
+      matrix_button_(new QPushButton(tr("Show in the matrix view"), explain_)),
       renderer_(vtkSmartPointer<vtkRenderer>::New()),
       centres_(vtkSmartPointer<vtkPolyData>::New()),
       glyphs_(vtkSmartPointer<vtkGlyph3D>::New()),
@@ -96,10 +107,43 @@ PatchView::PatchView(QWidget* parent)
   controls->addWidget(light_box_);
   controls->addStretch(1);
   controls->addWidget(status_);
+  // The picked patch's error, explained: beside the 3-D view, only in the
+  // error mode with a picked patch.
+  auto* explain_layout = new QVBoxLayout(explain_);
+  explain_layout->setContentsMargins(0, 0, 0, 0);
+  explain_text_->setWordWrap(true);
+  explain_text_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  explain_layout->addWidget(explain_text_);
+  sources_->setColumnCount(5);
+  sources_->setHorizontalHeaderLabels(
+      {tr("Share"), tr("Source"), tr("Stored columns"), tr("Patches"), tr("(T~ - T) b, R G B")});
+  sources_->setToolTip(
+      tr("The pieces of the picked patch's compressed row: a 4x4 block of the reordered matrix "
+         "(the entries it decodes) or a kept entry (stored exactly). Share: dot(contribution, "
+         "error) / |error|^2 over R, G, B; the shares of all pieces add up to 100%, a negative "
+         "one cancels part of the others. Pick one to mark it in the matrix view."));
+  sources_->setSelectionBehavior(QAbstractItemView::SelectRows);
+  sources_->setSelectionMode(QAbstractItemView::SingleSelection);
+  sources_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  sources_->verticalHeader()->setVisible(false);
+  sources_->horizontalHeader()->setStretchLastSection(true);
+  explain_layout->addWidget(sources_, 1);
+  explain_layout->addWidget(matrix_button_);
+  explain_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);
+  explain_->hide();
+  auto* body = new QHBoxLayout;
+  body->addWidget(vtk_widget_, 3);
+  body->addWidget(explain_, 2);
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
   layout->addWidget(bar);
-  layout->addWidget(vtk_widget_, 1);
+  layout->addLayout(body, 1);
+  connect(sources_, &QTableWidget::currentCellChanged, this,
+          [this](int row, int, int, int) { emit_source(row); });
+  connect(matrix_button_, &QPushButton::clicked, this, [this] {
+    emit_source(sources_->currentRow());
+    emit matrix_requested();
+  });
 
   auto window = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();
   vtk_widget_->setRenderWindow(window);
@@ -242,6 +286,7 @@ void PatchView::recolour() {
     by = ColourBy::Albedo;
   if (by == ColourBy::IndirectError && !can_show_indirect_error()) by = ColourBy::Albedo;
   light_box_->setEnabled(by == ColourBy::IndirectError);
+  explanation_.reset();
   QString what;
   if (by == ColourBy::Albedo) {
     for (std::size_t p = 0; p < n; ++p) colours_[p] = srgb(data_->bake.patches.patches[p].albedo);
@@ -326,6 +371,7 @@ void PatchView::recolour() {
                 .arg(data_->bake.patches.member_count(static_cast<std::size_t>(selected_)));
   if (!what.isEmpty()) text += " - " + what;
   status_->setText(text);
+  show_explanation();
   render();
 }
 
@@ -375,18 +421,81 @@ QString PatchView::indirect_error_colours() {
                      .arg(100.0 * kErrorFullScale, 0, 'g', 3);
   if (selected_ >= 0) {
     const auto p = static_cast<std::size_t>(selected_);
-    const auto rgb = [](const glm::vec3& v) {
-      return QString("(%1, %2, %3)").arg(v.r, 0, 'g', 4).arg(v.g, 0, 'g', 4).arg(v.b, 0, 'g', 4);
-    };
-    what += tr("; patch %1: exact %2, compressed %3; largest (T~ - T)_pj b_j from columns")
+    explanation_ = row_error_contributions(*b.compressed, exact, b.channel_of_rgb, light, p);
+    what += tr("; patch %1: exact %2, compressed %3 (its matrix row explained beside the view)")
                 .arg(selected_)
-                .arg(rgb(e.exact[p]))
-                .arg(rgb(e.approx[p]));
-    for (const EntryContribution& k :
-         largest_contributions(exact, approx, n, b.channel_of_rgb, light, p, 3))
-      what += QString(" %1 %2").arg(k.column).arg(rgb(k.difference));
+                .arg(rgb_text(explanation_->exact))
+                .arg(rgb_text(explanation_->compressed));
   }
   return what;
+}
+
+QString PatchView::explanation_text() const { return explain_text_->text(); }
+
+void PatchView::select_source(int rank) { sources_->setCurrentCell(rank, 0); }
+
+void PatchView::emit_source(int rank) {
+  if (!explanation_ || rank < 0 || static_cast<std::size_t>(rank) >= explanation_->sources.size())
+    return;
+  const RowErrorSource& s = explanation_->sources[static_cast<std::size_t>(rank)];
+  // The stored columns the source's entries lie in: a block's 4 (fewer in
+  // the padded last block), or the kept entry's own.
+  std::size_t first = s.block_col * 4;
+  std::size_t last = std::min(first + 4, data_->patch_count());
+  if (s.kind == RowErrorSource::Kind::Kept) {
+    first = s.entries.front().stored_col;
+    last = first + 1;
+  }
+  emit error_source_selected(selected_, static_cast<int>(explanation_->stored_row),
+                             static_cast<int>(first), static_cast<int>(last));
+}
+
+void PatchView::show_explanation() {
+  const QSignalBlocker quiet(sources_);
+  sources_->clearContents();
+  if (!explanation_) {
+    sources_->setRowCount(0);
+    explain_text_->clear();
+    explain_->hide();
+    return;
+  }
+  const RowErrorContributions& r = *explanation_;
+  const glm::dvec3 relative =
+      glm::abs(r.difference) / glm::max(glm::abs(r.exact), glm::dvec3(1e-30));
+  explain_text_->setText(
+      tr("Patch %1 (stored row %2 of the reordered matrix, block row %3). Indirect light, R G B:\n"
+         "exact %4\ncompressed %5\ndifference %6 (%7%, %8%, %9%)\n"
+         "Its row's %10 pieces by share of the difference (largest %11 below):")
+          .arg(r.patch)
+          .arg(r.stored_row)
+          .arg(r.stored_row / 4)
+          .arg(rgb_text(r.exact))
+          .arg(rgb_text(r.compressed))
+          .arg(rgb_text(r.difference))
+          .arg(100.0 * relative.r, 0, 'f', 2)
+          .arg(100.0 * relative.g, 0, 'f', 2)
+          .arg(100.0 * relative.b, 0, 'f', 2)
+          .arg(r.sources.size())
+          .arg(std::min<std::size_t>(r.sources.size(), kSourcesShown)));
+  const int rows = static_cast<int>(std::min<std::size_t>(r.sources.size(), kSourcesShown));
+  sources_->setRowCount(rows);
+  for (int row = 0; row < rows; ++row) {
+    const RowErrorSource& s = r.sources[static_cast<std::size_t>(row)];
+    QString columns, patches;
+    for (const RowEntry& e : s.entries) {
+      columns += (columns.isEmpty() ? "" : " ") + QString::number(e.stored_col);
+      patches += (patches.isEmpty() ? "" : " ") + QString::number(e.column);
+    }
+    const QString source = s.kind == RowErrorSource::Kind::Block
+                               ? tr("block %1, %2").arg(s.block_row).arg(s.block_col)
+                               : tr("kept T[%1][%2]").arg(r.patch).arg(s.entries.front().column);
+    const QStringList cells = {QString("%1%").arg(100.0 * s.share, 0, 'f', 1), source, columns,
+                               patches, rgb_text(s.contribution)};
+    for (int col = 0; col < cells.size(); ++col)
+      sources_->setItem(row, col, new QTableWidgetItem(cells[col]));
+  }
+  sources_->resizeColumnsToContents();
+  explain_->show();
 }
 
 void PatchView::show_samples() {

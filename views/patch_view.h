@@ -6,19 +6,26 @@
 // lands on sampled surface) or by the scale the form-factor balancing applied
 // to its row (where the quadrature struggled), or by the indirect-light error
 // the compressed matrix causes under a chosen light (exact T.npy against the
-// decoded T.dds: per patch, heat map 0 .. 10%; a picked patch shows its exact
-// and compressed light and the matrix entries that make the difference).
+// decoded T.dds: per patch, heat map 0 .. 10%). In that mode a picked patch
+// opens a panel with its exact and compressed indirect light per colour and
+// the pieces of its compressed row (4x4 blocks, kept entries) ranked by their
+// share of the difference (compress/row_error_contributions.h); picking one
+// asks the matrix view to mark it.
 // Clicking a disc picks its patch and shows its member samples as points.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <vtkSmartPointer.h>
 #include <QWidget>
 
 #include "bake_view_data.h"
+#include "compress/row_error_contributions.h"
 
 class QComboBox;
 class QLabel;
+class QPushButton;
+class QTableWidget;
 class QVTKOpenGLNativeWidget;
 class vtkActor;
 class vtkCellPicker;
@@ -42,6 +49,9 @@ class PatchView : public QWidget {
   };
   // The error map's colour scale runs from 0 to this relative error.
   static constexpr double kErrorFullScale = 0.1;
+
+  // Rows of the panel's table: the largest shares of the picked patch's error.
+  static constexpr int kSourcesShown = 12;
 
   // Colour of the picked patch's member samples.
   static constexpr unsigned char kSampleColour[3] = {255, 0, 255};
@@ -76,14 +86,33 @@ class PatchView : public QWidget {
   // RGB of each patch disc as last coloured (for tests).
   const std::vector<std::array<unsigned char, 3>>& patch_colours() const { return colours_; }
   QImage render_image();
+  // The picked patch's row explained under the error light (IndirectError
+  // with a picked patch), else null; the panel shows its first
+  // kSourcesShown sources, in its order.
+  const RowErrorContributions* row_explanation() const {
+    return explanation_ ? &*explanation_ : nullptr;
+  }
+  QString explanation_text() const;
+  QTableWidget* sources_table() const { return sources_; }
+  QPushButton* matrix_button() const { return matrix_button_; }
+  // Picks row `rank` of the table (emits error_source_selected).
+  void select_source(int rank);
 
  signals:
   void patch_selected(int patch);
+  // A source of the picked patch's error was picked: `patch`'s row, stored
+  // row `stored_row`, stored columns [stored_col_first, stored_col_last).
+  void error_source_selected(int patch, int stored_row, int stored_col_first, int stored_col_last);
+  // The panel's button: show the picked source in the matrix view.
+  void matrix_requested();
 
  private:
   void recolour();
   // Colours the patches by IndirectError; returns what the status says.
   QString indirect_error_colours();
+  // Fills the panel from explanation_ (hides it when there is none).
+  void show_explanation();
+  void emit_source(int rank);
   void show_samples();
   void render();
 
@@ -92,6 +121,10 @@ class PatchView : public QWidget {
   QComboBox* colour_box_;
   QComboBox* light_box_;
   QLabel* status_;
+  QWidget* explain_;
+  QLabel* explain_text_;
+  QTableWidget* sources_;
+  QPushButton* matrix_button_;
   vtkSmartPointer<vtkRenderer> renderer_;
   vtkSmartPointer<vtkPolyData> centres_;
   vtkSmartPointer<vtkGlyph3D> glyphs_;
@@ -105,6 +138,7 @@ class PatchView : public QWidget {
   // IndirectError first needs it.
   std::vector<std::vector<float>> decoded_;
   double error_rms_ = 0.0;
+  std::optional<RowErrorContributions> explanation_;
 };
 
 }  // namespace bounce::views

@@ -3,13 +3,15 @@
 // bounces and codec, each measured against the path-traced reference); this
 // command writes report.md and report.json, the plots (views/report_charts.h,
 // when the studio's VTK is built and a display is available), and prints the
-// table.
+// table. With several scenes (--scene A B ...) it writes one report folder
+// per scene and one table comparing them (report_comparison.h).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,9 +22,11 @@
 #include "commands.h"
 #include "console_progress.h"
 #include "io/atomic_file.h"
+#include "number_text.h"
 #include "reference/reference_cache.h"
 #include "report/report_data.h"
 #include "report/report_sweep.h"
+#include "report_comparison.h"
 #include "scene/scene_loader.h"
 #ifdef BOUNCE_REPORT_CHARTS
 #include "report_charts.h"
@@ -36,6 +40,7 @@ namespace {
 
 struct ReportOptions {
   std::string scene;
+  std::vector<std::string> scenes;  // --scene: a batch when more than one in all
   std::string out;
   std::string cache;
   bool no_cache = false;
@@ -45,12 +50,6 @@ struct ReportOptions {
   bool no_plots = false;
   ReportSweepSettings sweep;
 };
-
-std::string fixed(double v, int digits) {
-  char s[64];
-  std::snprintf(s, sizeof s, "%.*f", digits, v);
-  return s;
-}
 
 std::string table(const std::vector<ReportRow>& rows) {
   std::ostringstream t;
@@ -124,16 +123,19 @@ std::vector<fs::path> write_plots(const ReportData& report, const fs::path& out,
 #endif
 }
 
-void run_report(ReportOptions opt) {
-  opt.sweep.fill_defaults(opt.quick);
-  opt.sweep.validate();
-
+// Sweeps one scene and writes its report folder: `out`, or reports/NAME when
+// empty; with `taken` (a batch), `out`/NAME, NAME-2, ... so that two scenes
+// of one name keep both reports. Returns the report and the folder.
+std::pair<ReportData, fs::path> report_one(const ReportOptions& opt, const std::string& scene_path,
+                                           const fs::path& out_given, std::set<std::string>* taken,
+                                           std::vector<fs::path>& plots, std::string& md_table,
+                                           std::string& md_comparison) {
   Diagnostics diag;
   diag.set_listener([&opt](const Diagnostic& d) {
     if (d.kind == Diagnostic::Kind::Warning && !opt.quiet && !opt.json)
       std::fprintf(stderr, "bounce: warning: %s: %s\n", d.where.c_str(), d.message.c_str());
   });
-  const Scene scene = SceneLoader(diag).load(opt.scene);
+  const Scene scene = SceneLoader(diag).load(scene_path);
   ConsoleProgress console(opt.quiet || opt.json);
   std::unique_ptr<ReferenceCache> cache;
   if (!opt.no_cache)
@@ -146,7 +148,12 @@ void run_report(ReportOptions opt) {
                                                  std::fprintf(stderr, "report: %s\n", line.c_str());
                                              });
 
-  const fs::path out = opt.out.empty() ? fs::path("reports") / scene.name : fs::path(opt.out);
+  fs::path out = out_given.empty() ? fs::path("reports") / scene.name : out_given;
+  if (taken) {
+    std::string name = scene.name;
+    for (int k = 2; !taken->insert(name).second; ++k) name = scene.name + "-" + std::to_string(k);
+    out = out_given / name;
+  }
   fs::create_directories(out);
   {
     AtomicFile f(out / "report.json");
@@ -154,11 +161,10 @@ void run_report(ReportOptions opt) {
     f.commit();
   }
   std::string no_plots_why;
-  const std::vector<fs::path> plots =
-      opt.no_plots ? std::vector<fs::path>{} : write_plots(report, out, no_plots_why);
+  plots = opt.no_plots ? std::vector<fs::path>{} : write_plots(report, out, no_plots_why);
   if (opt.no_plots) no_plots_why = "--no-plots";
-  const std::string md_table = table(report.rows);
-  const std::string md_comparison = comparison_table(report);
+  md_table = table(report.rows);
+  md_comparison = comparison_table(report);
   {
     const ReportReference& ref = report.reference;
     AtomicFile f(out / "report.md");
@@ -193,6 +199,87 @@ void run_report(ReportOptions opt) {
   // Said once, on stderr, so a table on stdout stays clean.
   if (plots.empty() && !opt.no_plots)
     std::fprintf(stderr, "bounce: report: no plots: %s\n", no_plots_why.c_str());
+  return {report, out};
+}
+
+// Several scenes: a report folder each under `out` (reports/ when empty),
+// then the comparison table (comparison.md, comparison.json in `out`). A
+// failing scene does not stop the others; exit 2 when some failed, 1 when
+// all did.
+void run_report_batch(const ReportOptions& opt, const std::vector<std::string>& paths) {
+  const fs::path root = opt.out.empty() ? fs::path("reports") : fs::path(opt.out);
+  std::vector<ReportOfScene> scenes;
+  std::set<std::string> taken;
+  for (const std::string& path : paths) {
+    ReportOfScene s;
+    s.scene = path;
+    try {
+      std::vector<fs::path> plots;
+      std::string md_table, md_comparison;
+      auto [report, out] = report_one(opt, path, root, &taken, plots, md_table, md_comparison);
+      s.report = std::move(report);
+      s.out = out.string();
+      s.ok = true;
+      if (!opt.quiet && !opt.json)
+        std::fprintf(stderr, "report: %s: %zu settings in %.1f s, %s\n", path.c_str(),
+                     s.report.rows.size(), s.report.seconds, s.out.c_str());
+    } catch (const Cancelled&) {
+      throw;
+    } catch (const std::exception& e) {
+      s.error = e.what();
+      std::fprintf(stderr, "bounce: error: %s\n", e.what());
+    }
+    scenes.push_back(std::move(s));
+  }
+  std::size_t failed = 0;
+  for (const ReportOfScene& s : scenes) failed += s.ok ? 0 : 1;
+  const std::string md = report_comparison_table(scenes);
+  fs::create_directories(root);
+  {
+    AtomicFile f(root / "comparison.json");
+    f.stream() << report_comparison_json(scenes).dump(2) << '\n';
+    f.commit();
+  }
+  {
+    AtomicFile f(root / "comparison.md");
+    auto& s = f.stream();
+    s << "# Error against run time: " << scenes.size() - failed << " scenes\n\n";
+    s << "Each scene's full report is in its folder. Columns: patches = what the bake made; "
+         "update ms = best of five light updates (direct light + T b); compression: worst-light "
+         "error = the compressed matrix's relative RMS error of the indirect light on the worst "
+         "evaluation light, against the exact matrix (0: dense); indirect rel. RMSE = the "
+         "indirect picture against the path-traced reference, its noise removed; Pareto * = no "
+         "other row of the same scene has both lower indirect error and lower update time.\n\n";
+    s << md << '\n';
+    for (const ReportOfScene& r : scenes)
+      if (!r.ok) s << "Failed: " << r.scene << ": " << r.error << "\n\n";
+    f.commit();
+  }
+  if (opt.json) {
+    std::cout << report_comparison_json(scenes).dump(2) << '\n';
+  } else {
+    std::printf("%s\n%zu of %zu scenes reported: %s, %s\n", md.c_str(), scenes.size() - failed,
+                scenes.size(), (root / "comparison.md").string().c_str(),
+                (root / "comparison.json").string().c_str());
+  }
+  if (failed > 0) throw ExitCode{failed == scenes.size() ? 1 : 2};
+}
+
+void run_report(ReportOptions opt) {
+  opt.sweep.fill_defaults(opt.quick);
+  opt.sweep.validate();
+  std::vector<std::string> paths;
+  if (!opt.scene.empty()) paths.push_back(opt.scene);
+  for (const std::string& p : expand_globs(opt.scenes)) paths.push_back(p);
+  if (paths.empty()) throw Error("report", "no scene: give SCENE or --scene SCENE ...");
+  if (paths.size() > 1) {
+    run_report_batch(opt, paths);
+    return;
+  }
+  std::vector<fs::path> plots;
+  std::string md_table, md_comparison;
+  const auto [report, out] =
+      report_one(opt, paths[0], fs::path(opt.out), nullptr, plots, md_table, md_comparison);
   if (opt.json) {
     std::cout << report_to_json(report).dump(2) << '\n';
     return;
@@ -214,7 +301,13 @@ void register_report(CLI::App& app) {
       "bounces, codec) and measure each against a path-traced reference; writes report.md and "
       "report.json, PNG plots (error against run time with the Pareto front, against memory, "
       "virtual against voxel; they need an X display) and marks the Pareto front");
-  cmd->add_option("scene", opt->scene, "Scene folder, scene.json or mesh file")->required();
+  cmd->add_option("scene", opt->scene, "Scene folder, scene.json or mesh file");
+  cmd->add_option("--scene", opt->scenes,
+                  "Scenes to report on (repeatable, or several after one --scene, quoted globs "
+                  "allowed), with SCENE if given. Two or more: a report folder per scene in "
+                  "--out (default reports/) and one table comparing them, comparison.md and "
+                  "comparison.json there; a failing scene does not stop the others (exit 2, 1 "
+                  "when all failed)");
   cmd->add_option("--out,-o", opt->out, "Output folder (default: reports/SCENE_NAME)");
   cmd->add_flag("--quick", opt->quick,
                 "A small sweep (2 patch counts, small pictures, a noisier reference) for tests");

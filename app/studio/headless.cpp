@@ -1,6 +1,7 @@
 #include "headless.h"
 
 #include <memory>
+#include <tuple>
 
 #include <QApplication>
 #include <QSaveFile>
@@ -77,11 +78,20 @@ void take_screenshot(const ScreenshotRequest& r) {
     if (r.voxel > 0) panel.set_grid(SettingsPanel::GridChoice::VoxelSize, r.voxel);
     if (r.patches_total > 0)
       panel.set_grid(SettingsPanel::GridChoice::PatchesTotal, r.patches_total);
-    if (!r.codec.isEmpty()) {
+    for (const auto& [option, setting, text] :
+         {std::tuple<const char*, const char*, QString>{"--codec", "codec", r.codec},
+          {"--size-limit", "size_limit", r.size_limit}}) {
+      if (text.isEmpty()) continue;
       try {
-        panel.set("codec", r.codec.toStdString());
+        // The panel's spin boxes would clamp a value out of range: check it
+        // as a bake would first, so a wrong value is an error, not another bake.
+        const SettingRow& row = setting_row(setting);
+        BakeSettings check;
+        row.set(check, parse_setting(row, text.toStdString()));
+        check.validate();
+        panel.set(setting, text.toStdString());
       } catch (const BakeSettings::InvalidSetting& e) {
-        throw Error("--codec", e.what());
+        throw Error(option, e.what());
       }
     }
     if (r.bake_out.isEmpty() && !temp.isValid())

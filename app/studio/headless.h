@@ -16,6 +16,7 @@ struct ScreenshotRequest {
   int voxel = 0;           // > 0: --voxel
   int patches_total = 0;   // > 0: --patches-total
   QString codec;           // empty: the panel's default
+  QString size_limit;      // empty: the panel's default
   QString bake_out;        // keep the bake folder here (default: a temporary one)
   int pick_patch = -1;     // patches view: pick this patch, as a click would
   QString compare_codec;   // error view: re-compress with paper or ours (empty: as baked)

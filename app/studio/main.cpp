@@ -53,6 +53,9 @@ int main(int argc, char** argv) {
                                  "N");
   const QCommandLineOption patches_total("patches-total", "Bake for about this many patches.", "N");
   const QCommandLineOption codec("codec", "Matrix storage: auto, dense, paper or ours.", "codec");
+  const QCommandLineOption size_limit(
+      "size-limit",
+      "Largest compressed matrix the error budget's search may give, as a share of dense.", "F");
   const QCommandLineOption bake_out("bake-out", "Keep the bake folder of --screenshot here.",
                                     "dir");
   const QCommandLineOption pick("pick-patch", "Patches view: pick this patch, as a click would.",
@@ -68,8 +71,8 @@ int main(int argc, char** argv) {
   const QCommandLineOption compare_codec(
       "compare-codec", "Error view: re-compress the bake with paper or ours and show that.",
       "codec");
-  parser.addOptions({screenshot, view, size, voxel, patches_total, codec, bake_out, pick, light,
-                     report, passes, compare_codec});
+  parser.addOptions({screenshot, view, size, voxel, patches_total, codec, size_limit, bake_out,
+                     pick, light, report, passes, compare_codec});
   if (asks_for_help_or_version(argc, argv)) {
     QCoreApplication core(argc, argv);
     name_application();
@@ -117,6 +120,7 @@ int main(int argc, char** argv) {
       r.voxel = integer(voxel, 0);
       r.patches_total = integer(patches_total, 0);
       r.codec = parser.value(codec);
+      r.size_limit = parser.value(size_limit);
       r.bake_out = parser.value(bake_out);
       r.pick_patch = integer(pick, -1);
       r.compare_codec = parser.value(compare_codec);

@@ -22,6 +22,7 @@
 #include <QUrl>
 #include <QVBoxLayout>
 
+#include "error_source_link.h"
 #include "error_view.h"
 #include "matrix_view.h"
 #include "patch_view.h"
@@ -95,6 +96,9 @@ MainWindow::MainWindow(QWidget* parent)
 
   build_menus();
   build_report_tab();
+  views::link_error_sources(
+      patch_view_, matrix_view_, [this] { show_tab(Tab::Matrix); },
+      [this] { show_tab(Tab::Patches); });
   connect(bake_button_, &QPushButton::clicked, this, &MainWindow::start_bake);
   connect(cancel_button_, &QPushButton::clicked, this, [this] {
     controller_->cancel();

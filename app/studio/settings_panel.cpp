@@ -36,7 +36,8 @@ SettingsPanel::SettingsPanel(QWidget* parent)
       ordering_box_(new QComboBox(this)),
       kept_mode_box_(new QComboBox(this)),
       kept_box_(new QDoubleSpinBox(this)),
-      budget_box_(new QDoubleSpinBox(this)) {
+      budget_box_(new QDoubleSpinBox(this)),
+      size_limit_box_(new QDoubleSpinBox(this)) {
   grid_box_->addItems({tr("Scene's own"), tr("Voxel size"), tr("Total patches")});
   grid_box_->setToolTip(
       tr("How fine the patch grid is: as the scene file suggests, by voxel size, or by the "
@@ -46,6 +47,8 @@ SettingsPanel::SettingsPanel(QWidget* parent)
   kept_box_->setSingleStep(0.01);
   budget_box_->setDecimals(kBudgetDecimals);
   budget_box_->setSingleStep(0.01);
+  size_limit_box_->setDecimals(kBudgetDecimals);
+  size_limit_box_->setSingleStep(0.025);
   add_control("voxel_resolution", voxel_box_);
   add_control("patches_total", patches_total_box_);
   add_control("patches_per_voxel", per_voxel_box_);
@@ -55,12 +58,14 @@ SettingsPanel::SettingsPanel(QWidget* parent)
   add_control("ordering", ordering_box_);
   add_control("kept_fraction", kept_box_);
   add_control("error_budget", budget_box_);
+  add_control("size_limit", size_limit_box_);
   // Where the spin boxes start when the setting is left to the scene or the codec.
   voxel_box_->setValue(BakeSettings::kDefaultVoxelResolution);
   patches_total_box_->setValue(2048);
   per_voxel_box_->setValue(BakeSettings::kDefaultPatchesPerVoxel);
   kept_box_->setValue(kPaperKeptFraction);
   budget_box_->setValue(BakeSettings::kDefaultErrorBudget);
+  size_limit_box_->setValue(BakeSettings::kDefaultSizeLimit);
   kept_mode_box_->addItems({tr("from error budget"), tr("fixed share")});
   kept_mode_box_->setToolTip(
       tr("Which of the matrix's largest values are kept exactly: as few as meet the error "
@@ -81,7 +86,7 @@ SettingsPanel::SettingsPanel(QWidget* parent)
     });
   for (QSpinBox* box : {voxel_box_, patches_total_box_, per_voxel_box_})
     connect(box, qOverload<int>(&QSpinBox::valueChanged), this, &SettingsPanel::changed);
-  for (QDoubleSpinBox* box : {kept_box_, budget_box_})
+  for (QDoubleSpinBox* box : {kept_box_, budget_box_, size_limit_box_})
     connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, &SettingsPanel::changed);
   update_enabled();
 }
@@ -140,6 +145,8 @@ void SettingsPanel::update_enabled() {
   const bool fixed = paper || kept_mode_box_->currentIndex() == 1;
   kept_box_->setEnabled(compressed && fixed);
   budget_box_->setEnabled(compressed && !fixed);
+  // The size limit bounds the budget's search; a fixed share has none.
+  size_limit_box_->setEnabled(compressed && !fixed);
 }
 
 BakeSettings SettingsPanel::settings() const {

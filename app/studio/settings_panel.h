@@ -64,6 +64,7 @@ class SettingsPanel : public QWidget {
   QComboBox* kept_mode_box_;
   QDoubleSpinBox* kept_box_;
   QDoubleSpinBox* budget_box_;
+  QDoubleSpinBox* size_limit_box_;
   // Every control that shows one setting, in the settings table's order.
   std::vector<std::pair<const SettingRow*, QWidget*>> controls_;
 };

@@ -194,6 +194,11 @@ json storage_json(const MatrixStorage& s, std::size_t probe_lights_total) {
                                    {"lights_total", probe_lights_total},
                                    {"rel_rms_mean", li.rel_rms_mean},
                                    {"rel_rms_max", li.rel_rms_max}};
+  if (s.vertex_indirect)
+    m["errors"]["indirect_light_vertices"] = {{"lights", s.vertex_indirect->lights},
+                                              {"lights_total", probe_lights_total},
+                                              {"rel_rms_mean", s.vertex_indirect->rel_rms_mean},
+                                              {"rel_rms_max", s.vertex_indirect->rel_rms_max}};
   m["stage_seconds"] = {{"split", c.seconds_split},
                         {"ordering", c.seconds_ordering},
                         {"encoding", c.seconds_encoding}};

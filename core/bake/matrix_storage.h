@@ -43,6 +43,9 @@ struct MatrixStorage {
   // could not be met within the size limit.
   std::string error_budget_outcome;
   std::vector<TransportDecision> decisions;
+  // Compressed, with a stored final gather: the same indirect-light error at
+  // the lit mesh's vertices, after the gather (bake/vertex_light_error.h).
+  std::optional<IndirectLightError> vertex_indirect;
   // Sum over stored channels of |T~ - T| per entry (patch order); empty when dense.
   std::vector<float> abs_error_sum;
   double seconds = 0.0;

@@ -424,6 +424,11 @@ std::vector<SettingRow> make_rows() {
               "a share of dense float32 RGB (0.125: at least 8x smaller); when no kept "
               "fraction within it meets the budget, the bake keeps the largest that fits "
               "and says so",
+      .label = "Size limit",
+      .studio_help = "Largest size the compressed matrix may take while meeting the error "
+                     "budget, as a share of the uncompressed one (0.125 = 8x smaller); when "
+                     "the budget cannot be met within it, the bake keeps the most exact values "
+                     "that fit and says so in its warnings",
       .stage = BakeStage::Compress,
       .get = get_optional_real<&S::size_limit>,
       .set = set_optional_real<&S::size_limit>,

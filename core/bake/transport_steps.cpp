@@ -1,6 +1,7 @@
 // The last two stages of a bake: the multi-bounce transport matrices, and
 // how they are stored (dense or compressed, with their errors).
 #include "bake/bake_steps.h"
+#include "bake/vertex_light_error.h"
 
 namespace bounce {
 
@@ -27,6 +28,10 @@ void compress_step(BakeRun& run) {
   BakeResult& r = run.result;
   r.storage = store_transport(r.transport, r.probe, r.settings, &run.progress, run.diagnostics,
                               run.compressor.get());
+  if (r.storage.compressed && r.vertex_gather.points() > 0)
+    r.storage.vertex_indirect =
+        vertex_light_error(r.vertex_gather, r.samples, r.patches, stored_channels(r.transport),
+                           *r.storage.compressed, r.probe);
   for (const ChannelTransport& c : r.transport.channels) release_residency(c.t);
 }
 

@@ -34,13 +34,25 @@ void check_probe(const IndirectLightProbe& probe, std::size_t n, std::size_t cha
 
 }  // namespace
 
+void IndirectLightError::add_light(double err2, double ref2) {
+  if (!(ref2 > 0.0)) {  // this light puts no indirect light anywhere
+    per_light.push_back(0.0);
+    return;
+  }
+  const double rel = std::sqrt(err2 / ref2);
+  per_light.push_back(rel);
+  ++lights;
+  rel_rms_sum += rel;
+  rel_rms_max = std::max(rel_rms_max, rel);
+  rel_rms_mean = rel_rms_sum / static_cast<double>(lights);
+}
+
 IndirectLightError indirect_light_error(const std::vector<const float*>& exact,
                                         const std::vector<const float*>& approx, std::size_t n,
                                         const IndirectLightProbe& probe) {
   check_probe(probe, n, exact.size());
   IndirectLightError e;
   std::vector<double> b(n), y_exact, y_approx;
-  double sum = 0.0;
   for (const auto& light : probe.first_hit) {
     double err2 = 0.0, ref2 = 0.0;
     for (int k = 0; k < 3; ++k) {
@@ -54,17 +66,8 @@ IndirectLightError indirect_light_error(const std::vector<const float*>& exact,
         ref2 += w * y_exact[p] * y_exact[p];
       }
     }
-    if (!(ref2 > 0.0)) {  // this light puts no indirect light anywhere
-      e.per_light.push_back(0.0);
-      continue;
-    }
-    const double rel = std::sqrt(err2 / ref2);
-    e.per_light.push_back(rel);
-    ++e.lights;
-    sum += rel;
-    e.rel_rms_max = std::max(e.rel_rms_max, rel);
+    e.add_light(err2, ref2);
   }
-  if (e.lights > 0) e.rel_rms_mean = sum / static_cast<double>(e.lights);
   return e;
 }
 

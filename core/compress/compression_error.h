@@ -28,6 +28,12 @@ struct IndirectLightError {
   // Per light of the probe, in its order: the relative RMS error, 0 for a
   // light with no indirect light.
   std::vector<double> per_light;
+  double rel_rms_sum = 0.0;  // over the lights counted, for the mean
+
+  // Counts the next light of the probe from its squared error and squared
+  // reference (each summed with its weights): its relative RMS
+  // sqrt(err2 / ref2), or 0 and not counted when ref2 is 0.
+  void add_light(double err2, double ref2);
 };
 
 struct CompressionErrors {

@@ -1,6 +1,5 @@
 #include "metrics/patch_light_error.h"
 
-#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -36,30 +35,6 @@ PatchLightError patch_light_error(const std::vector<const float*>& exact,
   e.relative = vertex_relative_errors(e.approx, e.exact);
   e.rel_rms = area_weighted_relative_rms(area, e.approx, e.exact);
   return e;
-}
-
-std::vector<EntryContribution> largest_contributions(const std::vector<const float*>& exact,
-                                                     const std::vector<const float*>& approx,
-                                                     std::size_t n,
-                                                     const std::array<int, 3>& channel_of_rgb,
-                                                     const std::vector<glm::vec3>& b, std::size_t p,
-                                                     std::size_t count) {
-  if (p >= n || b.size() != n) throw Error("patch light error", "patch or light out of range");
-  std::vector<EntryContribution> all(n);
-  for (std::size_t j = 0; j < n; ++j) {
-    all[j].column = j;
-    for (int k = 0; k < 3; ++k) {
-      const auto c = static_cast<std::size_t>(channel_of_rgb[static_cast<std::size_t>(k)]);
-      all[j].difference[k] = (approx[c][p * n + j] - exact[c][p * n + j]) * b[j][k];
-    }
-  }
-  count = std::min(count, n);
-  std::partial_sort(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(count), all.end(),
-                    [](const EntryContribution& a, const EntryContribution& c) {
-                      return glm::length(a.difference) > glm::length(c.difference);
-                    });
-  all.resize(count);
-  return all;
 }
 
 }  // namespace bounce

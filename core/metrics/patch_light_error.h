@@ -3,9 +3,9 @@
 // in one light's indirect light on the patches: T b against T~ b, each
 // patch's relative error (vertex_relative_errors: the largest channel's
 // |x - y| / max(|y|, 5% of the mean |y|)), the area-weighted relative RMS
-// over patches and R, G, B (the bake's indirect-light error figure), and for
-// one patch the columns whose entries make most of its difference,
-// (T~ - T)_pj b_j.
+// over patches and R, G, B (the bake's indirect-light error figure). Which
+// entries of the compressed matrix make one patch's difference:
+// compress/row_error_contributions.h.
 #include <array>
 #include <vector>
 
@@ -32,19 +32,5 @@ PatchLightError patch_light_error(const std::vector<const float*>& exact,
                                   const std::vector<const float*>& approx, std::size_t n,
                                   const std::array<int, 3>& channel_of_rgb,
                                   const std::vector<glm::vec3>& b, const std::vector<float>& area);
-
-struct EntryContribution {
-  std::size_t column = 0;
-  glm::vec3 difference{0.0f};  // (T~ - T)_pj b_j per colour
-};
-
-// The `count` columns j with the largest |(T~ - T)_pj b_j| (Euclidean over
-// colours) for patch p, largest first.
-std::vector<EntryContribution> largest_contributions(const std::vector<const float*>& exact,
-                                                     const std::vector<const float*>& approx,
-                                                     std::size_t n,
-                                                     const std::array<int, 3>& channel_of_rgb,
-                                                     const std::vector<glm::vec3>& b, std::size_t p,
-                                                     std::size_t count);
 
 }  // namespace bounce

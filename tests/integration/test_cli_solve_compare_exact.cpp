@@ -5,6 +5,8 @@
 // picture's figure are recomputed from their outputs.
 #include <OpenImageIO/imageio.h>
 
+#include "bake/bake_reader.h"
+#include "bake/final_gather_files.h"
 #include "cli_harness.h"
 #include "ply_vertices.h"
 #include "solve_fixture.h"
@@ -107,6 +109,72 @@ TEST_F(Solve, CompareExactFiguresAndFilesMatchASolveThroughTheExactMatrix) {
   for (std::size_t k = 0; k < err.size(); ++k)
     ASSERT_NEAR(err[k], std::abs(ia[k] - ib[k]), 1e-6f * (1.0f + std::abs(ib[k]))) << k;
   EXPECT_TRUE(fs::exists(a / "camera_indirect_error.png"));
+}
+
+// The manifest's vertex figure: per evaluation light, the indirect light
+// T b and T~ b (T.npy, and T.dds decoded) carried to the lit mesh's vertices
+// through the stored final gather, summed here row by row (patch, cluster
+// and sample sources), then the relative RMS over vertices; worst and mean
+// over the lights.
+TEST_F(Solve, ManifestVertexLightErrorIsTheGatheredIndirectLightsError) {
+  const LoadedBake b = BakeReader::read(bake, BakeReader::Dense::kRead);
+  ASSERT_TRUE(b.compressed);
+  ASSERT_FALSE(b.dense.empty());
+  const std::size_t n = b.size();
+  const std::optional<FinalGather> g = read_final_gather(bake, n, b.samples.samples.size());
+  ASSERT_TRUE(g) << "the fixture bakes with a final gather";
+  std::vector<std::vector<float>> decoded(b.dense.size(), std::vector<float>(n * n));
+  for (std::size_t c = 0; c < decoded.size(); ++c)
+    decompress_channel(*b.compressed, static_cast<int>(c), decoded[c].data());
+  // Each sample's patch, from the patches' member lists.
+  std::vector<std::int64_t> patch_of(b.samples.samples.size(), -1);
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::uint32_t k = b.patches.member_first[p]; k < b.patches.member_first[p + 1]; ++k)
+      patch_of[b.patches.member_samples[k]] = static_cast<std::int64_t>(p);
+  const auto vertex_light = [&](const std::vector<std::vector<float>>& t,
+                                const std::vector<glm::vec3>& light) {
+    std::vector<glm::dvec3> tb(n, glm::dvec3(0.0));
+    for (std::size_t p = 0; p < n; ++p)
+      for (int k = 0; k < 3; ++k) {
+        const auto& m = t[static_cast<std::size_t>(b.channel_of_rgb[static_cast<std::size_t>(k)])];
+        for (std::size_t j = 0; j < n; ++j) tb[p][k] += double(m[p * n + j]) * light[j][k];
+      }
+    std::vector<glm::dvec3> source(g->patches + g->clusters + g->samples, glm::dvec3(0.0));
+    for (std::size_t p = 0; p < n; ++p) {
+      source[p] = tb[p];
+      source[n + g->cluster_of_patch[p]] += double(g->cluster_share[p]) * tb[p];
+    }
+    for (std::size_t s = 0; s < g->samples; ++s)
+      if (patch_of[s] >= 0) source[n + g->clusters + s] = tb[static_cast<std::size_t>(patch_of[s])];
+    std::vector<glm::dvec3> e(g->points(), glm::dvec3(0.0));
+    for (std::size_t v = 0; v < g->points(); ++v)
+      for (std::uint64_t k = g->first[v]; k < g->first[v + 1]; ++k)
+        e[v] += double(g->weight[k]) * source[g->source[k]];
+    return e;
+  };
+  double worst = 0.0, sum = 0.0;
+  int lights = 0;
+  for (const std::vector<glm::vec3>& light : b.probe.first_hit) {
+    const std::vector<glm::dvec3> x = vertex_light(b.dense, light),
+                                  y = vertex_light(decoded, light);
+    double err2 = 0.0, ref2 = 0.0;
+    for (std::size_t v = 0; v < x.size(); ++v) {
+      err2 += glm::dot(y[v] - x[v], y[v] - x[v]);
+      ref2 += glm::dot(x[v], x[v]);
+    }
+    if (!(ref2 > 0.0)) continue;
+    const double rel = std::sqrt(err2 / ref2);
+    worst = std::max(worst, rel);
+    sum += rel;
+    ++lights;
+  }
+  ASSERT_GT(lights, 0);
+  const json& manifest = b.manifest["compression"]["errors"]["indirect_light_vertices"];
+  ASSERT_TRUE(manifest.is_object()) << b.manifest["compression"]["errors"].dump();
+  EXPECT_EQ(manifest["lights"].get<int>(), lights);
+  EXPECT_GT(worst, 0.0);
+  EXPECT_NEAR(manifest["rel_rms_max"].get<double>(), worst, 1e-3 * worst);
+  EXPECT_NEAR(manifest["rel_rms_mean"].get<double>(), sum / lights, 1e-3 * sum / lights);
 }
 
 TEST_F(Solve, CompareExactNeedsTheExactAndTheCompressedMatrix) {

@@ -1,4 +1,5 @@
 #include <QMouseEvent>
+#include <QPushButton>
 #include <QScrollBar>
 
 #include "io/npy.h"
@@ -86,6 +87,43 @@ TEST_F(MatrixView, HoverShowsTheEntryOfTNpy) {
     const double shown = text.section("T = ", 1).toDouble();
     EXPECT_NEAR(shown, expected, 1e-5 * std::abs(expected) + 1e-12) << text.toStdString();
   }
+}
+
+// A click on an entry of the reordered picture marks its row: the patch it
+// belongs to (permutation.npy), the entry's 4x4 block outlined, and the
+// button that picks the patch in the patch view.
+TEST_F(MatrixView, ClickMarksTheEntrysRowAndBlock) {
+  const NpyArray<std::uint32_t> perm = read_npy_u32(fixture_bake() / "permutation.npy");
+  views::MatrixPanel* after = view_.after_panel();
+  const views::MatrixPictureLayout& layout = after->layout();
+  const std::size_t n = layout.n, i = n / 3, j = n / 2 + 1;
+  EXPECT_FALSE(view_.back_button()->isEnabled()) << "nothing marked yet";
+  const QPointF centre = after->viewportTransform().map(
+      QPointF(static_cast<double>(layout.left) + static_cast<double>(j) + 0.5,
+              static_cast<double>(layout.top) + static_cast<double>(i) + 0.5));
+  const QPoint at(static_cast<int>(std::floor(centre.x())),
+                  static_cast<int>(std::floor(centre.y())));
+  QMouseEvent press(QEvent::MouseButtonPress, at, Qt::LeftButton, Qt::LeftButton, Qt::NoModifier);
+  QApplication::sendEvent(after->viewport(), &press);
+  QMouseEvent release(QEvent::MouseButtonRelease, at, Qt::LeftButton, Qt::NoButton, Qt::NoModifier);
+  QApplication::sendEvent(after->viewport(), &release);
+  settle();
+  EXPECT_EQ(view_.marked_patch(), static_cast<int>(perm.data[i]));
+  EXPECT_TRUE(view_.back_button()->isEnabled());
+  const std::vector<QRectF> marks = after->highlight_rects();
+  ASSERT_EQ(marks.size(), 2u) << "the block and the stored row";
+  EXPECT_EQ(marks[0], QRectF(layout.left + static_cast<double>(j / 4 * 4),
+                             layout.top + static_cast<double>(i / 4 * 4), 4, 4));
+  EXPECT_EQ(marks[1],
+            QRectF(layout.left, layout.top + static_cast<double>(i), static_cast<double>(n), 1));
+  int requested = -1;
+  QObject::connect(&view_, &views::MatrixView::patch_requested, [&](int p) { requested = p; });
+  view_.back_button()->click();
+  EXPECT_EQ(requested, static_cast<int>(perm.data[i]));
+  // A new picture (another channel) keeps the mark.
+  view_.set_channel(views::MatrixView::Channel::G);
+  settle();
+  EXPECT_EQ(after->highlight_rects().size(), 2u);
 }
 
 }  // namespace bounce::render_test

@@ -2,9 +2,18 @@
 #include <QMouseEvent>
 #include <set>
 
+#include <QPushButton>
+#include <QTableWidget>
+
+#include "compress/codec.h"
 #include "compress/matrix_picture.h"
+#include "compress/row_error_contributions.h"
+#include "error_source_link.h"
+#include "io/npy.h"
+#include "matrix_view.h"
 #include "patch_view.h"
 #include "render_support.h"
+#include "runtime/dense_transport.h"
 
 namespace bounce::render_test {
 
@@ -190,7 +199,110 @@ TEST_F(PatchView, IndirectErrorOnTheSceneMatchesTheCli) {
   view_.select_patch(0);
   settle();
   EXPECT_TRUE(view_.status_text().contains("patch 0: exact")) << view_.status_text().toStdString();
-  EXPECT_TRUE(view_.status_text().contains("from columns")) << view_.status_text().toStdString();
+  EXPECT_NE(view_.row_explanation(), nullptr);
+}
+
+// A picked patch in the error mode: its exact and compressed indirect light
+// are T.npy and the decoded matrix times the light at that patch (computed
+// here), the panel lists the core's ranked sources of the difference, and
+// picking one marks its block in the matrix view, which can pick the patch
+// back.
+TEST_F(PatchView, PickedPatchExplainsItsErrorAndLinksToTheMatrix) {
+  ASSERT_TRUE(view_.can_show_indirect_error());
+  view_.set_colour_by(views::PatchView::ColourBy::IndirectError);
+  view_.set_error_light(1);  // evaluation light 0
+  settle();
+  const LoadedBake& b = data_->bake;
+  const std::size_t n = data_->patch_count();
+  const NpyArray<float> t = read_npy_f32(fixture_bake() / "T.npy");
+  ASSERT_EQ(t.shape[1], n);
+  std::vector<const float*> exact, approx;
+  std::vector<std::vector<float>> decoded(t.shape[0], std::vector<float>(n * n));
+  for (std::size_t c = 0; c < t.shape[0]; ++c) {
+    exact.push_back(&t.data[c * n * n]);
+    decompress_channel(*b.compressed, static_cast<int>(c), decoded[c].data());
+    approx.push_back(decoded[c].data());
+  }
+  const std::vector<glm::vec3>& light = b.probe.first_hit[0];
+  std::vector<glm::vec3> want_exact, want_approx;
+  dense_indirect(exact, n, b.channel_of_rgb, light, want_exact);
+  dense_indirect(approx, n, b.channel_of_rgb, light, want_approx);
+  // The patch the compression hurts most.
+  std::size_t p = 0;
+  for (std::size_t q = 1; q < n; ++q)
+    if (glm::length(want_approx[q] - want_exact[q]) > glm::length(want_approx[p] - want_exact[p]))
+      p = q;
+  EXPECT_EQ(view_.row_explanation(), nullptr) << "nothing picked yet";
+  EXPECT_FALSE(view_.sources_table()->isVisible());
+  view_.select_patch(static_cast<int>(p));
+  settle();
+  const RowErrorContributions* r = view_.row_explanation();
+  ASSERT_NE(r, nullptr);
+  EXPECT_TRUE(view_.sources_table()->isVisible());
+  EXPECT_EQ(r->patch, p);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(r->exact[k], want_exact[p][k], 1e-4 * std::abs(want_exact[p][k]) + 1e-9);
+    EXPECT_NEAR(r->compressed[k], want_approx[p][k], 1e-4 * std::abs(want_approx[p][k]) + 1e-9);
+  }
+  // The panel shows the core function's result for this bake, patch and light.
+  const RowErrorContributions core =
+      row_error_contributions(*b.compressed, exact, b.channel_of_rgb, light, p);
+  ASSERT_EQ(r->sources.size(), core.sources.size());
+  double shares = 0.0;
+  for (const RowErrorSource& s : core.sources) shares += s.share;
+  EXPECT_NEAR(shares, 1.0, 1e-6);
+  const QTableWidget* table = view_.sources_table();
+  ASSERT_EQ(table->rowCount(),
+            std::min<int>(views::PatchView::kSourcesShown, static_cast<int>(core.sources.size())));
+  for (int row = 0; row < table->rowCount(); ++row) {
+    const RowErrorSource& s = core.sources[static_cast<std::size_t>(row)];
+    EXPECT_EQ(table->item(row, 0)->text(), QString("%1%").arg(100.0 * s.share, 0, 'f', 1));
+    EXPECT_EQ(table->item(row, 1)->text().startsWith("block"),
+              s.kind == RowErrorSource::Kind::Block);
+    EXPECT_TRUE(table->item(row, 3)->text().contains(QString::number(s.entries.front().column)));
+  }
+  const QString text = view_.explanation_text();
+  EXPECT_TRUE(text.contains(QString("Patch %1 (stored row %2").arg(p).arg(core.stored_row)))
+      << text.toStdString();
+  EXPECT_TRUE(text.contains(QString::number(core.exact.r, 'g', 4))) << text.toStdString();
+  EXPECT_TRUE(text.contains(QString::number(core.compressed.g, 'g', 4))) << text.toStdString();
+
+  // Cross-link: the picked source is marked in the matrix view, and back.
+  views::MatrixView matrix;
+  matrix.resize(1200, 700);
+  matrix.show();
+  matrix.set_data(data_);
+  settle();
+  int matrix_shown = 0, patches_shown = 0;
+  views::link_error_sources(
+      &view_, &matrix, [&] { ++matrix_shown; }, [&] { ++patches_shown; });
+  view_.select_source(0);
+  settle();
+  const RowErrorSource& top = core.sources.front();
+  EXPECT_EQ(matrix.marked_patch(), static_cast<int>(p));
+  EXPECT_TRUE(matrix.mark_text().contains(QString("stored row %1").arg(core.stored_row)))
+      << matrix.mark_text().toStdString();
+  const views::MatrixPictureLayout& layout = matrix.after_panel()->layout();
+  const std::vector<QRectF> marks = matrix.after_panel()->highlight_rects();
+  ASSERT_FALSE(marks.empty());
+  // The first mark outlines the source's block (or kept entry) in stored order.
+  const std::size_t first_col =
+      top.kind == RowErrorSource::Kind::Block ? top.block_col * 4 : top.entries.front().stored_col;
+  EXPECT_EQ(marks.front().left(), layout.left + layout.pixel(first_col));
+  EXPECT_EQ(marks.front().top(), layout.top + layout.pixel(core.stored_row / 4 * 4));
+  EXPECT_EQ(matrix.before_panel()->highlight_rects().front().top(), layout.top + layout.pixel(p));
+  view_.matrix_button()->click();
+  EXPECT_EQ(matrix_shown, 1);
+  // Back: another row marked in the matrix view picks its patch here.
+  const int other = static_cast<int>((p + 1) % n);
+  matrix.mark_row(other);
+  ASSERT_TRUE(matrix.back_button()->isEnabled());
+  matrix.back_button()->click();
+  settle();
+  EXPECT_EQ(patches_shown, 1);
+  EXPECT_EQ(view_.selected_patch(), other);
+  ASSERT_NE(view_.row_explanation(), nullptr);
+  EXPECT_EQ(view_.row_explanation()->patch, static_cast<std::size_t>(other));
 }
 
 }  // namespace bounce::render_test

@@ -67,6 +67,28 @@ TEST_F(StudioCli, SettingsChangeThePatchCount) {
             fine["counts"]["occupied_voxels"].get<int>());
 }
 
+TEST_F(StudioCli, SizeLimitReachesTheBake) {
+  // The settings panel's size limit (headless --size-limit sets it as the
+  // window's control would) is what the bake uses: the manifest's requested
+  // and resolved size_limit.
+  const fs::path dir = work_dir("size-limit");
+  const CommandRun r =
+      run_studio(std::string(BOUNCE_RESOURCE_DIR) + "/scenes/cornell-box --voxel 2 --codec ours " +
+                 "--size-limit 0.3 --screenshot " + (dir / "patches.png").string() +
+                 " --view patches --size 320x240 --bake-out " + (dir / "bake").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(dir / "bake" / "manifest.json");
+  const nlohmann::json m = nlohmann::json::parse(in);
+  EXPECT_DOUBLE_EQ(m["settings"]["requested"]["size_limit"].get<double>(), 0.3) << m["settings"];
+  EXPECT_DOUBLE_EQ(m["settings"]["resolved"]["size_limit"].get<double>(), 0.3) << m["settings"];
+  // Out of range: one line naming the option.
+  const CommandRun bad = run_studio(std::string(BOUNCE_RESOURCE_DIR) +
+                                    "/scenes/cornell-box --voxel 2 --size-limit 2 --screenshot " +
+                                    (dir / "x.png").string());
+  EXPECT_EQ(bad.code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("--size-limit"), std::string::npos) << bad.output;
+}
+
 TEST_F(StudioCli, BadOptionsFailWithOneLine) {
   // One case per kind of check: option values, then values against the bake.
   const fs::path dir = work_dir("errors");

@@ -12,31 +12,11 @@
 #include "base/error.h"
 #include "compress/codec.h"
 #include "compress/matrix_error.h"
+#include "transport_like.h"
 
 namespace bounce {
 
 namespace {
-
-// Light exchange between random points on three walls of a box, in random
-// order (like patches in voxel order): smooth in space, unordered in index.
-std::vector<float> transport_like(std::size_t n, float scale, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  std::vector<glm::vec3> p(n);
-  for (auto& x : p) {
-    const int wall = static_cast<int>(u(rng) * 3.0f);
-    x = wall == 0   ? glm::vec3(u(rng), u(rng), 0.0f)
-        : wall == 1 ? glm::vec3(0.0f, u(rng), u(rng))
-                    : glm::vec3(u(rng), 0.0f, u(rng));
-  }
-  std::vector<float> t(n * n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j)
-      t[i * n + j] = i == j ? 0.0f
-                            : scale * 0.01f * std::exp(-glm::length(p[i] - p[j]) / 0.15f) *
-                                  (1.0f + 0.1f * u(rng));
-  return t;
-}
 
 MatrixError errors(const CompressedMatrix& m, const std::vector<std::vector<float>>& exact) {
   MatrixErrorAccumulator acc;
