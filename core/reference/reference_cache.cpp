@@ -82,6 +82,15 @@ void hash_scene(ContentHash& h, const Scene& scene) {
       h.bytes(a.values.data(), a.values.size() * sizeof(float));
       h.bytes(&m.alpha_factor, sizeof(float)).bytes(&m.alpha_cutoff, sizeof(float));
     }
+    // Likewise the emissive texture. Normal maps change no reference result
+    // (only the preview draws them), so they are not part of the key.
+    if (m.emission_texture) {
+      const Texture::Level& l = m.emission_texture->levels.front();
+      h.vec(m.emission_factor)
+          .integer(static_cast<std::uint64_t>(l.width))
+          .integer(static_cast<std::uint64_t>(l.height));
+      h.bytes(l.texels.data(), l.texels.size() * sizeof(glm::vec3));
+    }
   }
   h.integer(scene.triangle_uv.size())
       .bytes(scene.triangle_uv.data(), scene.triangle_uv.size() * sizeof(scene.triangle_uv[0]));

@@ -94,7 +94,7 @@ TEST(Textures, SampleAlbedoIsTheTexturesMeanOverWhatEachSampleCarries) {
   const RayTracer tracer(s);
   const Voxelization vox = voxelize(s, VoxelGrid(s.bounds(), 8));
   SampleSet set = generate_samples(s, tracer, vox, SamplingSettings{});
-  EXPECT_GT(apply_texture_albedo(s, vox, set), 0u);
+  EXPECT_GT(apply_surface_textures(s, vox, set), 0u);
   // The floor's samples tile it: their area-weighted albedo is the whole
   // floor's mean, which is the mean of the two colours.
   glm::dvec3 sum(0.0), lo(1.0), hi(0.0);
