@@ -1,6 +1,8 @@
 #include "preview_tangents.h"
 
 #include <cmath>
+#include <cstddef>
+#include <cstdint>
 
 namespace bounce::views {
 

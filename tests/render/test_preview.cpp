@@ -255,12 +255,12 @@ TEST_F(Preview, AmbientOcclusionDarkensCorners) {
 // x = -1, z = -1) times Kd 0.9; the fence (z = 1, x in [-1, 1], y in [0, 1])
 // is cut by fence-mask.png into 4 x 4 squares, solid where column + row
 // (counted from the top left) is even.
-class TexturedPreview : public RenderTest {
+// The preview at 400 x 300 without overlay on the bake folder `bake`.
+class PreviewOfBake : public RenderTest {
  protected:
-  void SetUp() override {
-    RenderTest::SetUp();
-    data_ = views::load_bake_view_data(BOUNCE_RENDER_TEXTURED_BAKE);
-    ASSERT_TRUE(data_->scene) << "the textured bake's scene is not on disk";
+  void open(const char* bake) {
+    data_ = views::load_bake_view_data(bake);
+    ASSERT_TRUE(data_->scene) << "the scene of " << bake << " is not on disk";
     view_.resize(400, 300);
     view_.set_overlay(false);
     view_.show();
@@ -268,14 +268,22 @@ class TexturedPreview : public RenderTest {
     view_.set_data(data_);
     settle();
   }
+  std::shared_ptr<const views::BakeViewData> data_;
+  views::PreviewWidget view_;
+};
+
+class TexturedPreview : public PreviewOfBake {
+ protected:
+  void SetUp() override {
+    PreviewOfBake::SetUp();
+    open(BOUNCE_RENDER_TEXTURED_BAKE);
+  }
   // Whether a world point lands inside the picture, `margin` pixels clear
   // of its edges.
   bool inside(QPointF p, double margin = 6.0) const {
     return p.x() >= margin && p.y() >= margin && p.x() < view_.width() - margin &&
            p.y() < view_.height() - margin;
   }
-  std::shared_ptr<const views::BakeViewData> data_;
-  views::PreviewWidget view_;
 };
 
 namespace {
@@ -361,18 +369,11 @@ TEST_F(TexturedPreview, FenceHolesShowTheBackdrop) {
 // cos 80-100 (little or nothing): alternating columns. The flat wall, drawn
 // without its map, only brightens towards the lamp (the irradiance
 // cos / r^2 grows as x does), without a ripple.
-class NormalMappedPreview : public RenderTest {
+class NormalMappedPreview : public PreviewOfBake {
  protected:
   void SetUp() override {
-    RenderTest::SetUp();
-    data_ = views::load_bake_view_data(BOUNCE_RENDER_RIDGED_BAKE);
-    ASSERT_TRUE(data_->scene) << "the ridged-wall bake's scene is not on disk";
-    view_.resize(400, 300);
-    view_.set_overlay(false);
-    view_.show();
-    settle();
-    view_.set_data(data_);
-    settle();
+    PreviewOfBake::SetUp();
+    open(BOUNCE_RENDER_RIDGED_BAKE);
   }
   // Luminance of the centre of each of the wall's columns 0 to 5 at the
   // lamp's height (columns 6 and 7 are beside and behind the lamp).
@@ -389,8 +390,6 @@ class NormalMappedPreview : public RenderTest {
     }
     return out;
   }
-  std::shared_ptr<const views::BakeViewData> data_;
-  views::PreviewWidget view_;
 };
 
 TEST_F(NormalMappedPreview, FacetsTurnedToTheLightAreBrighterOnlyWithTheMap) {

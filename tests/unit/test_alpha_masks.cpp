@@ -9,7 +9,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -19,12 +18,12 @@
 #include "base/random.h"
 #include "gltf_quad.h"
 #include "patches/samples.h"
+#include "quad_files.h"
 #include "raytrace/ray_tracer.h"
 #include "reference/path_tracer.h"
 #include "runtime/camera_image.h"
 #include "scene/alpha_mask.h"
 #include "scene/scene_loader.h"
-#include "scratch_dir.h"
 #include "test_scenes.h"
 #include "voxel/voxelization.h"
 
@@ -316,21 +315,8 @@ TEST(AlphaMaskFiles, FloorScenesFenceIsHalfCutAway) {
     EXPECT_EQ(s.masked(t), &s.material_of(t) == fence);
 }
 
-class AlphaMaskFile : public ::testing::Test {
+class AlphaMaskFile : public test::QuadFiles {
  protected:
-  test::ScratchDir dir{"bounce-alpha"};
-  Diagnostics diagnostics;
-
-  void write(const std::string& name, const std::string& bytes) {
-    std::ofstream(dir / name, std::ios::binary) << bytes;
-  }
-  Scene load_obj_quad(const std::string& mask_line) {
-    write("quad.mtl", "newmtl quad\nKd 0.5 0.5 0.5\n" + mask_line + "\n");
-    write("quad.obj",
-          "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-          "usemtl quad\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
-    return SceneLoader(diagnostics).load(dir / "quad.obj");
-  }
   void expect_one_warning_naming(const std::string& what) const {
     ASSERT_EQ(diagnostics.warnings().size(), 1u) << warnings_of(diagnostics);
     const Diagnostic w = diagnostics.warnings()[0];

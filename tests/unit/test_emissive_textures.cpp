@@ -10,7 +10,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <stdexcept>
 #include <string>
@@ -19,13 +18,13 @@
 #include "base/diagnostics.h"
 #include "gltf_quad.h"
 #include "patches/samples.h"
+#include "quad_files.h"
 #include "raytrace/ray_tracer.h"
 #include "reference/path_tracer.h"
 #include "runtime/area_lights.h"
 #include "runtime/direct_light.h"
 #include "scene/scene_loader.h"
 #include "scene/texture.h"
-#include "scratch_dir.h"
 #include "voxel/voxelization.h"
 
 namespace bounce {
@@ -193,40 +192,27 @@ TEST(EmissiveTextures, ReferenceDirectLightIsHalfTheUntexturedLampsFromItsLitHal
   EXPECT_GT(sum(s, true) / textured, 0.7);
 }
 
-class EmissiveTextureFiles : public ::testing::Test {
+class EmissiveTextureFiles : public test::QuadFiles {
  protected:
-  test::ScratchDir dir{"bounce-emissive"};
-  Diagnostics diagnostics;
-
-  void write(const std::string& name, const std::string& text) {
-    std::ofstream(dir / name, std::ios::binary) << text;
-  }
-  Scene load_obj_quad(const std::string& lines) {
-    write("quad.mtl", "newmtl quad\nKd 0.5 0.5 0.5\n" + lines + "\n");
-    write("quad.obj",
-          "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-          "usemtl quad\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
-    return SceneLoader(diagnostics).load(dir / "quad.obj");
+  // A quad with Ke 2 and map_Ke `file` that cannot be used: one warning
+  // naming the file, and the emission is Ke alone.
+  void expect_one_warning_and_ke(const std::string& file) {
+    const Scene s = load_obj_quad("Ke 2 2 2\nmap_Ke " + file);
+    ASSERT_EQ(diagnostics.warnings().size(), 1u) << warnings_of(diagnostics);
+    const Diagnostic& w = diagnostics.warnings()[0];
+    EXPECT_NE((w.where + w.message).find(file), std::string::npos) << w.message;
+    EXPECT_EQ(s.materials.at(0).emission_texture, nullptr);
+    EXPECT_EQ(s.materials.at(0).emission, glm::vec3(2.0f));
   }
 };
 
 TEST_F(EmissiveTextureFiles, MissingTextureWarnsOnceNamingItAndEmitsKe) {
-  const Scene s = load_obj_quad("Ke 2 2 2\nmap_Ke nowhere.png");
-  ASSERT_EQ(diagnostics.warnings().size(), 1u) << warnings_of(diagnostics);
-  const Diagnostic& w = diagnostics.warnings()[0];
-  EXPECT_NE((w.where + w.message).find("nowhere.png"), std::string::npos) << w.message;
-  EXPECT_EQ(s.materials.at(0).emission_texture, nullptr);
-  EXPECT_EQ(s.materials.at(0).emission, glm::vec3(2.0f));
+  expect_one_warning_and_ke("nowhere.png");
 }
 
 TEST_F(EmissiveTextureFiles, UnreadableTextureWarnsOnceNamingItAndEmitsKe) {
   write("broken.png", "\x89PNG\r\n\x1a\nthis is not an image");
-  const Scene s = load_obj_quad("Ke 2 2 2\nmap_Ke broken.png");
-  ASSERT_EQ(diagnostics.warnings().size(), 1u) << warnings_of(diagnostics);
-  const Diagnostic& w = diagnostics.warnings()[0];
-  EXPECT_NE((w.where + w.message).find("broken.png"), std::string::npos) << w.message;
-  EXPECT_EQ(s.materials.at(0).emission_texture, nullptr);
-  EXPECT_EQ(s.materials.at(0).emission, glm::vec3(2.0f));
+  expect_one_warning_and_ke("broken.png");
 }
 
 TEST_F(EmissiveTextureFiles, MapKeWithoutKeTakesFactorOne) {

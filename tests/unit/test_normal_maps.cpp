@@ -10,7 +10,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -18,10 +17,10 @@
 #include "base/diagnostics.h"
 #include "gltf_quad.h"
 #include "patches/samples.h"
+#include "quad_files.h"
 #include "raytrace/ray_tracer.h"
 #include "scene/scene_loader.h"
 #include "scene/texture.h"
-#include "scratch_dir.h"
 #include "voxel/voxelization.h"
 
 namespace bounce {
@@ -96,22 +95,9 @@ TEST(NormalMaps, BakeSamplesIgnoreTheNormalMap) {
   }
 }
 
-class NormalMapFiles : public ::testing::Test {
+class NormalMapFiles : public test::QuadFiles {
  protected:
-  test::ScratchDir dir{"bounce-normal-maps"};
-  Diagnostics diagnostics;
-
   void SetUp() override { fs::copy_file(kFloorScene / "wall-ridges.png", dir / "ridges.png"); }
-  void write(const std::string& name, const std::string& text) {
-    std::ofstream(dir / name, std::ios::binary) << text;
-  }
-  Scene load_obj_quad(const std::string& line) {
-    write("quad.mtl", "newmtl quad\nKd 0.5 0.5 0.5\n" + line + "\n");
-    write("quad.obj",
-          "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-          "usemtl quad\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
-    return SceneLoader(diagnostics).load(dir / "quad.obj");
-  }
   void expect_one_warning_naming(const std::string& file) const {
     ASSERT_EQ(diagnostics.warnings().size(), 1u) << warnings_of(diagnostics);
     const Diagnostic& w = diagnostics.warnings()[0];

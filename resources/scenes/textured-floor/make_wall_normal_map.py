@@ -5,15 +5,13 @@ v axis, alternately towards -u (even columns, counted from the left) and +u
 (odd columns). Each texel is (n + 1) / 2 of its facet's normal n in the
 frame (tangent = +u, bitangent = +v, normal), 8 bits per channel:
 n = (-0.5, 0, 0.866) -> (64, 128, 238), n = (0.5, 0, 0.866) -> (191, 128, 238).
-Standard library only; run it in this folder."""
+Standard library only (and tools/png_file.py); run it in this folder."""
 import math
-import struct
-import zlib
+import pathlib
+import sys
 
-
-def chunk(kind, data):
-    return (struct.pack(">I", len(data)) + kind + data +
-            struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF))
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[3] / "tools"))
+from png_file import RGB, write_png  # noqa: E402
 
 
 def encode(x):
@@ -21,19 +19,13 @@ def encode(x):
 
 
 def main():
-    size, column = 64, 8
     tilt = math.radians(30.0)
-    rows = b""
-    for _ in range(size):
-        rows += b"\x00"  # filter: none
-        for x in range(size):
-            side = 1.0 if (x // column) % 2 == 1 else -1.0
-            rows += bytes([encode(side * math.sin(tilt)), 128, encode(math.cos(tilt))])
-    png = (b"\x89PNG\r\n\x1a\n" +
-           chunk(b"IHDR", struct.pack(">IIBBBBB", size, size, 8, 2, 0, 0, 0)) +
-           chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
-    with open("wall-ridges.png", "wb") as f:
-        f.write(png)
+
+    def pixel(x, _y):
+        side = 1.0 if (x // 8) % 2 == 1 else -1.0
+        return (encode(side * math.sin(tilt)), 128, encode(math.cos(tilt)))
+
+    write_png("wall-ridges.png", 64, 64, RGB, pixel)
 
 
 if __name__ == "__main__":
