@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <set>
@@ -81,20 +82,27 @@ class WarningGroup {
 // Whether an image holds tangent-space normals: its texels c decode to
 // directions 2 c - 1 of about unit length (8-bit rounding and lossy
 // compression allow some slack) pointing out of the surface (z > 0), nine
-// in ten of them at least, and it is not grey. OBJ files name height maps
-// (grey, one value per texel) and even colour images in the same bump slot;
-// neither passes.
+// in ten of them at least, leaning on average less than 45 degrees from the
+// surface normal (a relief tilts the normal here and there, not all over),
+// and it is not grey. OBJ files name height maps (grey, one value per texel;
+// a light grey decodes to (1, 1, 1) / sqrt(3), 55 degrees off) and even
+// colour images in the same bump slot; neither passes.
 bool holds_normals(const Texture& t) {
   const std::vector<glm::vec3>& texels = t.levels.front().texels;
   std::size_t unit = 0;
+  double z_sum = 0.0;
   bool grey = true;
   for (const glm::vec3& c : texels) {
     grey = grey && c.r == c.g && c.g == c.b;
     const glm::vec3 n = 2.0f * c - 1.0f;
     const float length = glm::length(n);
-    if (n.z > 0.0f && length > 0.75f && length < 1.25f) ++unit;
+    if (n.z > 0.0f && length > 0.75f && length < 1.25f) {
+      ++unit;
+      z_sum += static_cast<double>(n.z / length);
+    }
   }
-  return !grey && 10 * unit >= 9 * texels.size();
+  return !grey && 10 * unit >= 9 * texels.size() &&
+         z_sum >= std::sqrt(0.5) * static_cast<double>(texels.size());
 }
 
 }  // namespace

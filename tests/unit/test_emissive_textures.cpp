@@ -70,6 +70,20 @@ Scene untextured(Scene s) {
   return s;
 }
 
+// The same scene with only the lit half of the lamp, untextured: the lamp's
+// corners at x = 0.5 moved to x = 0. It emits what the textured lamp
+// should, from where it should (the texture's blend across its middle texel
+// column, 1/64 of the lamp, aside).
+Scene lit_half_only(Scene s) {
+  const std::size_t t = first_triangle_of(s, "lamp");
+  for (std::size_t k = t; k < s.triangle_count() && s.material_of(k).name == "lamp"; ++k)
+    for (int c = 0; c < 3; ++c) {
+      glm::vec3& p = s.positions[s.triangles[k][c]];
+      if (p.x > 0.0f) p.x = 0.0f;
+    }
+  return untextured(std::move(s));
+}
+
 // Floor points: the centres of a k x k grid over the 2 x 2 floor.
 std::vector<glm::vec3> floor_points(int k) {
   std::vector<glm::vec3> points;
@@ -152,14 +166,19 @@ TEST(EmissiveTextures, BakeDirectLightIsHalfTheUntexturedLampsFromItsLitHalf) {
   const Scene s = load_lamp_scene();
   const FloorLight textured = bake_floor_light(s);
   const FloorLight plain = bake_floor_light(untextured(s));
+  const FloorLight half = bake_floor_light(lit_half_only(s));
   ASSERT_GT(plain.total, 0.0);
   std::cout << "[ measured ] bake direct light on the floor, textured / untextured lamp: "
-            << textured.total / plain.total << "\n";
+            << textured.total / plain.total << ", textured / lit half alone "
+            << textured.total / half.total << ", share on x < 0: " << textured.left / textured.total
+            << " (lit half alone " << half.left / half.total << ")\n";
   EXPECT_NEAR(textured.total / plain.total, 0.5, 0.01);
-  // The untextured lamp lights both halves alike; the textured one mostly
-  // the half under its lit side.
+  // As much as the lit half alone, and as much of it on the floor's half
+  // under it; the untextured lamp lights both halves alike.
+  EXPECT_NEAR(textured.total / half.total, 1.0, 0.02);
+  EXPECT_NEAR(textured.left / textured.total, half.left / half.total, 0.01);
   EXPECT_NEAR(plain.left / plain.total, 0.5, 0.01);
-  EXPECT_GT(textured.left / textured.total, 0.7);
+  EXPECT_GT(textured.left / textured.total, 0.55);
 }
 
 TEST(EmissiveTextures, ReferenceDirectLightIsHalfTheUntexturedLampsFromItsLitHalf) {
@@ -184,12 +203,16 @@ TEST(EmissiveTextures, ReferenceDirectLightIsHalfTheUntexturedLampsFromItsLitHal
         total += static_cast<double>(r.direct_irradiance[k].r);
     return total;
   };
-  const double textured = sum(s, false), plain = sum(u, false);
+  const Scene h = lit_half_only(s);
+  const double textured = sum(s, false), plain = sum(u, false), half = sum(h, false);
   ASSERT_GT(plain, 0.0);
   std::cout << "[ measured ] reference direct light on the floor, textured / untextured lamp: "
-            << textured / plain << "\n";
+            << textured / plain << ", textured / lit half alone " << textured / half
+            << ", share on x < 0: " << sum(s, true) / textured << " (lit half alone "
+            << sum(h, true) / half << ")\n";
   EXPECT_NEAR(textured / plain, 0.5, 0.02);
-  EXPECT_GT(sum(s, true) / textured, 0.7);
+  EXPECT_NEAR(textured / half, 1.0, 0.03);
+  EXPECT_NEAR(sum(s, true) / textured, sum(h, true) / half, 0.02);
 }
 
 class EmissiveTextureFiles : public test::QuadFiles {
@@ -199,7 +222,7 @@ class EmissiveTextureFiles : public test::QuadFiles {
   void expect_one_warning_and_ke(const std::string& file) {
     const Scene s = load_obj_quad("Ke 2 2 2\nmap_Ke " + file);
     ASSERT_EQ(diagnostics.warnings().size(), 1u) << warnings_of(diagnostics);
-    const Diagnostic& w = diagnostics.warnings()[0];
+    const Diagnostic w = diagnostics.warnings()[0];
     EXPECT_NE((w.where + w.message).find(file), std::string::npos) << w.message;
     EXPECT_EQ(s.materials.at(0).emission_texture, nullptr);
     EXPECT_EQ(s.materials.at(0).emission, glm::vec3(2.0f));

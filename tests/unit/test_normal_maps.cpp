@@ -100,7 +100,7 @@ class NormalMapFiles : public test::QuadFiles {
   void SetUp() override { fs::copy_file(kFloorScene / "wall-ridges.png", dir / "ridges.png"); }
   void expect_one_warning_naming(const std::string& file) const {
     ASSERT_EQ(diagnostics.warnings().size(), 1u) << warnings_of(diagnostics);
-    const Diagnostic& w = diagnostics.warnings()[0];
+    const Diagnostic w = diagnostics.warnings()[0];
     EXPECT_NE((w.where + w.message).find(file), std::string::npos) << w.where << ": " << w.message;
   }
 };
