@@ -255,6 +255,7 @@ void SceneBuilder::build(Scene& scene) {
     }
   std::vector<std::shared_ptr<const Texture>> textures(files.size());
   std::vector<std::string> errors(files.size());
+  std::vector<std::string> not_normals;  // normal map files that hold none
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::int64_t f = 0; f < static_cast<std::int64_t>(files.size()); ++f) {
     const auto i = static_cast<std::size_t>(f);
@@ -278,13 +279,27 @@ void SceneBuilder::build(Scene& scene) {
     } else if (role == kNormal && !holds_normals(*textures[f])) {
       // A height map's normals would come from its slopes, and a colour
       // image has none: neither is read, rather than misread as directions.
-      diagnostics_.warn(where,
-                        "this normal (bump) map holds no tangent-space normals (RGB "
-                        "texels decoding to unit vectors facing out): a grey height map "
-                        "or a colour image is not read as one; its materials are drawn "
-                        "without it");
+      not_normals.push_back(where);
       textures[f] = nullptr;
     }
+  }
+  if (!not_normals.empty()) {
+    // One line for them all (models such as Sponza name a dozen height
+    // maps), naming the first few; the detail names every file.
+    constexpr std::size_t kFirstFew = 3;
+    std::string names;
+    for (std::size_t i = 0; i < std::min(kFirstFew, not_normals.size()); ++i)
+      names += (i ? ", " : "") + not_normals[i];
+    if (not_normals.size() > kFirstFew)
+      names += " and " + std::to_string(not_normals.size() - kFirstFew) + " more";
+    diagnostics_.warn(
+        not_normals.size() == 1 ? not_normals.front() : scene_file_,
+        plural(not_normals.size(), "normal (bump) map holds", "normal (bump) maps hold") +
+            " no tangent-space normals (RGB texels decoding to unit vectors facing "
+            "out): grey height maps and colour images are not read as normal maps, "
+            "their materials are drawn without them: " +
+            names,
+        not_normals);
   }
   // Alpha masks likewise, once per file and channel rule; a glTF mask
   // without a texture is its constant factor.
