@@ -302,7 +302,6 @@ class FileImporter {
     if (!mat.normal_map && m.GetTexture(type, 0, &name) != AI_SUCCESS) {
       type = aiTextureType_HEIGHT;
       mat.normal_map = find_texture(m, type, mat, "bump map", kFlat);
-      mat.normal_map_from_bump = true;
     }
     if (!mat.normal_map) return;
     float scale = 1.0f;

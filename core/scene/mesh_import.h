@@ -47,7 +47,6 @@ struct ImportedMaterial {
   // normalTexture.scale, OBJ -bm). An OBJ bump map may be a grey height map
   // instead: the builder reads the image and tells.
   std::optional<std::filesystem::path> normal_map;
-  bool normal_map_from_bump = false;
   float normal_scale = 1.0f;
 };
 
