@@ -413,4 +413,27 @@ TEST_F(NormalMappedPreview, FacetsTurnedToTheLightAreBrighterOnlyWithTheMap) {
   EXPECT_LT(mapped[2], flat[2]);
 }
 
+// The preview of tests/render/scenes/lit-lamp: the lamp (x and z in
+// [-0.5, 0.5] at y = 1, facing down) emits Ke = 4 through half-lit.png, on
+// its half over x < 0 only; a dim bulb below lights both halves alike.
+class EmissiveTexturePreview : public PreviewOfBake {
+ protected:
+  void SetUp() override {
+    PreviewOfBake::SetUp();
+    open(BOUNCE_RENDER_LAMP_BAKE);
+  }
+};
+
+TEST_F(EmissiveTexturePreview, OnlyTheLitHalfOfTheLampGlows) {
+  const QImage image = view_.render_image();
+  ASSERT_TRUE(view_.gl_error().isEmpty()) << view_.gl_error().toStdString();
+  for (const float z : {-0.25f, 0.0f, 0.25f}) {
+    const double lit = mean_around(image, view_.project({-0.25f, 1.0f, z}), 2).luminance();
+    const double dark = mean_around(image, view_.project({0.25f, 1.0f, z}), 2).luminance();
+    std::cout << "[ measured ] lamp at z = " << z << ": lit half " << lit << ", dark half " << dark
+              << "\n";
+    EXPECT_GT(lit, 2.0 * dark + 20.0) << "z = " << z;
+  }
+}
+
 }  // namespace bounce::render_test
