@@ -38,6 +38,18 @@ std::string plural(std::size_t n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
+// The first three of `items`, and how many more there are: one warning line
+// stays short however many it stands for (its detail lists them all).
+std::string first_few(const std::vector<std::string>& items) {
+  constexpr std::size_t kFirstFew = 3;
+  std::string listed;
+  for (std::size_t i = 0; i < std::min(kFirstFew, items.size()); ++i)
+    listed += (i ? ", " : "") + items[i];
+  if (items.size() > kFirstFew)
+    listed += " and " + std::to_string(items.size() - kFirstFew) + " more";
+  return listed;
+}
+
 // Meshes of one file with the same problem, reported as one line: the
 // count, how many meshes and the first few of them; the diagnostic's detail
 // (kept in the bake manifest) names them all. A big model would otherwise
@@ -55,16 +67,10 @@ class WarningGroup {
 
   void emit(Diagnostics& diagnostics, const std::string& where, const std::string& label) {
     if (items_.empty()) return;
-    constexpr std::size_t kFirstFew = 3;
-    std::string listed;
-    for (std::size_t i = 0; i < std::min(kFirstFew, items_.size()); ++i)
-      listed += (i ? ", " : "") + items_[i];
-    if (items_.size() > kFirstFew)
-      listed += " and " + std::to_string(items_.size() - kFirstFew) + " more";
     diagnostics.warn(where,
                      verb_ + " " + plural(total_, one_, many_) + " in " +
-                         plural(items_.size(), "mesh", "meshes") + label + ": " + listed + " (" +
-                         why_ + ")",
+                         plural(items_.size(), "mesh", "meshes") + label + ": " +
+                         first_few(items_) + " (" + why_ + ")",
                      items_);
     items_.clear();
     total_ = 0;
@@ -286,19 +292,13 @@ void SceneBuilder::build(Scene& scene) {
   if (!not_normals.empty()) {
     // One line for them all (models such as Sponza name a dozen height
     // maps), naming the first few; the detail names every file.
-    constexpr std::size_t kFirstFew = 3;
-    std::string names;
-    for (std::size_t i = 0; i < std::min(kFirstFew, not_normals.size()); ++i)
-      names += (i ? ", " : "") + not_normals[i];
-    if (not_normals.size() > kFirstFew)
-      names += " and " + std::to_string(not_normals.size() - kFirstFew) + " more";
     diagnostics_.warn(
         not_normals.size() == 1 ? not_normals.front() : scene_file_,
         plural(not_normals.size(), "normal (bump) map holds", "normal (bump) maps hold") +
             " no tangent-space normals (RGB texels decoding to unit vectors facing "
             "out): grey height maps and colour images are not read as normal maps, "
             "their materials are drawn without them: " +
-            names,
+            first_few(not_normals),
         not_normals);
   }
   // Alpha masks likewise, once per file and channel rule; a glTF mask

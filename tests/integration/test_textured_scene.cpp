@@ -7,6 +7,7 @@
 // The textured-lamp scene's lamp emits through a half-black emissive
 // texture: its patches emit half the untextured lamp's light.
 #include <cmath>
+#include <initializer_list>
 
 #include "bake/bake_reader.h"
 #include "cli_harness.h"
@@ -19,15 +20,23 @@ double decode(int byte) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
-TEST(TexturedScene, FloorPatchesReflectTheTexturesMean) {
-  TempDir tmp;
-  const fs::path out = tmp.path() / "bake";
-  const RunResult r = run({"bake", scene("textured-floor"), "--codec", "dense",
-                           "--final-gather-rays", "0", "--quiet", "--out", out.string()},
+// `bounce bake` of `scene` into `out` (the dense matrix and no final gather:
+// what these tests read); it must succeed without a warning naming any of
+// `words`.
+void bake_into(const std::string& scene, const fs::path& out, const TempDir& tmp,
+               std::initializer_list<const char*> words) {
+  const RunResult r = run({"bake", scene, "--codec", "dense", "--final-gather-rays", "0", "--quiet",
+                           "--out", out.string()},
                           tmp.path());
   ASSERT_EQ(r.exit_code, 0) << r;
   for (const std::string& w : lines_starting_with(r.err, "bounce: warning"))
-    EXPECT_FALSE(contains(w, "texture") || contains(w, "checker")) << w;
+    for (const char* word : words) EXPECT_FALSE(contains(w, word)) << w;
+}
+
+TEST(TexturedScene, FloorPatchesReflectTheTexturesMean) {
+  TempDir tmp;
+  const fs::path out = tmp.path() / "bake";
+  ASSERT_NO_FATAL_FAILURE(bake_into(scene("textured-floor"), out, tmp, {"texture", "checker"}));
 
   const json m = read_manifest(out);
   bool timed = false;
@@ -52,12 +61,7 @@ TEST(TexturedScene, FloorPatchesReflectTheTexturesMean) {
 TEST(TexturedScene, FencePatchesCarryTheSolidHalfOfIt) {
   TempDir tmp;
   const fs::path out = tmp.path() / "bake";
-  const RunResult r = run({"bake", scene("textured-floor"), "--codec", "dense",
-                           "--final-gather-rays", "0", "--quiet", "--out", out.string()},
-                          tmp.path());
-  ASSERT_EQ(r.exit_code, 0) << r;
-  for (const std::string& w : lines_starting_with(r.err, "bounce: warning"))
-    EXPECT_FALSE(contains(w, "mask") || contains(w, "fence")) << w;
+  ASSERT_NO_FATAL_FAILURE(bake_into(scene("textured-floor"), out, tmp, {"mask", "fence"}));
   const json m = read_manifest(out);
   EXPECT_EQ(m["scene"]["masked_materials"].get<int>(), 1);
   // The fence is 2 x 1, one-sided: 1 cut away, 1 carried (the lattice of
@@ -77,12 +81,7 @@ TEST(TexturedScene, FencePatchesCarryTheSolidHalfOfIt) {
 TEST(TexturedScene, LampPatchesEmitTheEmissiveTexturesMean) {
   TempDir tmp;
   const fs::path out = tmp.path() / "bake";
-  const RunResult r = run({"bake", scene("textured-lamp"), "--codec", "dense",
-                           "--final-gather-rays", "0", "--quiet", "--out", out.string()},
-                          tmp.path());
-  ASSERT_EQ(r.exit_code, 0) << r;
-  for (const std::string& w : lines_starting_with(r.err, "bounce: warning"))
-    EXPECT_FALSE(contains(w, "texture") || contains(w, "half-lit")) << w;
+  ASSERT_NO_FATAL_FAILURE(bake_into(scene("textured-lamp"), out, tmp, {"texture", "half-lit"}));
   const LoadedBake b = BakeReader::read(out);
   double area = 0.0, power = 0.0, lit = 0.0, dark = 0.0;
   for (const Patch& p : b.patches.patches) {
