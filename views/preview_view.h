@@ -31,6 +31,7 @@ class PreviewView : public QWidget {
   QCheckBox* direct_;
   QCheckBox* indirect_;
   QCheckBox* ao_;
+  QCheckBox* normal_maps_;
   QLabel* status_;
 };
 

@@ -26,6 +26,7 @@
 #include "io/tone_map.h"
 #include "preview_lighting.h"
 #include "preview_programs.h"
+#include "preview_tangents.h"
 
 namespace bounce::views {
 
@@ -396,8 +397,10 @@ void PreviewWidget::upload_mesh() {
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
     faces_of[scene.triangle_material[mesh.source_triangle[f]]].push_back(
         static_cast<std::uint32_t>(f));
-  // position, normal, albedo, emission (3 each), uv (2), whether uv is known (1)
-  constexpr int kFloats = 15;
+  // position, normal, albedo, emission (3 each), uv (2), whether uv is known
+  // (1), tangent and handedness (4)
+  constexpr int kFloats = 19;
+  const std::vector<glm::vec4> tangents = corner_tangents(scene, mesh);
   std::vector<float> corners;
   corners.reserve(mesh.triangles.size() * 3 * kFloats);
   for (std::size_t material = 0; material < faces_of.size(); ++material) {
@@ -419,14 +422,18 @@ void PreviewWidget::upload_mesh() {
       // Textured, the shader multiplies the texel by this factor (and
       // clamps to the core's albedo range, as Scene::albedo_at does).
       const glm::vec3 albedo = mapped && m.texture ? m.texture_factor : m.albedo;
+      // Likewise the emission factor of a textured emitter.
+      const glm::vec3 emission = mapped && m.emission_texture ? m.emission_factor : m.emission;
       for (int c = 0; c < 3; ++c) {
         const std::uint32_t v = mesh.triangles[f][c];
         corner_vertex_.push_back(v);
-        for (const glm::vec3& a : {mesh.positions[v], mesh.normals[v], albedo, m.emission})
+        for (const glm::vec3& a : {mesh.positions[v], mesh.normals[v], albedo, emission})
           corners.insert(corners.end(), {a.x, a.y, a.z});
         const glm::vec2 uv =
             mapped ? texture_coordinates(scene, source, mesh.positions[v]) : glm::vec2(0.0f);
         corners.insert(corners.end(), {uv.x, uv.y, mapped ? 1.0f : 0.0f});
+        const glm::vec4& t = tangents[3 * std::size_t{f} + static_cast<std::size_t>(c)];
+        corners.insert(corners.end(), {t.x, t.y, t.z, t.w});
       }
     }
     draw.count = static_cast<GLsizei>(corner_vertex_.size()) - draw.first;
@@ -455,6 +462,10 @@ void PreviewWidget::upload_mesh() {
   glVertexAttribPointer(
       6, 1, GL_FLOAT, GL_FALSE, stride,
       reinterpret_cast<const void*>(static_cast<std::uintptr_t>(14 * sizeof(float))));
+  glEnableVertexAttribArray(7);
+  glVertexAttribPointer(
+      7, 4, GL_FLOAT, GL_FALSE, stride,
+      reinterpret_cast<const void*>(static_cast<std::uintptr_t>(15 * sizeof(float))));
   glGenBuffers(1, &indirect_vbo_);
   glBindBuffer(GL_ARRAY_BUFFER, indirect_vbo_);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(corner_vertex_.size() * sizeof(glm::vec3)),
@@ -466,12 +477,15 @@ void PreviewWidget::upload_mesh() {
 }
 
 void PreviewWidget::upload_material_images() {
-  // The core's decoded images, uploaded as they are: the albedo texture in
-  // linear RGB with the core's own MIP pyramid (each level half the last,
-  // as OpenGL expects), the alpha mask's coverage at its one level. Both are
-  // stored row 0 first, the top of the image, which is v = 1: the shaders
-  // look up (u, 1 - v). R11F_G11F_B10F keeps linear light in 4 bytes a
-  // texel, so a scene with many large textures fits; a mask needs 8 bits.
+  // The core's decoded images, uploaded as they are: the albedo and
+  // emissive textures in linear RGB and the normal map's stored values, each
+  // with the core's own MIP pyramid (each level half the last, as OpenGL
+  // expects), the alpha mask's coverage at its one level. All are stored row
+  // 0 first, the top of the image, which is v = 1: the shaders look up
+  // (u, 1 - v). R11F_G11F_B10F keeps linear light in 4 bytes a texel, so a
+  // scene with many large textures fits; a normal map needs more than its 6
+  // bits of mantissa (a degree of tilt is 0.009 of a channel): RGB16F; a
+  // mask needs 8 bits.
   const Scene& scene = lighting_->scene();
   if (scene.triangle_uv.empty()) return;
   std::map<const void*, GLuint> uploaded;  // a texture shared by materials is uploaded once
@@ -486,23 +500,27 @@ void PreviewWidget::upload_material_images() {
     material_images_.push_back(name);
     return name;
   };
+  const auto upload = [&](const Texture* t, GLint format) -> GLuint {
+    if (t == nullptr || t->levels.empty()) return 0;
+    GLuint& name = uploaded[t];
+    if (name == 0) {
+      name = make(GL_LINEAR_MIPMAP_LINEAR);
+      for (std::size_t level = 0; level < t->levels.size(); ++level) {
+        const Texture::Level& l = t->levels[level];
+        glTexImage2D(GL_TEXTURE_2D, static_cast<GLint>(level), format, l.width, l.height, 0, GL_RGB,
+                     GL_FLOAT, l.texels.data());
+      }
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL,
+                      static_cast<GLint>(t->levels.size()) - 1);
+    }
+    return name;
+  };
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   for (MaterialDraw& draw : draws_) {
     const Material& m = scene.materials[draw.material];
-    if (const Texture* t = m.texture.get(); t != nullptr && !t->levels.empty()) {
-      GLuint& name = uploaded[t];
-      if (name == 0) {
-        name = make(GL_LINEAR_MIPMAP_LINEAR);
-        for (std::size_t level = 0; level < t->levels.size(); ++level) {
-          const Texture::Level& l = t->levels[level];
-          glTexImage2D(GL_TEXTURE_2D, static_cast<GLint>(level), GL_R11F_G11F_B10F, l.width,
-                       l.height, 0, GL_RGB, GL_FLOAT, l.texels.data());
-        }
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL,
-                        static_cast<GLint>(t->levels.size()) - 1);
-      }
-      draw.texture = name;
-    }
+    draw.texture = upload(m.texture.get(), GL_R11F_G11F_B10F);
+    draw.emission = upload(m.emission_texture.get(), GL_R11F_G11F_B10F);
+    draw.normal_map = upload(m.normal_map.get(), GL_RGB16F);
     if (const AlphaMask* a = m.alpha_mask.get(); a != nullptr && !a->values.empty()) {
       GLuint& name = uploaded[a];
       if (name == 0) {
@@ -524,14 +542,21 @@ void PreviewWidget::draw_mesh(QOpenGLShaderProgram& program) {
   const Scene& scene = lighting_->scene();
   program.setUniformValue("albedo_texture", 0);
   program.setUniformValue("alpha_mask", 1);
+  program.setUniformValue("normal_map", 2);
+  program.setUniformValue("emission_texture", 3);
   glBindVertexArray(mesh_vao_);
   for (const MaterialDraw& draw : draws_) {
     const Material& m = scene.materials[draw.material];
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, draw.texture);
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, draw.mask);
+    const GLuint normal_map = passes_.normal_maps ? draw.normal_map : 0;
+    const GLuint images[] = {draw.texture, draw.mask, normal_map, draw.emission};
+    for (int unit = 0; unit < 4; ++unit) {
+      glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+      glBindTexture(GL_TEXTURE_2D, images[unit]);
+    }
     program.setUniformValue("has_texture", draw.texture != 0);
+    program.setUniformValue("has_normal_map", normal_map != 0);
+    program.setUniformValue("normal_scale", m.normal_scale);
+    program.setUniformValue("has_emission_texture", draw.emission != 0);
     program.setUniformValue("has_mask", draw.mask != 0);
     program.setUniformValue("constant_mask",
                             m.alpha_mask != nullptr && m.alpha_mask->is_constant());

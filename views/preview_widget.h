@@ -4,8 +4,10 @@
 //   1. a shadow cube map of the light (distance to the light per texel),
 //   2. a G-buffer (view-space position and normal, albedo, emission, and the
 //      runtime solve's indirect irradiance per vertex, interpolated), with the
-//      albedo looked up in the material's texture and alpha-masked
-//      materials cut away (also in the shadow map),
+//      albedo and emission looked up in the material's textures, the normal
+//      perturbed by its tangent-space normal map (per-vertex tangents from
+//      the texture coordinates) and alpha-masked materials cut away (also
+//      in the shadow map),
 //   3. SSAO (hemisphere kernel of 32 samples rotated per
 //      pixel by a tiled 4 x 4 noise texture, depth test with bias delta),
 //   4. a 4 x 4 box blur of the occlusion map,
@@ -53,6 +55,9 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
     bool direct = true;
     bool indirect = true;
     bool ao = true;
+    // Normal maps perturb the shading normal (direct light and SSAO); off,
+    // every surface is drawn with its interpolated normal.
+    bool normal_maps = true;
   };
   // A solve faster than this runs on the UI thread (a 60 Hz frame is 16.7
   // ms: half of it is left for the solve, the rest for drawing).
@@ -124,8 +129,8 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   void upload_mesh();
   void upload_material_images();
   // Draws the mesh one material at a time with `program`, its textures bound
-  // to units 0 (albedo) and 1 (alpha mask) and the uniforms that say which
-  // of them the material has.
+  // to units 0 (albedo), 1 (alpha mask), 2 (normal map) and 3 (emission)
+  // and the uniforms that say which of them the material has.
   void draw_mesh(QOpenGLShaderProgram& program);
   void upload_indirect();
   void render_shadow_map();
@@ -175,12 +180,13 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   GLsizei corner_count_ = 0;
   std::vector<std::uint32_t> corner_vertex_;  // mesh vertex of each drawn corner
   // The corners are grouped by material: one draw per material, with the
-  // OpenGL images of its albedo texture and alpha mask (0: none).
+  // OpenGL images of its albedo texture, alpha mask, normal map and emissive
+  // texture (0: none).
   struct MaterialDraw {
     GLint first = 0;
     GLsizei count = 0;
     std::size_t material = 0;
-    GLuint texture = 0, mask = 0;
+    GLuint texture = 0, mask = 0, normal_map = 0, emission = 0;
   };
   std::vector<MaterialDraw> draws_;
   std::vector<GLuint> material_images_;  // every texture draws_ names, each once

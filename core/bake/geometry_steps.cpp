@@ -45,7 +45,7 @@ void sample_step(BakeRun& run) {
 bool has_texture_coordinates(const BakeRun& run) { return !run.scene.triangle_uv.empty(); }
 
 void texture_step(BakeRun& run) {
-  apply_texture_albedo(run.scene, run.result.voxels, run.result.samples, &run.progress);
+  apply_surface_textures(run.scene, run.result.voxels, run.result.samples, &run.progress);
 }
 
 void patches_step(BakeRun& run) {

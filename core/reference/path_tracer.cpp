@@ -10,6 +10,7 @@
 #include "base/error.h"
 #include "base/random.h"
 #include "runtime/camera_image.h"
+#include "scene/texture.h"
 
 namespace bounce {
 
@@ -73,11 +74,21 @@ ReferencePathTracer::ReferencePathTracer(const RayTracer& tracer, ReferenceSetti
     e.e2 = scene.vertex(t, 2) - e.v0;
     e.normal = cross / len;
     e.exitance = m.emission;
+    // A textured emitter is picked by its own triangle's power (the
+    // texture's mean over it); where it emits is looked up per point.
+    if (scene.emission_textured(t))
+      e.exitance = m.emission_factor * m.emission_texture->mean_over_triangle(scene.triangle_uv[t]);
     e.area = 0.5f * len;
     e.two_sided = scene.two_sided(t);
     emitters_.push_back(e);
-    total += e.area * (m.emission.r + m.emission.g + m.emission.b) * (e.two_sided ? 2.0f : 1.0f);
+    total += e.area * (e.exitance.r + e.exitance.g + e.exitance.b) * (e.two_sided ? 2.0f : 1.0f);
     emitter_cdf_.push_back(total);
+  }
+  if (!(total > 0.0f)) {
+    // Only textured emitters whose triangles' texels are all black: nothing
+    // for next-event estimation to pick (bounce rays still find any light).
+    emitters_.clear();
+    emitter_cdf_.clear();
   }
   for (float& c : emitter_cdf_) c /= total;
   triangle_pick_.assign(scene.triangle_count(), 0.0f);
@@ -156,7 +167,10 @@ glm::vec3 ReferencePathTracer::direct(const glm::vec3& x, const glm::vec3& n, Sa
   // solid-angle pdfs p_l of this sample and p_b = cos_x / pi of the bounce
   // ray. Bounded by M / 2 however close the emitter is.
   const float p_l = light_pdf(em.triangle, r2, cos_y), p_b = cos_x / kPi;
-  return e + em.exitance * (cos_x / kPi * p_l / (p_l * p_l + p_b * p_b));
+  const glm::vec3 exitance = tracer_.scene().emission_textured(em.triangle)
+                                 ? tracer_.scene().emission_at(em.triangle, y)
+                                 : em.exitance;
+  return e + exitance * (cos_x / kPi * p_l / (p_l * p_l + p_b * p_b));
 }
 
 glm::vec3 ReferencePathTracer::path(const glm::vec3& x, const glm::vec3& n, Sampler& rng,
@@ -199,7 +213,7 @@ glm::vec3 ReferencePathTracer::path(const glm::vec3& x, const glm::vec3& n, Samp
       const float p_l = light_pdf(hit.triangle, hit.t * hit.t, -glm::dot(ng, dir));
       // p_l = 0 where NEE cannot sample (a wall seen edge-on): all to this ray.
       const float w = p_l > 0.0f ? p_b * p_b / (p_b * p_b + p_l * p_l) : 1.0f;
-      const glm::vec3 found = m.emission * w;
+      const glm::vec3 found = scene.emission_at(hit.triangle, origin + hit.t * dir) * w;
       if (bounce == 1)
         direct_out += found;
       else
@@ -309,14 +323,14 @@ void ReferenceRenderer::add_samples(int samples, Progress* progress) {
           if (!scene.two_sided(hit.triangle)) continue;  // back of a one-sided wall: dark
           ng = -ng;
         }
-        const Material& m = scene.material_of(hit.triangle);
         const glm::vec3 p = eye + hit.t * dir;
         const glm::dvec3 albedo(scene.albedo_at(hit.triangle, p));
         glm::vec3 direct_p;
         const glm::dvec3 ind(pt_.path(p, ng, rng, direct_p));
         const glm::dvec3 d(direct_p);
         const glm::dvec3 indirect_b = albedo * ind;
-        const glm::dvec3 full_b = albedo * d + indirect_b + glm::dvec3(m.emission);
+        const glm::dvec3 full_b =
+            albedo * d + indirect_b + glm::dvec3(scene.emission_at(hit.triangle, p));
         full_sum_[i] += full_b;
         full_sq_[i] += full_b * full_b;
         ind_sum_[i] += indirect_b;

@@ -56,6 +56,19 @@ std::string ContentHash::hex() const {
   return s;
 }
 
+namespace {
+
+// A texture's factor, size and full-resolution texels.
+void hash_texture(ContentHash& h, const Texture& texture, const glm::vec3& factor) {
+  const Texture::Level& l = texture.levels.front();
+  h.vec(factor)
+      .integer(static_cast<std::uint64_t>(l.width))
+      .integer(static_cast<std::uint64_t>(l.height));
+  h.bytes(l.texels.data(), l.texels.size() * sizeof(glm::vec3));
+}
+
+}  // namespace
+
 void hash_scene(ContentHash& h, const Scene& scene) {
   h.integer(scene.positions.size())
       .bytes(scene.positions.data(), scene.positions.size() * sizeof(glm::vec3));
@@ -67,13 +80,7 @@ void hash_scene(ContentHash& h, const Scene& scene) {
   for (const Material& m : scene.materials) {
     h.vec(m.albedo).vec(m.emission);
     // The texels themselves: a texture edited in place must not reuse a result.
-    if (m.texture) {
-      const Texture::Level& l = m.texture->levels.front();
-      h.vec(m.texture_factor)
-          .integer(static_cast<std::uint64_t>(l.width))
-          .integer(static_cast<std::uint64_t>(l.height));
-      h.bytes(l.texels.data(), l.texels.size() * sizeof(glm::vec3));
-    }
+    if (m.texture) hash_texture(h, *m.texture, m.texture_factor);
     // Likewise the mask, only when there is one, so that results cached
     // for a scene without masks stay valid.
     if (m.alpha_mask) {
@@ -82,6 +89,9 @@ void hash_scene(ContentHash& h, const Scene& scene) {
       h.bytes(a.values.data(), a.values.size() * sizeof(float));
       h.bytes(&m.alpha_factor, sizeof(float)).bytes(&m.alpha_cutoff, sizeof(float));
     }
+    // Likewise the emissive texture. Normal maps change no reference result
+    // (only the preview draws them), so they are not part of the key.
+    if (m.emission_texture) hash_texture(h, *m.emission_texture, m.emission_factor);
   }
   h.integer(scene.triangle_uv.size())
       .bytes(scene.triangle_uv.data(), scene.triangle_uv.size() * sizeof(scene.triangle_uv[0]));

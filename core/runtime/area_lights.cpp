@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "base/random.h"
+#include "scene/texture.h"
 
 namespace bounce {
 
@@ -24,6 +25,11 @@ std::vector<AreaLight> area_lights(const Scene& scene) {
     l.area = 0.5f * len;
     l.exitance = m.emission;
     l.two_sided = scene.two_sided(t);
+    if (scene.emission_textured(t)) {
+      l.emission_texture = m.emission_texture;
+      l.emission_factor = m.emission_factor;
+      l.uv = scene.triangle_uv[t];
+    }
     lights.push_back(l);
   }
   return lights;
@@ -35,6 +41,7 @@ glm::vec3 area_light_irradiance(const RayTracer& tracer, const glm::vec3& p, con
   const float eps = 10.0f * tracer.epsilon();
   const glm::vec3 origin = p + eps * n;
   double sum = 0.0;
+  glm::dvec3 textured_sum(0.0);  // the same, each sample times its texel
   for (int i = 0; i < strata; ++i)
     for (int j = 0; j < strata; ++j) {
       // A jittered point of the unit square, folded onto the triangle
@@ -56,8 +63,17 @@ glm::vec3 area_light_irradiance(const RayTracer& tracer, const glm::vec3& p, con
       if (cos_p <= 0.0f || cos_l <= 0.0f) continue;
       // Stop short of the emitter, which would otherwise occlude itself.
       if (tracer.occluded(origin, d, 0.0f, 1.0f - 1e-3f)) continue;
-      sum += static_cast<double>(cos_p * cos_l / r2);
+      const auto weight = static_cast<double>(cos_p * cos_l / r2);
+      sum += weight;
+      if (light.emission_texture)
+        textured_sum +=
+            weight *
+            glm::dvec3(light.emission_texture->lookup(
+                light.uv[0] + u * (light.uv[1] - light.uv[0]) + v * (light.uv[2] - light.uv[0])));
     }
+  const double scale =
+      static_cast<double>(light.area) / (static_cast<double>(strata) * strata * std::numbers::pi);
+  if (light.emission_texture) return light.emission_factor * glm::vec3(textured_sum * scale);
   const double estimate =
       sum * static_cast<double>(light.area) / (static_cast<double>(strata) * strata);
   return light.exitance * static_cast<float>(estimate / std::numbers::pi);

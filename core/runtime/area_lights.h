@@ -9,7 +9,9 @@
 //   E = (M / pi) * integral over the triangle of cos_p cos_l / r^2 dA,
 // estimated with g x g jittered strata of the triangle (stratified Monte
 // Carlo: error falls as g^-3/2 for smooth integrands).
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -23,9 +25,15 @@ struct AreaLight {
   std::uint32_t triangle = 0;
   glm::vec3 v0{0.0f}, e1{0.0f}, e2{0.0f};  // corner and edges
   glm::vec3 normal{0.0f};                  // unit, the emitting side
-  glm::vec3 exitance{0.0f};
+  glm::vec3 exitance{0.0f};                // with an emissive texture, its mean over the material
   float area = 0.0f;
   bool two_sided = false;  // emits from both sides
+  // A textured area light: the exitance at a point is emission_factor x the
+  // emissive texture there (corner texture coordinates uv), so each stratum
+  // sample weighs its own texel. Null: `exitance` everywhere.
+  std::shared_ptr<const Texture> emission_texture;
+  glm::vec3 emission_factor{0.0f};
+  std::array<glm::vec2, 3> uv{};
 };
 
 // Every emissive triangle of the scene.

@@ -106,14 +106,13 @@ CameraImages trace_camera(const RayTracer& tracer, const CameraImageSettings& se
             normal = -normal;
           }
           const glm::vec3 p = scene.camera.position + hit.t * dir;
-          const Material& m = scene.material_of(hit.triangle);
           // The texel under the pixel's ray: the picture shows the texture.
           const glm::vec3 albedo = scene.albedo_at(hit.triangle, p);
           direct += albedo * irradiance_at(tracer, p, normal, scene.lights, area,
                                            settings.area_light_strata,
                                            pixel * static_cast<std::uint64_t>(n * n) +
                                                static_cast<std::uint64_t>(sy * n + sx));
-          if (settings.show_emission) direct += m.emission;
+          if (settings.show_emission) direct += scene.emission_at(hit.triangle, p);
           const glm::vec3 g = gather(p, normal, albedo, pixel);
           if (g.r < 0.0f)
             ++dark;

@@ -130,7 +130,8 @@ void light_vertices(const RayTracer& tracer, const std::vector<Light>& lights,
     const glm::vec3 direct =
         irradiance_at(tracer, at[v] + 10.0f * tracer.epsilon() * mesh.normals[v], mesh.normals[v],
                       lights, area, 4, v);
-    mesh.radiosity[v] = m.emission + m.albedo * (direct + gathered[v]);
+    mesh.radiosity[v] =
+        scene.emission_at(triangle[v], mesh.positions[v]) + m.albedo * (direct + gathered[v]);
   }
 }
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include <assimp/GltfMaterial.h>
+#include <assimp/ObjMaterial.h>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -153,6 +154,8 @@ class FileImporter {
 
       read_texture(m, mat);
       read_alpha_mask(m, mat);
+      read_emission_texture(m, mat, is_obj && scan.with_emissive.count(mat.name) == 0);
+      read_normal_map(m, mat);
 
       if (mat.albedo && !finite(*mat.albedo))
         throw SceneLoader::LoadError(
@@ -250,6 +253,66 @@ class FileImporter {
       return;
     }
     mat.masked = true;
+  }
+
+  // The file of texture slot `type`, resolved as the colour texture's;
+  // nullopt when the material names none, and with a warning (one per
+  // material in use, ending in `fallback`) when it is embedded or missing.
+  std::optional<std::filesystem::path> find_texture(const aiMaterial& m, aiTextureType type,
+                                                    const ImportedMaterial& mat, const char* what,
+                                                    const char* fallback) {
+    aiString name;
+    if (m.GetTexture(type, 0, &name) != AI_SUCCESS) return std::nullopt;
+    const std::string file = name.C_Str();
+    if (file.empty()) return std::nullopt;
+    if (file.front() == '*') {
+      missing_textures_.emplace_back(out_.materials.size(),
+                                     "material '" + mat.name + "': " + what + " '" + file +
+                                         "' is embedded in the file, which is not supported; " +
+                                         fallback);
+      return std::nullopt;
+    }
+    std::optional<std::filesystem::path> found = resolve_texture_path(file_.parent_path(), file);
+    if (!found)
+      missing_textures_.emplace_back(out_.materials.size(),
+                                     "material '" + mat.name + "': " + what + " file '" +
+                                         (file_.parent_path() / file).string() + "' not found; " +
+                                         fallback);
+    return found;
+  }
+
+  // OBJ map_Ke, glTF emissiveTexture; the factor is the emissive colour read
+  // above. An OBJ material with map_Ke and no Ke line takes factor 1, as
+  // map_Kd without Kd does (Assimp would give it 0: no light at all). glTF
+  // keeps its emissiveFactor, 0 when not stated, as its specification says.
+  void read_emission_texture(const aiMaterial& m, ImportedMaterial& mat, bool factor_unstated) {
+    mat.emission_texture = find_texture(m, aiTextureType_EMISSIVE, mat, "emissive texture",
+                                        "the emission is the emissive colour alone");
+    if (mat.emission_texture && factor_unstated) mat.emission = glm::vec3(1.0f);
+  }
+
+  // glTF normalTexture and OBJ norm (Assimp's normal slot), else OBJ
+  // map_bump / bump (Assimp's height slot), with the scale glTF or the -bm
+  // option gives.
+  void read_normal_map(const aiMaterial& m, ImportedMaterial& mat) {
+    constexpr const char* kFlat = "the surface is drawn without it";
+    aiTextureType type = aiTextureType_NORMALS;
+    mat.normal_map = find_texture(m, type, mat, "normal map", kFlat);
+    aiString name;
+    if (!mat.normal_map && m.GetTexture(type, 0, &name) != AI_SUCCESS) {
+      type = aiTextureType_HEIGHT;
+      mat.normal_map = find_texture(m, type, mat, "bump map", kFlat);
+    }
+    if (!mat.normal_map) return;
+    float scale = 1.0f;
+    if (m.Get(AI_MATKEY_GLTF_TEXTURE_SCALE(type, 0), scale) == AI_SUCCESS ||
+        m.Get(AI_MATKEY_OBJ_BUMPMULT(type, 0), scale) == AI_SUCCESS) {
+      if (std::isfinite(scale))
+        mat.normal_scale = scale;
+      else
+        diagnostics_.warn(where_, "material '" + mat.name + "': normal map scale " +
+                                      std::to_string(scale) + " is not finite; 1 is used");
+    }
   }
 
   void walk(const aiNode* node, const glm::dmat4& parent) {

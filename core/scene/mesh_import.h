@@ -3,7 +3,8 @@
 // its vertices moved into scene space (node transforms, then the scene.json
 // transform), its triangles (winding kept front-facing under mirroring) and
 // its material's stated diffuse and emissive colours as exact floats (and
-// colour texture, found but not yet read) and texture coordinates.
+// colour, emissive and normal textures, found but not yet read) and texture
+// coordinates.
 // Degenerate triangles are kept here; the scene builder counts and skips
 // them once the scene's size is known. Internal to the scene module.
 #include <cstddef>
@@ -37,6 +38,16 @@ struct ImportedMaterial {
   AlphaSource mask_source = AlphaSource::AlphaOrGrey;
   float alpha_factor = 1.0f;  // glTF baseColorFactor's alpha
   float alpha_cutoff = 0.5f;
+  // The emissive texture (OBJ map_Ke, glTF emissiveTexture), where it was
+  // found (nullopt: none, or missing and already warned about); `emission`
+  // above is its factor.
+  std::optional<std::filesystem::path> emission_texture;
+  // The tangent-space normal map (OBJ norm, or map_bump / bump; glTF
+  // normalTexture), where it was found, and its scale (glTF
+  // normalTexture.scale, OBJ -bm). An OBJ bump map may be a grey height map
+  // instead: the builder reads the image and tells.
+  std::optional<std::filesystem::path> normal_map;
+  float normal_scale = 1.0f;
 };
 
 struct ImportedPiece {

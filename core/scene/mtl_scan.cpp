@@ -36,6 +36,8 @@ void scan_mtl(std::ifstream& in, MtlScan& scan) {
       named = true;
     } else if (named && (keyword(l, "Kd", rest) || keyword(l, "kd", rest)) && !rest.empty()) {
       scan.with_diffuse.insert(current);
+    } else if (named && (keyword(l, "Ke", rest) || keyword(l, "ke", rest)) && !rest.empty()) {
+      scan.with_emissive.insert(current);
     }
   }
 }

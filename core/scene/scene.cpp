@@ -30,6 +30,29 @@ glm::vec3 textured_albedo(const Material& m, const glm::vec3& texel) {
   return glm::clamp(m.texture_factor * texel, glm::vec3(0.0f), glm::vec3(kMaxAlbedo));
 }
 
+// The mean of `texture` over a planar polygon lying on triangle tri: a fan
+// of triangles, each weighted by its area (the texel at the first corner
+// when the polygon has no area).
+glm::vec3 polygon_mean(const Scene& scene, std::size_t tri, const Texture& texture,
+                       const glm::vec3* polygon, std::size_t count) {
+  glm::dvec3 sum(0.0);
+  double total = 0.0;
+  const glm::vec2 uv0 = uv_at(scene, tri, polygon[0]);
+  glm::vec2 prev = uv_at(scene, tri, polygon[1]);
+  for (std::size_t k = 2; k < count; ++k) {
+    const glm::vec2 next = uv_at(scene, tri, polygon[k]);
+    const double area = 0.5 * glm::length(glm::cross(glm::dvec3(polygon[k - 1] - polygon[0]),
+                                                     glm::dvec3(polygon[k] - polygon[0])));
+    if (area > 0.0) {
+      sum += area * glm::dvec3(texture.mean_over_triangle({uv0, prev, next}));
+      total += area;
+    }
+    prev = next;
+  }
+  if (!(total > 0.0)) return texture.lookup(uv0);
+  return glm::vec3(sum / total);
+}
+
 }  // namespace
 
 glm::vec2 texture_coordinates(const Scene& scene, std::size_t tri, const glm::vec3& p) {
@@ -46,23 +69,19 @@ glm::vec3 Scene::albedo_at(std::size_t tri, const glm::vec3& p) const {
 glm::vec3 Scene::mean_albedo(std::size_t tri, const glm::vec3* polygon, std::size_t count) const {
   const Material& m = material_of(tri);
   if (!textured(tri) || count < 3) return m.albedo;
-  // Fan of triangles, each weighted by its area.
-  glm::dvec3 sum(0.0);
-  double total = 0.0;
-  const glm::vec2 uv0 = uv_at(*this, tri, polygon[0]);
-  glm::vec2 prev = uv_at(*this, tri, polygon[1]);
-  for (std::size_t k = 2; k < count; ++k) {
-    const glm::vec2 next = uv_at(*this, tri, polygon[k]);
-    const double area = 0.5 * glm::length(glm::cross(glm::dvec3(polygon[k - 1] - polygon[0]),
-                                                     glm::dvec3(polygon[k] - polygon[0])));
-    if (area > 0.0) {
-      sum += area * glm::dvec3(m.texture->mean_over_triangle({uv0, prev, next}));
-      total += area;
-    }
-    prev = next;
-  }
-  if (!(total > 0.0)) return textured_albedo(m, m.texture->lookup(uv0));
-  return textured_albedo(m, glm::vec3(sum / total));
+  return textured_albedo(m, polygon_mean(*this, tri, *m.texture, polygon, count));
+}
+
+glm::vec3 Scene::emission_at(std::size_t tri, const glm::vec3& p) const {
+  const Material& m = material_of(tri);
+  if (!emission_textured(tri)) return m.emission;
+  return m.emission_factor * m.emission_texture->lookup(uv_at(*this, tri, p));
+}
+
+glm::vec3 Scene::mean_emission(std::size_t tri, const glm::vec3* polygon, std::size_t count) const {
+  const Material& m = material_of(tri);
+  if (!emission_textured(tri) || count < 3) return m.emission;
+  return m.emission_factor * polygon_mean(*this, tri, *m.emission_texture, polygon, count);
 }
 
 bool Scene::has_masks() const {

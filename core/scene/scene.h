@@ -40,7 +40,24 @@ struct Material {
   std::shared_ptr<const AlphaMask> alpha_mask;
   float alpha_factor = 1.0f;
   float alpha_cutoff = 0.5f;
-  glm::vec3 emission{0.0f};  // emitted radiosity (W/m^2 per channel); > 0 makes an area light
+  // Emitted radiosity (W/m^2 per channel); > 0 makes an area light. With an
+  // emissive texture it is the surface's mean (emission_factor x the
+  // texture's mean), for whatever cannot look the texture up.
+  glm::vec3 emission{0.0f};
+  // Textured emission: the exitance at a point is emission_factor x the
+  // texel there (OBJ Ke x map_Ke, glTF emissiveFactor x emissiveTexture), so
+  // the surface is a textured area light. Null: emission everywhere.
+  std::shared_ptr<const Texture> emission_texture;
+  glm::vec3 emission_factor{0.0f};
+  // Tangent-space normal map (OBJ norm, or map_bump / bump holding an RGB
+  // image; glTF normalTexture), texels as stored (not decoded from sRGB):
+  // the direction 2 c - 1 in the frame (tangent along +u, bitangent along
+  // +v, the surface normal), its first two components times normal_scale
+  // (glTF normalTexture.scale, OBJ -bm). Drawn by the studio's preview only:
+  // the bake and the reference light the surface's geometric normal, see
+  // docs/scene-format.md.
+  std::shared_ptr<const Texture> normal_map;
+  float normal_scale = 1.0f;
   bool is_emissive() const { return emission.r > 0.f || emission.g > 0.f || emission.b > 0.f; }
 };
 
@@ -112,7 +129,7 @@ struct Scene {
   std::vector<std::uint32_t> triangle_material;  // index into materials
   std::vector<std::uint32_t> triangle_mesh;      // index into meshes
   // Texture coordinates of each triangle's corners; empty when no material
-  // has a texture (then every albedo is its material's).
+  // has a texture, mask or normal map (then every albedo is its material's).
   std::vector<std::array<glm::vec2, 3>> triangle_uv;
   std::vector<Material> materials;
   std::vector<MeshInfo> meshes;
@@ -146,6 +163,14 @@ struct Scene {
   glm::vec3 albedo_at(std::size_t tri, const glm::vec3& p) const;
   // Mean albedo over a planar polygon lying on triangle tri.
   glm::vec3 mean_albedo(std::size_t tri, const glm::vec3* polygon, std::size_t count) const;
+  // Whether triangle tri's emission follows an emissive texture.
+  bool emission_textured(std::size_t tri) const {
+    return !triangle_uv.empty() && material_of(tri).emission_texture != nullptr;
+  }
+  // Emission at point p on triangle tri (the texel there when textured).
+  glm::vec3 emission_at(std::size_t tri, const glm::vec3& p) const;
+  // Mean emission over a planar polygon lying on triangle tri.
+  glm::vec3 mean_emission(std::size_t tri, const glm::vec3* polygon, std::size_t count) const;
   Bounds bounds() const;
 };
 

@@ -1,6 +1,8 @@
 #include "scene/scene_builder.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <set>
@@ -28,11 +30,24 @@ std::string format_vec(const glm::vec3& v) {
 bool same_colours(const ImportedMaterial& a, const ImportedMaterial& b) {
   return a.albedo == b.albedo && a.emission == b.emission && a.texture == b.texture &&
          a.masked == b.masked && a.mask == b.mask && a.alpha_factor == b.alpha_factor &&
-         a.alpha_cutoff == b.alpha_cutoff;
+         a.alpha_cutoff == b.alpha_cutoff && a.emission_texture == b.emission_texture &&
+         a.normal_map == b.normal_map && a.normal_scale == b.normal_scale;
 }
 
 std::string plural(std::size_t n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+// The first three of `items`, and how many more there are: one warning line
+// stays short however many it stands for (its detail lists them all).
+std::string first_few(const std::vector<std::string>& items) {
+  constexpr std::size_t kFirstFew = 3;
+  std::string listed;
+  for (std::size_t i = 0; i < std::min(kFirstFew, items.size()); ++i)
+    listed += (i ? ", " : "") + items[i];
+  if (items.size() > kFirstFew)
+    listed += " and " + std::to_string(items.size() - kFirstFew) + " more";
+  return listed;
 }
 
 // Meshes of one file with the same problem, reported as one line: the
@@ -52,16 +67,10 @@ class WarningGroup {
 
   void emit(Diagnostics& diagnostics, const std::string& where, const std::string& label) {
     if (items_.empty()) return;
-    constexpr std::size_t kFirstFew = 3;
-    std::string listed;
-    for (std::size_t i = 0; i < std::min(kFirstFew, items_.size()); ++i)
-      listed += (i ? ", " : "") + items_[i];
-    if (items_.size() > kFirstFew)
-      listed += " and " + std::to_string(items_.size() - kFirstFew) + " more";
     diagnostics.warn(where,
                      verb_ + " " + plural(total_, one_, many_) + " in " +
-                         plural(items_.size(), "mesh", "meshes") + label + ": " + listed + " (" +
-                         why_ + ")",
+                         plural(items_.size(), "mesh", "meshes") + label + ": " +
+                         first_few(items_) + " (" + why_ + ")",
                      items_);
     items_.clear();
     total_ = 0;
@@ -75,6 +84,32 @@ class WarningGroup {
   std::vector<std::string> items_;
   std::size_t total_ = 0;
 };
+
+// Whether an image holds tangent-space normals: its texels c decode to
+// directions 2 c - 1 of about unit length (8-bit rounding and lossy
+// compression allow some slack) pointing out of the surface (z > 0), nine
+// in ten of them at least, leaning on average less than 45 degrees from the
+// surface normal (a relief tilts the normal here and there, not all over),
+// and it is not grey. OBJ files name height maps (grey, one value per texel;
+// a light grey decodes to (1, 1, 1) / sqrt(3), 55 degrees off) and even
+// colour images in the same bump slot; neither passes.
+bool holds_normals(const Texture& t) {
+  const std::vector<glm::vec3>& texels = t.levels.front().texels;
+  std::size_t unit = 0;
+  double z_sum = 0.0;
+  bool grey = true;
+  for (const glm::vec3& c : texels) {
+    grey = grey && c.r == c.g && c.g == c.b;
+    const glm::vec3 n = 2.0f * c - 1.0f;
+    const float length = glm::length(n);
+    if (n.z > 0.0f && length > 0.75f && length < 1.25f) {
+      ++unit;
+      z_sum += static_cast<double>(n.z / length);
+    }
+  }
+  return !grey && 10 * unit >= 9 * texels.size() &&
+         z_sum >= std::sqrt(0.5) * static_cast<double>(texels.size());
+}
 
 }  // namespace
 
@@ -116,9 +151,9 @@ std::uint32_t SceneBuilder::material_index(const std::string& name, const Entry&
   return it->second;
 }
 
-Material SceneBuilder::resolve_material(const std::string& name,
-                                        std::shared_ptr<const Texture> texture,
-                                        std::shared_ptr<const AlphaMask> mask) const {
+Material SceneBuilder::resolve_material(const std::string& name, MaterialImages images) const {
+  std::shared_ptr<const Texture>& texture = images.texture;
+  std::shared_ptr<const AlphaMask>& mask = images.mask;
   const Use& use = uses_[use_index_.at(name)];
   const auto def_it = definitions_.find(name);
   const MaterialSpec* def = def_it == definitions_.end() ? nullptr : &def_it->second;
@@ -167,6 +202,16 @@ Material SceneBuilder::resolve_material(const std::string& name,
       m.emission = positive;
     }
   }
+  if (images.emission) {
+    // As the colour texture: the factor stays, the flat value is the mean.
+    m.emission_factor = m.emission;
+    m.emission = m.emission * images.emission->mean;
+    m.emission_texture = std::move(images.emission);
+  }
+  if (images.normal_map) {
+    m.normal_map = std::move(images.normal_map);
+    m.normal_scale = file->normal_scale;
+  }
   if (mask && m.is_emissive()) {
     // Emitters are sampled over whole triangles (area lights, the
     // reference's light picking); a holed emitter would shine from its holes.
@@ -196,28 +241,66 @@ void SceneBuilder::build(Scene& scene) {
       piece_use[e].push_back(material_index(name, entry, entry.material ? nullptr : from_file));
     }
   }
-  // Each texture file is read once, however many materials use it, and the
-  // files in parallel (decoding dominates).
-  std::vector<std::filesystem::path> files;
-  std::vector<std::size_t> use_file(uses_.size(), SIZE_MAX);
-  for (std::size_t u = 0; u < uses_.size(); ++u) {
-    if (!uses_[u].from_file || !uses_[u].from_file->texture) continue;
-    const std::filesystem::path& f = *uses_[u].from_file->texture;
-    const auto at = std::find(files.begin(), files.end(), f);
-    use_file[u] = static_cast<std::size_t>(at - files.begin());
-    if (at == files.end()) files.push_back(f);
-  }
+  // Each texture file is read once per use (colour, emission, normal map),
+  // however many materials use it, and the files in parallel (decoding
+  // dominates).
+  enum Role { kColour, kEmission, kNormal, kRoles };
+  const auto file_of = [](const ImportedMaterial& m, int role) {
+    return role == kColour ? m.texture : role == kEmission ? m.emission_texture : m.normal_map;
+  };
+  std::vector<std::pair<std::filesystem::path, int>> files;
+  std::vector<std::array<std::size_t, kRoles>> use_file(uses_.size());
+  for (std::size_t u = 0; u < uses_.size(); ++u)
+    for (int role = 0; role < kRoles; ++role) {
+      use_file[u][static_cast<std::size_t>(role)] = SIZE_MAX;
+      if (!uses_[u].from_file || !file_of(*uses_[u].from_file, role)) continue;
+      const std::pair key(*file_of(*uses_[u].from_file, role), role);
+      const auto at = std::find(files.begin(), files.end(), key);
+      use_file[u][static_cast<std::size_t>(role)] = static_cast<std::size_t>(at - files.begin());
+      if (at == files.end()) files.push_back(key);
+    }
   std::vector<std::shared_ptr<const Texture>> textures(files.size());
   std::vector<std::string> errors(files.size());
+  std::vector<std::string> not_normals;  // normal map files that hold none
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::int64_t f = 0; f < static_cast<std::int64_t>(files.size()); ++f) {
     const auto i = static_cast<std::size_t>(f);
-    textures[i] = load_texture(files[i], errors[i]);
+    textures[i] =
+        load_texture(files[i].first, errors[i],
+                     files[i].second == kNormal ? TexelKind::Direction : TexelKind::Colour);
   }
-  for (std::size_t f = 0; f < files.size(); ++f)
-    if (!textures[f])
-      diagnostics_.warn(files[f].string(), "cannot read this texture (" + errors[f] +
-                                               "); its materials use their diffuse colour");
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    const std::string where = files[f].first.string();
+    const int role = files[f].second;
+    if (!textures[f]) {
+      diagnostics_.warn(where, "cannot read this " +
+                                   std::string(role == kColour     ? "texture"
+                                               : role == kEmission ? "emissive texture"
+                                                                   : "normal map") +
+                                   " (" + errors[f] + "); " +
+                                   (role == kColour     ? "its materials use their diffuse colour"
+                                    : role == kEmission ? "its materials emit their emissive "
+                                                          "colour alone"
+                                                        : "its materials are drawn without it"));
+    } else if (role == kNormal && !holds_normals(*textures[f])) {
+      // A height map's normals would come from its slopes, and a colour
+      // image has none: neither is read, rather than misread as directions.
+      not_normals.push_back(where);
+      textures[f] = nullptr;
+    }
+  }
+  if (!not_normals.empty()) {
+    // One line for them all (models such as Sponza name a dozen height
+    // maps), naming the first few; the detail names every file.
+    diagnostics_.warn(
+        not_normals.size() == 1 ? not_normals.front() : scene_file_,
+        plural(not_normals.size(), "normal (bump) map holds", "normal (bump) maps hold") +
+            " no tangent-space normals (RGB texels decoding to unit vectors facing "
+            "out): grey height maps and colour images are not read as normal maps, "
+            "their materials are drawn without them: " +
+            first_few(not_normals),
+        not_normals);
+  }
   // Alpha masks likewise, once per file and channel rule; a glTF mask
   // without a texture is its constant factor.
   std::vector<std::pair<std::filesystem::path, AlphaSource>> mask_files;
@@ -250,8 +333,12 @@ void SceneBuilder::build(Scene& scene) {
     else if (uses_[u].from_file && uses_[u].from_file->masked &&
              uses_[u].from_file->alpha_factor < uses_[u].from_file->alpha_cutoff)
       mask = AlphaMask::constant(1.0f);  // wholly cut away
+    const auto image = [&](int role) {
+      const std::size_t f = use_file[u][static_cast<std::size_t>(role)];
+      return f == SIZE_MAX ? nullptr : textures[f];
+    };
     resolved.push_back(resolve_material(
-        uses_[u].name, use_file[u] == SIZE_MAX ? nullptr : textures[use_file[u]], std::move(mask)));
+        uses_[u].name, {image(kColour), image(kEmission), image(kNormal), std::move(mask)}));
   }
   for (const auto& [name, def] : definitions_)
     if (!use_index_.count(name))
@@ -299,8 +386,8 @@ void SceneBuilder::build(Scene& scene) {
                            "exact copies of triangles already in the scene, same winding: they "
                            "would count the same surface twice");
     WarningGroup no_uvs("found no texture coordinates for", "triangle", "triangles",
-                        "their material's texture is applied as its mean colour and an "
-                        "alpha mask keeps them whole");
+                        "their material's textures are applied as their mean colours, an "
+                        "alpha mask keeps them whole and a normal map is not drawn");
     for (std::size_t p = 0; p < entry.file.pieces.size(); ++p) {
       const ImportedPiece& piece = entry.file.pieces[p];
       if (piece.non_triangles > 0) lines.add(piece.name, piece.non_triangles, "");
@@ -313,7 +400,9 @@ void SceneBuilder::build(Scene& scene) {
 
       const bool has_uvs = piece.uvs.size() == piece.positions.size();
       const Material& mat = resolved[piece_use[e][p]];
-      if ((mat.texture || (mat.alpha_mask && !mat.alpha_mask->is_constant())) && !has_uvs)
+      if ((mat.texture || mat.emission_texture || mat.normal_map ||
+           (mat.alpha_mask && !mat.alpha_mask->is_constant())) &&
+          !has_uvs)
         no_uvs.add(piece.name, piece.triangles.size(), "");
       std::vector<std::uint32_t> remap(piece.positions.size(), kUnmapped);
       std::size_t skipped = 0, duplicates = 0;
@@ -372,8 +461,9 @@ void SceneBuilder::build(Scene& scene) {
     for (WarningGroup* group : {&lines, &degenerate, &duplicate, &no_uvs})
       group->emit(diagnostics_, where, label);
   }
-  if (std::none_of(scene.materials.begin(), scene.materials.end(),
-                   [](const Material& m) { return m.texture || m.alpha_mask; }))
+  if (std::none_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) {
+        return m.texture || m.alpha_mask || m.emission_texture || m.normal_map;
+      }))
     scene.triangle_uv.clear();
   if (scene.triangles.empty())
     throw SceneLoader::LoadError(

@@ -47,8 +47,12 @@ class SceneBuilder {
 
   std::uint32_t material_index(const std::string& name, const Entry& entry,
                                const ImportedMaterial* from_file);
-  Material resolve_material(const std::string& name, std::shared_ptr<const Texture> texture,
-                            std::shared_ptr<const AlphaMask> mask) const;
+  // The images a material's files name, read (null: none, or unreadable).
+  struct MaterialImages {
+    std::shared_ptr<const Texture> texture, emission, normal_map;
+    std::shared_ptr<const AlphaMask> mask;
+  };
+  Material resolve_material(const std::string& name, MaterialImages images) const;
 
   std::string scene_file_;
   std::map<std::string, MaterialSpec> definitions_;

@@ -131,12 +131,13 @@ std::optional<ImagePixels> read_image_pixels(const fs::path& file, std::string& 
   return image;
 }
 
-std::shared_ptr<const Texture> load_texture(const fs::path& file, std::string& error) {
+std::shared_ptr<const Texture> load_texture(const fs::path& file, std::string& error,
+                                            TexelKind kind) {
   const std::optional<ImagePixels> image = read_image_pixels(file, error);
   if (!image) return nullptr;
   const int w = image->width, h = image->height, channels = image->channels;
   const std::vector<float>& pixels = image->pixels;
-  const bool srgb = image->srgb;
+  const bool srgb = image->srgb && kind == TexelKind::Colour;
 
   auto texture = std::make_shared<Texture>();
   texture->path = file.string();

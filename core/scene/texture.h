@@ -47,7 +47,13 @@ struct ImagePixels {
 // reason, without the file's name).
 std::optional<ImagePixels> read_image_pixels(const std::filesystem::path& file, std::string& error);
 
-std::shared_ptr<const Texture> load_texture(const std::filesystem::path& file, std::string& error);
+// What a texture's texels are. Colours are decoded from sRGB when the file
+// is sRGB-encoded (see above); directions (a normal map's 2 c - 1) are taken
+// as stored whatever the file says: decoding would bend them.
+enum class TexelKind { Colour, Direction };
+
+std::shared_ptr<const Texture> load_texture(const std::filesystem::path& file, std::string& error,
+                                            TexelKind kind = TexelKind::Colour);
 
 // `name` as written in a material, relative to `folder` unless absolute.
 // When no file has exactly that name, a file in the same folder whose name

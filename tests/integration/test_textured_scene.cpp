@@ -4,7 +4,10 @@
 // sRGB colours, decoded here independently of the loader). Its fence is cut
 // by an alpha mask (map_d) of which exactly half is solid: the bake carries
 // half its area, counts the rest as cut away, and says so in the manifest.
+// The textured-lamp scene's lamp emits through a half-black emissive
+// texture: its patches emit half the untextured lamp's light.
 #include <cmath>
+#include <initializer_list>
 
 #include "bake/bake_reader.h"
 #include "cli_harness.h"
@@ -17,15 +20,23 @@ double decode(int byte) {
   return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
-TEST(TexturedScene, FloorPatchesReflectTheTexturesMean) {
-  TempDir tmp;
-  const fs::path out = tmp.path() / "bake";
-  const RunResult r = run({"bake", scene("textured-floor"), "--codec", "dense",
-                           "--final-gather-rays", "0", "--quiet", "--out", out.string()},
+// `bounce bake` of `scene` into `out` (the dense matrix and no final gather:
+// what these tests read); it must succeed without a warning naming any of
+// `words`.
+void bake_into(const std::string& scene, const fs::path& out, const TempDir& tmp,
+               std::initializer_list<const char*> words) {
+  const RunResult r = run({"bake", scene, "--codec", "dense", "--final-gather-rays", "0", "--quiet",
+                           "--out", out.string()},
                           tmp.path());
   ASSERT_EQ(r.exit_code, 0) << r;
   for (const std::string& w : lines_starting_with(r.err, "bounce: warning"))
-    EXPECT_FALSE(contains(w, "texture") || contains(w, "checker")) << w;
+    for (const char* word : words) EXPECT_FALSE(contains(w, word)) << w;
+}
+
+TEST(TexturedScene, FloorPatchesReflectTheTexturesMean) {
+  TempDir tmp;
+  const fs::path out = tmp.path() / "bake";
+  ASSERT_NO_FATAL_FAILURE(bake_into(scene("textured-floor"), out, tmp, {"texture", "checker"}));
 
   const json m = read_manifest(out);
   bool timed = false;
@@ -50,12 +61,7 @@ TEST(TexturedScene, FloorPatchesReflectTheTexturesMean) {
 TEST(TexturedScene, FencePatchesCarryTheSolidHalfOfIt) {
   TempDir tmp;
   const fs::path out = tmp.path() / "bake";
-  const RunResult r = run({"bake", scene("textured-floor"), "--codec", "dense",
-                           "--final-gather-rays", "0", "--quiet", "--out", out.string()},
-                          tmp.path());
-  ASSERT_EQ(r.exit_code, 0) << r;
-  for (const std::string& w : lines_starting_with(r.err, "bounce: warning"))
-    EXPECT_FALSE(contains(w, "mask") || contains(w, "fence")) << w;
+  ASSERT_NO_FATAL_FAILURE(bake_into(scene("textured-floor"), out, tmp, {"mask", "fence"}));
   const json m = read_manifest(out);
   EXPECT_EQ(m["scene"]["masked_materials"].get<int>(), 1);
   // The fence is 2 x 1, one-sided: 1 cut away, 1 carried (the lattice of
@@ -67,6 +73,26 @@ TEST(TexturedScene, FencePatchesCarryTheSolidHalfOfIt) {
     if (p.mesh == 2) fence += static_cast<double>(p.area);  // the OBJ's third object
   EXPECT_NEAR(fence, 1.0, 0.02);
   EXPECT_NEAR(fence + m["sampling"]["cut_away_area"].get<double>(), 2.0, 1e-3);
+}
+
+// The shipped textured-lamp scene: its 1 x 1 lamp emits Ke = 4 through a
+// texture white on one half and black on the other, so its patches emit
+// half of Ke x area in all, and more on the lit half than on the dark one.
+TEST(TexturedScene, LampPatchesEmitTheEmissiveTexturesMean) {
+  TempDir tmp;
+  const fs::path out = tmp.path() / "bake";
+  ASSERT_NO_FATAL_FAILURE(bake_into(scene("textured-lamp"), out, tmp, {"texture", "half-lit"}));
+  const LoadedBake b = BakeReader::read(out);
+  double area = 0.0, power = 0.0, lit = 0.0, dark = 0.0;
+  for (const Patch& p : b.patches.patches) {
+    if (p.mesh != 1) continue;  // the lamp, second in the OBJ
+    area += static_cast<double>(p.area);
+    power += static_cast<double>(p.area) * static_cast<double>(p.emission.r);
+    (p.position.x < 0.0f ? lit : dark) += static_cast<double>(p.area) * p.emission.r;
+  }
+  ASSERT_NEAR(area, 1.0, 1e-2);
+  EXPECT_NEAR(power, 0.5 * 4.0, 0.02);
+  EXPECT_GT(lit, 3.0 * dark);
 }
 
 }  // namespace

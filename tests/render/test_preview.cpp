@@ -255,12 +255,12 @@ TEST_F(Preview, AmbientOcclusionDarkensCorners) {
 // x = -1, z = -1) times Kd 0.9; the fence (z = 1, x in [-1, 1], y in [0, 1])
 // is cut by fence-mask.png into 4 x 4 squares, solid where column + row
 // (counted from the top left) is even.
-class TexturedPreview : public RenderTest {
+// The preview at 400 x 300 without overlay on the bake folder `bake`.
+class PreviewOfBake : public RenderTest {
  protected:
-  void SetUp() override {
-    RenderTest::SetUp();
-    data_ = views::load_bake_view_data(BOUNCE_RENDER_TEXTURED_BAKE);
-    ASSERT_TRUE(data_->scene) << "the textured bake's scene is not on disk";
+  void open(const char* bake) {
+    data_ = views::load_bake_view_data(bake);
+    ASSERT_TRUE(data_->scene) << "the scene of " << bake << " is not on disk";
     view_.resize(400, 300);
     view_.set_overlay(false);
     view_.show();
@@ -268,14 +268,22 @@ class TexturedPreview : public RenderTest {
     view_.set_data(data_);
     settle();
   }
+  std::shared_ptr<const views::BakeViewData> data_;
+  views::PreviewWidget view_;
+};
+
+class TexturedPreview : public PreviewOfBake {
+ protected:
+  void SetUp() override {
+    PreviewOfBake::SetUp();
+    open(BOUNCE_RENDER_TEXTURED_BAKE);
+  }
   // Whether a world point lands inside the picture, `margin` pixels clear
   // of its edges.
   bool inside(QPointF p, double margin = 6.0) const {
     return p.x() >= margin && p.y() >= margin && p.x() < view_.width() - margin &&
            p.y() < view_.height() - margin;
   }
-  std::shared_ptr<const views::BakeViewData> data_;
-  views::PreviewWidget view_;
 };
 
 namespace {
@@ -349,6 +357,83 @@ TEST_F(TexturedPreview, FenceHolesShowTheBackdrop) {
   std::cout << "[ measured ] textured preview 400x300, " << data_->patch_count() << " patches, "
             << view_.vertex_count() << " vertices: " << ms << " ms per frame (shadow map "
             << "included)\n";
+}
+
+// The preview on resources/scenes/textured-floor's normal-mapped wall
+// (tests/render/scenes/ridged-wall): the wall (z = -1, x in [-1, 1], y in
+// [0, 2]) is mapped once onto wall-ridges.png, whose 8 columns are facets
+// tilted 30 degrees about the vertical, alternately towards -x (even
+// columns, from x = -1) and +x (odd). The lamp at (0.95, 1.2, -0.3) lights
+// the wall's left part from its +x side, 55 to 70 degrees from the normal,
+// so a facet turned towards it gets cos 25-40 degrees and one turned away
+// cos 80-100 (little or nothing): alternating columns. The flat wall, drawn
+// without its map, only brightens towards the lamp (the irradiance
+// cos / r^2 grows as x does), without a ripple.
+class NormalMappedPreview : public PreviewOfBake {
+ protected:
+  void SetUp() override {
+    PreviewOfBake::SetUp();
+    open(BOUNCE_RENDER_RIDGED_BAKE);
+  }
+  // Luminance of the centre of each of the wall's columns 0 to 5 at the
+  // lamp's height (columns 6 and 7 are beside and behind the lamp).
+  std::vector<double> columns(bool normal_maps) {
+    views::PreviewWidget::Passes passes;
+    passes.normal_maps = normal_maps;
+    view_.set_passes(passes);
+    const QImage image = view_.render_image();
+    EXPECT_TRUE(view_.gl_error().isEmpty()) << view_.gl_error().toStdString();
+    std::vector<double> out;
+    for (int k = 0; k < 6; ++k) {
+      const glm::vec3 centre(-1.0f + 0.25f * static_cast<float>(k) + 0.125f, 1.2f, -1.0f);
+      out.push_back(mean_around(image, view_.project(centre), 2).luminance());
+    }
+    return out;
+  }
+};
+
+TEST_F(NormalMappedPreview, FacetsTurnedToTheLightAreBrighterOnlyWithTheMap) {
+  const std::vector<double> mapped = columns(true), flat = columns(false);
+  for (int k = 0; k < 6; ++k)
+    std::cout << "[ measured ] wall column " << k << ": " << mapped[static_cast<std::size_t>(k)]
+              << " with the normal map, " << flat[static_cast<std::size_t>(k)] << " without\n";
+  for (std::size_t k = 0; k + 1 < 6; ++k) {
+    const std::size_t towards = k % 2 == 1 ? k : k + 1, away = k % 2 == 1 ? k + 1 : k;
+    // With the map: each facet turned towards the lamp is much brighter than
+    // its neighbours turned away.
+    EXPECT_GT(mapped[towards], 1.5 * mapped[away] + 5.0)
+        << "columns " << k << " and " << k + 1 << " with the normal map";
+    // Without it the wall is flat: each column at least as bright as the
+    // one farther from the lamp (within 8-bit rounding).
+    EXPECT_GT(flat[k + 1], flat[k] - 2.0)
+        << "columns " << k << " and " << k + 1 << " without the normal map";
+  }
+  // The map turns light towards and away: brighter and darker than flat.
+  EXPECT_GT(mapped[1], flat[1]);
+  EXPECT_LT(mapped[2], flat[2]);
+}
+
+// The preview of tests/render/scenes/lit-lamp: the lamp (x and z in
+// [-0.5, 0.5] at y = 1, facing down) emits Ke = 4 through half-lit.png, on
+// its half over x < 0 only; a dim bulb below lights both halves alike.
+class EmissiveTexturePreview : public PreviewOfBake {
+ protected:
+  void SetUp() override {
+    PreviewOfBake::SetUp();
+    open(BOUNCE_RENDER_LAMP_BAKE);
+  }
+};
+
+TEST_F(EmissiveTexturePreview, OnlyTheLitHalfOfTheLampGlows) {
+  const QImage image = view_.render_image();
+  ASSERT_TRUE(view_.gl_error().isEmpty()) << view_.gl_error().toStdString();
+  for (const float z : {-0.25f, 0.0f, 0.25f}) {
+    const double lit = mean_around(image, view_.project({-0.25f, 1.0f, z}), 2).luminance();
+    const double dark = mean_around(image, view_.project({0.25f, 1.0f, z}), 2).luminance();
+    std::cout << "[ measured ] lamp at z = " << z << ": lit half " << lit << ", dark half " << dark
+              << "\n";
+    EXPECT_GT(lit, 2.0 * dark + 20.0) << "z = " << z;
+  }
 }
 
 }  // namespace bounce::render_test

@@ -9,7 +9,6 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -17,13 +16,14 @@
 
 #include "base/diagnostics.h"
 #include "base/random.h"
+#include "gltf_quad.h"
 #include "patches/samples.h"
+#include "quad_files.h"
 #include "raytrace/ray_tracer.h"
 #include "reference/path_tracer.h"
 #include "runtime/camera_image.h"
 #include "scene/alpha_mask.h"
 #include "scene/scene_loader.h"
-#include "scratch_dir.h"
 #include "test_scenes.h"
 #include "voxel/voxelization.h"
 
@@ -315,21 +315,8 @@ TEST(AlphaMaskFiles, FloorScenesFenceIsHalfCutAway) {
     EXPECT_EQ(s.masked(t), &s.material_of(t) == fence);
 }
 
-class AlphaMaskFile : public ::testing::Test {
+class AlphaMaskFile : public test::QuadFiles {
  protected:
-  test::ScratchDir dir{"bounce-alpha"};
-  Diagnostics diagnostics;
-
-  void write(const std::string& name, const std::string& bytes) {
-    std::ofstream(dir / name, std::ios::binary) << bytes;
-  }
-  Scene load_obj_quad(const std::string& mask_line) {
-    write("quad.mtl", "newmtl quad\nKd 0.5 0.5 0.5\n" + mask_line + "\n");
-    write("quad.obj",
-          "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-          "usemtl quad\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
-    return SceneLoader(diagnostics).load(dir / "quad.obj");
-  }
   void expect_one_warning_naming(const std::string& what) const {
     ASSERT_EQ(diagnostics.warnings().size(), 1u) << warnings_of(diagnostics);
     const Diagnostic w = diagnostics.warnings()[0];
@@ -366,63 +353,13 @@ TEST_F(AlphaMaskFile, UnreadableMaskWarnsOnceNamingIt) {
   EXPECT_EQ(s.materials.at(0).alpha_mask, nullptr);
 }
 
-std::string base64(const std::string& in) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  std::size_t i = 0;
-  for (; i + 2 < in.size(); i += 3) {
-    const unsigned n = (static_cast<unsigned char>(in[i]) << 16) |
-                       (static_cast<unsigned char>(in[i + 1]) << 8) |
-                       static_cast<unsigned char>(in[i + 2]);
-    out += {k[(n >> 18) & 63], k[(n >> 12) & 63], k[(n >> 6) & 63], k[n & 63]};
-  }
-  if (i + 1 == in.size()) {
-    const unsigned n = static_cast<unsigned char>(in[i]) << 16;
-    out += {k[(n >> 18) & 63], k[(n >> 12) & 63], '=', '='};
-  } else if (i + 2 == in.size()) {
-    const unsigned n =
-        (static_cast<unsigned char>(in[i]) << 16) | (static_cast<unsigned char>(in[i + 1]) << 8);
-    out += {k[(n >> 18) & 63], k[(n >> 12) & 63], k[(n >> 6) & 63], '='};
-  }
-  return out;
-}
-
-// A unit quad in z = 0 facing +z, texture coordinates (x, 1 - y) as glTF's
-// v runs down, its base colour texture `image` (none and no coordinates
-// when empty); `material` is the material's JSON members after
-// pbrMetallicRoughness.
+// A unit quad in z = 0 facing +z with its base colour texture `image`
+// (tests/unit/gltf_quad.h).
 class GltfMask : public AlphaMaskFile {
  protected:
   Scene load_gltf_quad(const std::string& image, const std::string& material,
                        const std::string& factor = "[0.5, 0.5, 0.5, 1]") {
-    std::string buffer;
-    const auto put = [&](const auto& value) {
-      buffer.append(reinterpret_cast<const char*>(&value), sizeof(value));
-    };
-    for (const float f : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 1.f, 0.f, 0.f, 1.f, 0.f}) put(f);
-    for (const float f : {0.f, 1.f, 1.f, 1.f, 1.f, 0.f, 0.f, 0.f}) put(f);
-    for (const int i : {0, 1, 2, 0, 2, 3}) put(static_cast<std::uint16_t>(i));
-    const bool textured = !image.empty();
-    const std::string json =
-        R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
-  "nodes": [{"mesh": 0}],
-  "meshes": [{"primitives": [{"attributes": {"POSITION": 0)" +
-        std::string(textured ? R"(, "TEXCOORD_0": 1)" : "") +
-        R"(}, "indices": 2, "material": 0}]}],
-  "materials": [{"name": "leaf", "pbrMetallicRoughness": {"baseColorFactor": )" +
-        factor + (textured ? R"(, "baseColorTexture": {"index": 0})" : "") + "}" + material +
-        "}]," +
-        (textured ? R"("textures": [{"source": 0}], "images": [{"uri": ")" + image + R"("}],)"
-                  : "") +
-        R"(
-  "buffers": [{"byteLength": 92, "uri": "data:application/octet-stream;base64,)" +
-        base64(buffer) + R"("}],
-  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
-                  {"buffer": 0, "byteOffset": 48, "byteLength": 32},
-                  {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
-  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
-                {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
-                {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}]})";
+    const std::string json = test::gltf_quad(image, material, factor);
     write("quad.gltf", json);
     return SceneLoader(diagnostics).load(dir / "quad.gltf");
   }

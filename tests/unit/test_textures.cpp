@@ -9,19 +9,18 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "base/diagnostics.h"
 #include "patches/samples.h"
+#include "quad_files.h"
 #include "raytrace/ray_tracer.h"
 #include "reference/path_tracer.h"
 #include "runtime/camera_image.h"
 #include "scene/scene_loader.h"
 #include "scene/texture.h"
-#include "scratch_dir.h"
 #include "test_scenes.h"
 #include "voxel/voxelization.h"
 
@@ -94,7 +93,7 @@ TEST(Textures, SampleAlbedoIsTheTexturesMeanOverWhatEachSampleCarries) {
   const RayTracer tracer(s);
   const Voxelization vox = voxelize(s, VoxelGrid(s.bounds(), 8));
   SampleSet set = generate_samples(s, tracer, vox, SamplingSettings{});
-  EXPECT_GT(apply_texture_albedo(s, vox, set), 0u);
+  EXPECT_GT(apply_surface_textures(s, vox, set), 0u);
   // The floor's samples tile it: their area-weighted albedo is the whole
   // floor's mean, which is the mean of the two colours.
   glm::dvec3 sum(0.0), lo(1.0), hi(0.0);
@@ -202,20 +201,10 @@ TEST(Textures, ReferenceBouncesOffTheTexel) {
   EXPECT_NEAR(e.b, 0.1f, 0.02f);
 }
 
-class TextureFiles : public ::testing::Test {
+class TextureFiles : public test::QuadFiles {
  protected:
-  test::ScratchDir dir{"bounce-textures"};
-  Diagnostics diagnostics;
-
-  void write(const std::string& name, const std::string& text) {
-    std::ofstream(dir / name, std::ios::binary) << text;
-  }
   Scene load_quad(const std::string& texture_line) {
-    write("quad.mtl", "newmtl quad\nKd 0.5 0.25 0.125\n" + texture_line + "\n");
-    write("quad.obj",
-          "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
-          "usemtl quad\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n");
-    return SceneLoader(diagnostics).load(dir / "quad.obj");
+    return load_obj_quad(texture_line, "0.5 0.25 0.125");
   }
   // The only warning names the file, and the quad keeps its Kd untextured.
   void expect_one_warning_and_kd(const Scene& s, const std::string& file) const {
