@@ -5,7 +5,7 @@
 // another panel so two pictures move together.
 #include <QGraphicsView>
 
-#include "io/png_writer.h"
+#include "bounce/pictures.h"
 
 class QGraphicsPixmapItem;
 

@@ -15,22 +15,17 @@
 #include <iostream>
 #include <memory>
 
-#include "bake/bake_reader.h"
-#include "base/diagnostics.h"
-#include "base/error.h"
 #include "bench_commands.h"
+#include "bounce/bake_folder.h"
+#include "bounce/diagnostics.h"
+#include "bounce/error.h"
+#include "bounce/metrics.h"
+#include "bounce/relight.h"
+#include "bounce/report.h"
+#include "bounce/scene.h"
 #include "console_progress.h"
 #include "dynamic_bench.h"
-#include "io/npy.h"
-#include "metrics/image_metrics.h"
-#include "raytrace/ray_tracer.h"
-#include "reference/reference_cache.h"
-#include "runtime/area_lights.h"
-#include "runtime/camera_image.h"
 #include "runtime/compressed_transport.h"
-#include "runtime/direct_light.h"
-#include "runtime/patch_gather.h"
-#include "scene/scene_loader.h"
 
 namespace bounce::cli {
 

@@ -1,5 +1,5 @@
 // `bounce bench ordering`: our ordering (compress/ordering.h) on a large
-// synthetic transport image (app/cli/synthetic_codes.h), to check the
+// synthetic transport image (bench/synthetic_codes.h), to check the
 // issue's target "ordering of N = 16384 in under 60 s on this machine" at a
 // size no bake here reaches, and how close it comes to the structure the
 // shuffle hid (block-spread cost, compress/ordering_cost.h).
@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "base/error.h"
 #include "bench_commands.h"
+#include "bounce/error.h"
 #include "bounce/settings.h"
 #include "compress/ordering.h"
 #include "synthetic_codes.h"
@@ -21,7 +21,7 @@ namespace bounce::cli {
 
 namespace {
 
-constexpr double kTargetSeconds = 60.0;  // the target at N = 16384
+constexpr double kTargetSeconds = 60.0;  // what our ordering should take at N = 16384
 
 struct OrderingBenchOptions {
   std::size_t n = 16384;
