@@ -10,12 +10,12 @@
 #include <string>
 
 #include "base/error.h"
-#include "dynamic/frame_graph.h"
 #include "dynamic/local_transport.h"
 #include "dynamic/temporal_radiosity_cl.h"
 #include "metrics/image_metrics.h"
 #include "runtime/classic_radiosity.h"
 #include "runtime/dense_transport.h"
+#include "runtime/frame_graph.h"
 #include "transport/inverse_transport.h"
 #include "transport/spectral_radius.h"
 
