@@ -27,8 +27,6 @@
 #include "bounce/compression.h"
 #include "bounce/error.h"
 #include "commands.h"
-#include "compress/entry_importance.h"
-#include "compress/light_rebalance.h"
 #include "console_progress.h"
 #include "exact_transport.h"
 

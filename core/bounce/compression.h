@@ -10,8 +10,16 @@
 // log-quantised and block-encoded), the storage decision of a bake, the
 // errors compression causes (per entry, on the indirect light) and the
 // pictures of a matrix and of its error that the bake folder and the
-// studio's views show.
+// studio's views show. For a front end that compresses a matrix itself as a
+// bake does: the entries' importance to the light (light_importance, which
+// CodecSettings::importance weighs the encoding by), compress_for_light
+// (compress, measure, and try the lights rebalanced), and the row and column
+// orderings before block encoding (our_ordering, paper_ordering) with the
+// cost that compares them (block_spread_cost).
 #include "bake/matrix_storage.h"
 #include "compress/codec.h"
 #include "compress/compression_error.h"
+#include "compress/entry_importance.h"
+#include "compress/light_rebalance.h"
 #include "compress/matrix_picture.h"
+#include "compress/ordering.h"
