@@ -542,4 +542,10 @@ std::string dynamic_bench_table(const DynamicBench& b) {
   return s;
 }
 
+std::unique_ptr<CompressedTransport> compressed_product(
+    const std::optional<CompressedMatrix>& matrix, const std::array<int, 3>& channel_of_rgb) {
+  if (!matrix) return nullptr;
+  return std::make_unique<CompressedTransport>(*matrix, channel_of_rgb);
+}
+
 }  // namespace bounce

@@ -25,7 +25,6 @@
 #include "bounce/scene.h"
 #include "console_progress.h"
 #include "dynamic_bench.h"
-#include "runtime/compressed_transport.h"
 
 namespace bounce::cli {
 
@@ -203,11 +202,9 @@ void run(const DynamicBenchOptions& opt) {
                   "(use --no-images)");
   }
 
-  std::unique_ptr<CompressedTransport> compressed;
-  if (b.compressed) {
-    compressed = std::make_unique<CompressedTransport>(*b.compressed, b.channel_of_rgb);
-    in.compressed = compressed.get();
-  }
+  const std::unique_ptr<CompressedTransport> compressed =
+      compressed_product(b.compressed, b.channel_of_rgb);
+  in.compressed = compressed.get();
 
   DynamicBenchSettings settings;
   settings.light_temporal.block_columns = opt.block_columns;
