@@ -10,12 +10,12 @@
 #include <string>
 
 #include "base/error.h"
-#include "dynamic/frame_graph.h"
 #include "dynamic/local_transport.h"
 #include "dynamic/temporal_radiosity_cl.h"
 #include "metrics/image_metrics.h"
 #include "runtime/classic_radiosity.h"
 #include "runtime/dense_transport.h"
+#include "runtime/frame_graph.h"
 #include "transport/inverse_transport.h"
 #include "transport/spectral_radius.h"
 
@@ -540,6 +540,12 @@ std::string dynamic_bench_table(const DynamicBench& b) {
     s += line;
   }
   return s;
+}
+
+std::unique_ptr<CompressedTransport> compressed_product(
+    const std::optional<CompressedMatrix>& matrix, const std::array<int, 3>& channel_of_rgb) {
+  if (!matrix) return nullptr;
+  return std::make_unique<CompressedTransport>(*matrix, channel_of_rgb);
 }
 
 }  // namespace bounce

@@ -21,6 +21,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -126,6 +128,13 @@ struct DynamicBench {
 };
 
 DynamicBench run_dynamic_bench(const DynamicBenchInput& in, const DynamicBenchSettings& settings);
+
+// The compressed product of a compressed matrix as the runtime multiplies
+// it (the block loop the CPU has), for DynamicBenchInput::compressed; null
+// when there is none (a bake stored dense). channel_of_rgb: the stored
+// channel of R, G and B.
+std::unique_ptr<CompressedTransport> compressed_product(
+    const std::optional<CompressedMatrix>& matrix, const std::array<int, 3>& channel_of_rgb);
 
 // Area-weighted relative RMS over patches and colours: sqrt(sum A |y - y*|^2
 // / sum A |y*|^2).

@@ -1,6 +1,7 @@
 // The `bounce` Python module: load a scene, bake it into a bake folder and
 // relight a bake, through the same public core functions the CLI and the
 // studio call (docs/python.md).
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -32,6 +33,19 @@ py::array_t<float> rows_of_three(const std::vector<glm::vec3>& v) {
     out[3 * i] = v[i].x;
     out[3 * i + 1] = v[i].y;
     out[3 * i + 2] = v[i].z;
+  }
+  return a;
+}
+
+// height x width x 3 float32 array holding a copy of `image` (top row first).
+py::array_t<float> picture(const RgbFloatImage& image) {
+  py::array_t<float> a({static_cast<py::ssize_t>(image.height),
+                        static_cast<py::ssize_t>(image.width), py::ssize_t{3}});
+  float* out = a.mutable_data();
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    out[3 * i] = image.pixels[i].x;
+    out[3 * i + 1] = image.pixels[i].y;
+    out[3 * i + 2] = image.pixels[i].z;
   }
   return a;
 }
@@ -221,7 +235,38 @@ PYBIND11_MODULE(bounce, m) {
           "relight(lights=None) -> dict of float32 arrays.\n"
           "One frame with the scene's lights; lights={'name': (x, y, z)} moves point and spot "
           "lights first. Per patch (n x 3): first_hit (b), indirect (T b), patch_light "
-          "(b + T b), exitance (emission + b + T b); per lit-mesh vertex (v x 3): vertex_light.");
+          "(b + T b), exitance (emission + b + T b); per lit-mesh vertex (v x 3): vertex_light.")
+      .def(
+          "camera_image",
+          [](OpenedBake& b, int width, int height, int samples, int gather_rays) {
+            CameraImageSettings settings;
+            settings.width = width;
+            settings.height = height;
+            settings.samples_per_side = samples;
+            CameraImages images;
+            {
+              py::gil_scoped_release release;
+              images = b.camera_images(settings, gather_rays);
+            }
+            py::dict out;
+            out["direct"] = picture(images.direct);
+            out["indirect"] = picture(images.indirect);
+            out["full"] = picture(images.full);
+            py::array_t<float> coverage(
+                {static_cast<py::ssize_t>(height), static_cast<py::ssize_t>(width)});
+            std::copy(images.coverage.begin(), images.coverage.end(), coverage.mutable_data());
+            out["coverage"] = coverage;
+            return out;
+          },
+          py::arg("width") = 320, py::arg("height") = 240, py::arg("samples") = 1,
+          py::arg("gather_rays") = 256,
+          "camera_image(width=320, height=240, samples=1, gather_rays=256) -> dict of float32 "
+          "arrays.\n"
+          "The scene camera's pictures under the scene's own lights, as `bounce solve` renders "
+          "them (samples x samples rays per pixel; each pixel gathers from the patches it sees "
+          "with gather_rays rays, 0: from the nearest patches): direct, indirect and full "
+          "(height x width x 3, linear light, top row first) and coverage (height x width: the "
+          "share of a pixel's rays that hit the scene).");
 
   m.def(
       "open_bake",

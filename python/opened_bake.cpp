@@ -95,4 +95,20 @@ RelitFrame OpenedBake::relight(const std::map<std::string, glm::vec3>& moved) {
   return out;
 }
 
+CameraImages OpenedBake::camera_images(const CameraImageSettings& settings, int gather_rays) {
+  if (gather_rays < 0 || gather_rays > 65536)
+    throw Error("gather_rays", "must be between 0 and 65536, got " + std::to_string(gather_rays));
+  relighter_->light(scene_.lights, area_lights(scene_));
+  const RuntimeFrame& frame = relighter_->frame();
+  const std::vector<glm::vec3>& first_hit = frame.first_hit();
+  const std::vector<glm::vec3>& indirect = frame.indirect();
+  if (gather_rays > 0 && camera_gather_possible(bake_))
+    return CameraGather(*tracer_, bake_, settings, gather_rays)
+        .images(first_hit, indirect, frame.sample_irradiance());
+  const PatchGather nearest(bake_.patches.patches, indirect,
+                            TransferGrid::from_manifest(bake_.manifest), tracer_.get(),
+                            GatherSettings{});
+  return render_camera(*tracer_, nearest, settings);
+}
+
 }  // namespace bounce::python

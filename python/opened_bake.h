@@ -45,6 +45,15 @@ class OpenedBake {
   // directional light.
   RelitFrame relight(const std::map<std::string, glm::vec3>& moved);
 
+  // The scene camera's pictures under the scene's own lights, as `bounce
+  // solve` renders them: each pixel gathers b + T b from the patches it sees
+  // with `gather_rays` rays when the bake keeps what that needs
+  // (camera_gather_possible) and gather_rays > 0, else from the nearest
+  // patches. The camera's direct light comes from the scene's lights, so
+  // lights moved in relight() do not apply here. Throws bounce::Error for a
+  // bad size or ray count.
+  CameraImages camera_images(const CameraImageSettings& settings, int gather_rays);
+
  private:
   std::filesystem::path folder_;
   LoadedBake bake_;

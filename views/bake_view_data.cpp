@@ -2,8 +2,8 @@
 
 #include <cmath>
 
+#include "bounce/bake_folder.h"
 #include "bounce/scene.h"
-#include "io/npy.h"
 
 namespace bounce::views {
 

@@ -8,8 +8,8 @@
 #include <QThread>
 #include <QVBoxLayout>
 
-#include "base/diagnostics.h"
-#include "compress/matrix_picture.h"
+#include "bounce/compression.h"
+#include "bounce/diagnostics.h"
 #include "error_histogram.h"
 
 namespace bounce::views {

@@ -15,9 +15,8 @@
 
 #include <QWidget>
 
-#include "bake/matrix_storage.h"
 #include "bake_view_data.h"
-#include "compress/compression_error.h"
+#include "bounce/compression.h"
 #include "matrix_panel.h"
 
 class QComboBox;

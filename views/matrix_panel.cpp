@@ -11,7 +11,7 @@
 #include <QScrollBar>
 #include <QWheelEvent>
 
-#include "io/text_label.h"
+#include "bounce/pictures.h"
 
 namespace bounce::views {
 

@@ -8,7 +8,7 @@
 
 #include <QGraphicsView>
 
-#include "io/png_writer.h"
+#include "bounce/pictures.h"
 
 class QGraphicsPixmapItem;
 class QGraphicsRectItem;

@@ -8,7 +8,7 @@
 #include <QPushButton>
 #include <QVBoxLayout>
 
-#include "compress/matrix_picture.h"
+#include "bounce/compression.h"
 
 namespace bounce::views {
 

@@ -30,12 +30,10 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 
-#include "compress/codec.h"
-#include "compress/matrix_picture.h"
-#include "io/tone_map.h"
-#include "metrics/patch_light_error.h"
-#include "runtime/dense_transport.h"
-#include "runtime/direct_light.h"
+#include "bounce/compression.h"
+#include "bounce/metrics.h"
+#include "bounce/pictures.h"
+#include "bounce/relight.h"
 #include "vtk_scene.h"
 
 namespace bounce::views {

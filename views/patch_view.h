@@ -20,7 +20,7 @@
 #include <QWidget>
 
 #include "bake_view_data.h"
-#include "compress/row_error_contributions.h"
+#include "bounce/compression.h"
 
 class QComboBox;
 class QLabel;

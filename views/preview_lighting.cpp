@@ -5,7 +5,6 @@
 #include "bounce/bake_folder.h"
 #include "bounce/relight.h"
 #include "bounce/scene.h"
-#include "runtime/patch_gather.h"
 
 namespace bounce::views {
 

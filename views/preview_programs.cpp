@@ -3,7 +3,7 @@
 #include <cstring>
 #include <string>
 
-#include "base/error.h"
+#include "bounce/error.h"
 #include "views/embedded_shaders.h"
 
 namespace bounce::views {

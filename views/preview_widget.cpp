@@ -20,10 +20,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "base/error.h"
+#include "bounce/error.h"
 #include "bounce/export.h"
+#include "bounce/pictures.h"
 #include "bounce/scene.h"
-#include "io/tone_map.h"
 #include "preview_lighting.h"
 #include "preview_programs.h"
 #include "preview_tangents.h"

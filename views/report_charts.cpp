@@ -22,8 +22,8 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkWindowToImageFilter.h>
 
-#include "base/error.h"
-#include "io/atomic_file.h"
+#include "bounce/error.h"
+#include "bounce/export.h"
 #include "vtk_error_capture.h"
 
 namespace bounce::views {

@@ -12,7 +12,7 @@
 
 #include <vtkSmartPointer.h>
 
-#include "report/report_data.h"
+#include "bounce/report.h"
 
 class vtkChartXY;
 

@@ -11,7 +11,7 @@
 #include <QPoint>
 #include <QWidget>
 
-#include "report/report_data.h"
+#include "bounce/report.h"
 #include "report_charts.h"
 
 class QLabel;

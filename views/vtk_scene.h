@@ -3,7 +3,7 @@
 // its camera on a vtkCamera.
 #include <vtkSmartPointer.h>
 
-#include "scene/scene.h"
+#include "bounce/scene.h"
 
 class vtkActor;
 class vtkRenderer;

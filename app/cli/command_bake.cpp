@@ -7,18 +7,16 @@
 #include <set>
 #include <string>
 
-#include "bake/bake.h"
-#include "bake/bake_writer.h"
 #include "bake_report.h"
-#include "base/error.h"
+#include "bounce/bake.h"
+#include "bounce/error.h"
+#include "bounce/scene.h"
 #include "commands.h"
 #include "console_progress.h"
 #include "lit_bake_mesh.h"
 #include "reference_check.h"
-#include "scene/scene_loader.h"
 #ifdef BOUNCE_HAVE_MPI
-#include "distributed/mpi_bake_distribution.h"
-#include "distributed/mpi_session.h"
+#include "bounce/distributed_bake.h"
 #endif
 
 namespace bounce::cli {

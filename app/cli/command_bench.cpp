@@ -3,13 +3,12 @@
 #include <iostream>
 #include <memory>
 
-#include "bake/bake.h"
-#include "bake/bake_writer.h"
 #include "bake_report.h"
 #include "bench_commands.h"
+#include "bounce/bake.h"
+#include "bounce/scene.h"
 #include "commands.h"
 #include "console_progress.h"
-#include "scene/scene_loader.h"
 
 namespace bounce::cli {
 

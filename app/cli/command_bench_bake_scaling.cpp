@@ -12,12 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "bake/bake.h"
-#include "bake/bake_writer.h"
 #include "bench_commands.h"
+#include "bounce/bake.h"
+#include "bounce/scene.h"
 #include "commands.h"
 #include "console_progress.h"
-#include "scene/scene_loader.h"
 
 namespace bounce::cli {
 

@@ -23,13 +23,10 @@
 #include <string>
 #include <vector>
 
-#include "base/error.h"
 #include "bench_commands.h"
+#include "bounce/compression.h"
+#include "bounce/error.h"
 #include "commands.h"
-#include "compress/codec.h"
-#include "compress/compression_error.h"
-#include "compress/entry_importance.h"
-#include "compress/light_rebalance.h"
 #include "console_progress.h"
 #include "exact_transport.h"
 

@@ -15,22 +15,16 @@
 #include <iostream>
 #include <memory>
 
-#include "bake/bake_reader.h"
-#include "base/diagnostics.h"
-#include "base/error.h"
 #include "bench_commands.h"
+#include "bounce/bake_folder.h"
+#include "bounce/diagnostics.h"
+#include "bounce/error.h"
+#include "bounce/metrics.h"
+#include "bounce/relight.h"
+#include "bounce/report.h"
+#include "bounce/scene.h"
 #include "console_progress.h"
 #include "dynamic_bench.h"
-#include "io/npy.h"
-#include "metrics/image_metrics.h"
-#include "raytrace/ray_tracer.h"
-#include "reference/reference_cache.h"
-#include "runtime/area_lights.h"
-#include "runtime/camera_image.h"
-#include "runtime/compressed_transport.h"
-#include "runtime/direct_light.h"
-#include "runtime/patch_gather.h"
-#include "scene/scene_loader.h"
 
 namespace bounce::cli {
 
@@ -208,11 +202,9 @@ void run(const DynamicBenchOptions& opt) {
                   "(use --no-images)");
   }
 
-  std::unique_ptr<CompressedTransport> compressed;
-  if (b.compressed) {
-    compressed = std::make_unique<CompressedTransport>(*b.compressed, b.channel_of_rgb);
-    in.compressed = compressed.get();
-  }
+  const std::unique_ptr<CompressedTransport> compressed =
+      compressed_product(b.compressed, b.channel_of_rgb);
+  in.compressed = compressed.get();
 
   DynamicBenchSettings settings;
   settings.light_temporal.block_columns = opt.block_columns;

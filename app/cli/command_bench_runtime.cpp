@@ -8,11 +8,9 @@
 #include <iostream>
 #include <memory>
 
-#include "bake/bake_reader.h"
-#include "base/error.h"
 #include "bench_commands.h"
 #include "bounce/bake_folder.h"
-#include "io/npy.h"
+#include "bounce/error.h"
 #include "runtime_bench.h"
 
 namespace bounce::cli {

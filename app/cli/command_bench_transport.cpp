@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "base/error.h"
 #include "bench_commands.h"
+#include "bounce/error.h"
 #include "transport_bench.h"
 
 namespace bounce::cli {

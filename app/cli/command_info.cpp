@@ -4,8 +4,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bounce/scene.h"
 #include "commands.h"
-#include "scene/scene_loader.h"
 
 namespace bounce::cli {
 

@@ -18,16 +18,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "base/error.h"
+#include "bounce/error.h"
+#include "bounce/export.h"
+#include "bounce/report.h"
+#include "bounce/scene.h"
 #include "commands.h"
 #include "console_progress.h"
-#include "io/atomic_file.h"
 #include "number_text.h"
-#include "reference/reference_cache.h"
-#include "report/report_data.h"
-#include "report/report_sweep.h"
 #include "report_comparison.h"
-#include "scene/scene_loader.h"
 #ifdef BOUNCE_REPORT_CHARTS
 #include "report_charts.h"
 #endif

@@ -19,17 +19,12 @@
 
 #include "bounce/bake_folder.h"
 #include "bounce/export.h"
+#include "bounce/metrics.h"
 #include "bounce/relight.h"
 #include "bounce/scene.h"
 #include "commands.h"
 #include "console_progress.h"
-#include "io/npy.h"
 #include "lit_bake_mesh.h"
-#include "metrics/error_heat_map.h"
-#include "metrics/image_metrics.h"
-#include "metrics/patch_light_error.h"
-#include "metrics/vertex_metrics.h"
-#include "runtime/dense_transport.h"
 
 namespace bounce::cli {
 

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <string>
 
-#include "base/progress.h"
+#include "bounce/progress.h"
 
 namespace bounce::cli {
 

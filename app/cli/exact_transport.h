@@ -10,7 +10,7 @@
 
 #include "bounce/bake.h"
 #include "bounce/bake_folder.h"
-#include "compress/compression_error.h"
+#include "bounce/compression.h"
 
 namespace bounce::cli {
 

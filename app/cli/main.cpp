@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <exception>
 
-#include "base/error.h"
+#include "bounce/error.h"
 #include "commands.h"
 
 int main(int argc, char** argv) {

@@ -3,9 +3,9 @@
 #include <chrono>
 #include <cstdio>
 
+#include "bounce/metrics.h"
 #include "bounce/relight.h"
-#include "metrics/image_metrics.h"
-#include "reference/reference_cache.h"
+#include "bounce/report.h"
 
 namespace bounce::cli {
 

@@ -7,11 +7,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bake/bake.h"
-#include "base/progress.h"
-#include "report/baked_multiply.h"
-#include "runtime/patch_lighting.h"
-#include "scene/scene.h"
+#include "bounce/bake.h"
+#include "bounce/progress.h"
+#include "bounce/relight.h"
+#include "bounce/report.h"
+#include "bounce/scene.h"
 
 namespace bounce::cli {
 

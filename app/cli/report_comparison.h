@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "report/report_data.h"
+#include "bounce/report.h"
 
 namespace bounce::cli {
 

@@ -8,7 +8,7 @@
 #include <QCommandLineParser>
 #include <QSurfaceFormat>
 
-#include "base/error.h"
+#include "bounce/error.h"
 #include "headless.h"
 #include "main_window.h"
 #include "vtk_error_capture.h"

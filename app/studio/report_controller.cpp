@@ -1,8 +1,7 @@
 #include "report_controller.h"
 
-#include "reference/reference_cache.h"
-#include "report/report_sweep.h"
-#include "scene/scene_loader.h"
+#include "bounce/report.h"
+#include "bounce/scene.h"
 
 namespace bounce::studio {
 

@@ -8,8 +8,8 @@
 #include <QObject>
 #include <QString>
 
-#include "base/progress.h"
-#include "report/report_data.h"
+#include "bounce/progress.h"
+#include "bounce/report.h"
 #include "worker_thread.h"
 
 namespace bounce::studio {

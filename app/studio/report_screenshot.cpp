@@ -5,7 +5,7 @@
 #include <QApplication>
 
 #include "bake_job.h"
-#include "base/error.h"
+#include "bounce/error.h"
 #include "headless.h"
 #include "report_controller.h"
 #include "report_view.h"

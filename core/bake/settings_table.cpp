@@ -88,6 +88,16 @@ constexpr TransportSettings::Backend kBackends[] = {TransportSettings::Backend::
                                                     TransportSettings::Backend::OpenBLAS,
                                                     TransportSettings::Backend::CLBlast};
 
+// Three fields of BakeSettings are not rows, on purpose: the tuning constants
+// of the automatic choices in TransportSettings, auto_tolerance (the share of
+// the light below which --bounces auto stops adding bounces), max_auto_bounces
+// (where it switches to K = infinity) and auto_probe_min_seconds (the
+// predicted OpenBLAS time below which --gemm auto does not probe CLBlast).
+// They are not user-facing: no front end offers them, the help of --bounces
+// states the tolerance, and a row would add a CLI flag and two keys to every
+// manifest's settings. Library callers and tests may still set them;
+// the transport stage checks their ranges, and the re-bake plan compares the
+// two that decide the number of bounces by hand.
 std::vector<SettingRow> make_rows() {
   using S = BakeSettings;
   std::vector<SettingRow> rows;

@@ -12,6 +12,9 @@
 // once, in the names of bake_file::, patch_column:: and the like; the form
 // factors F.npy (bakes made with --dump-matrices) come from
 // read_form_factors(), the stored final gather from read_final_gather().
+// The tables are NumPy files; read_npy_f32 and write_npy read and write
+// them (and a front end's own arrays) with the same checks.
 #include "bake/bake_format.h"
 #include "bake/bake_reader.h"
 #include "bake/final_gather_files.h"
+#include "io/npy.h"

@@ -11,7 +11,10 @@
 // coordinates, tone-mapped linear COLOR_0 on unlit materials (the light
 // without the albedo where a texture carries it), the exact light as
 // _RADIANCE. write_lit_glb writes a bare mesh without materials. All are
-// written atomically.
+// written atomically; AtomicFile writes a front end's own files the same
+// way (a temporary name renamed into place by commit(), so an interrupted
+// write leaves no half file).
+#include "io/atomic_file.h"
 #include "io/glb_writer.h"
 #include "io/ply_writer.h"
 #include "runtime/lit_scene_glb.h"

@@ -15,13 +15,22 @@
 // allocating; the final gather takes the patches' reflected light b + T b
 // to the lit mesh's vertices (the gather a bake stores; the mesh from
 // build_transfer_mesh) or to camera pixels (build_final_gather over the
-// hits of render_camera_direct).
+// hits of render_camera_direct). The pieces a frame is made of are public
+// too, for front ends that run them one by one: the direct light on the
+// patches (direct_light.h), the patches' light for a set of lights
+// (PatchLighting), the dense product itself, and the gather from nearby
+// patches over a grid (PatchGather), which a bake without a stored final
+// gather uses.
 #include "bake/camera_gather.h"
 #include "bake/stored_transport.h"
 #include "raytrace/ray_tracer.h"
 #include "runtime/area_lights.h"
 #include "runtime/camera_image.h"
+#include "runtime/dense_transport.h"
+#include "runtime/direct_light.h"
 #include "runtime/final_gather.h"
 #include "runtime/mesh_transfer.h"
+#include "runtime/patch_gather.h"
+#include "runtime/patch_lighting.h"
 #include "runtime/relighter.h"
 #include "runtime/transport_multiplier.h"

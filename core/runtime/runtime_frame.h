@@ -1,6 +1,6 @@
 #pragma once
 // The runtime's per-frame work on the patches run through the frame graph
-// (dynamic/frame_graph.h: the runtime solve runs through this graph, so its
+// (runtime/frame_graph.h: the runtime solve runs through this graph, so its
 // transient buffers can share memory). The graph is built and compiled once per bake and multiply
 // path, so its transient arena is allocated once; solve() then executes it
 // once per light configuration without allocating:
@@ -31,11 +31,11 @@
 
 #include <glm/glm.hpp>
 
-#include "dynamic/frame_graph.h"
 #include "patches/patch_set.h"
 #include "raytrace/ray_tracer.h"
 #include "runtime/area_lights.h"
 #include "runtime/carried_polygon_frames.h"
+#include "runtime/frame_graph.h"
 #include "runtime/patch_lighting.h"
 #include "scene/scene.h"
 

@@ -1,4 +1,4 @@
-#include "dynamic/frame_graph.h"
+#include "runtime/frame_graph.h"
 
 #include <algorithm>
 #include <limits>

@@ -1,4 +1,4 @@
-// The frame graph and its transient allocator (dynamic/frame_graph.h,
+// The frame graph and its transient allocator (runtime/frame_graph.h,
 // transient_allocator.h): no two buffers live at the same time share memory,
 // the peak meets the max-live lower bound for equal sizes, and a graph
 // computes the same with and without aliasing.
@@ -11,8 +11,8 @@
 
 #include "base/error.h"
 #include "base/random.h"
-#include "dynamic/frame_graph.h"
-#include "dynamic/transient_allocator.h"
+#include "runtime/frame_graph.h"
+#include "runtime/transient_allocator.h"
 
 namespace bounce {
 namespace {
@@ -46,7 +46,7 @@ void expect_no_live_overlap(const std::vector<TransientLifetime>& l, const Trans
   }
 }
 
-TEST(DynamicFrameGraph, AllocatorNeverOverlapsLiveBuffers) {
+TEST(FrameGraph, AllocatorNeverOverlapsLiveBuffers) {
   Rng rng(42, 0);
   for (int trial = 0; trial < 500; ++trial) {
     const auto l = random_lifetimes(rng, false);
@@ -59,7 +59,7 @@ TEST(DynamicFrameGraph, AllocatorNeverOverlapsLiveBuffers) {
   }
 }
 
-TEST(DynamicFrameGraph, EqualSizesReachTheMaxLiveBound) {
+TEST(FrameGraph, EqualSizesReachTheMaxLiveBound) {
   Rng rng(7, 0);
   for (int trial = 0; trial < 500; ++trial) {
     const auto l = random_lifetimes(rng, true);
@@ -69,7 +69,7 @@ TEST(DynamicFrameGraph, EqualSizesReachTheMaxLiveBound) {
   }
 }
 
-TEST(DynamicFrameGraph, RejectsBadInput) {
+TEST(FrameGraph, RejectsBadInput) {
   EXPECT_THROW(place_transients({{3, 2, 10}}), Error);
   EXPECT_THROW(place_transients({{0, 2, 10}}, 0), Error);
   FrameGraph g;
@@ -86,7 +86,7 @@ TEST(DynamicFrameGraph, RejectsBadInput) {
 // a is read by the last pass, so it keeps its memory throughout; b is dead
 // once c is written, so d can take b's memory. Same result both ways, three
 // buffers instead of four.
-TEST(DynamicFrameGraph, ExecutesTheSameWithAndWithoutAliasing) {
+TEST(FrameGraph, ExecutesTheSameWithAndWithoutAliasing) {
   const std::size_t n = 100;
   std::vector<float> x(n), out_alias(n), out_plain(n);
   for (std::size_t i = 0; i < n; ++i) x[i] = static_cast<float>(i);
@@ -134,7 +134,7 @@ TEST(DynamicFrameGraph, ExecutesTheSameWithAndWithoutAliasing) {
 // are overwritten with NaN. A live buffer sharing memory with another live
 // one, or with a dead one, would fail a check. The arena is exactly the
 // allocator's peak.
-TEST(DynamicFrameGraph, PoisonedExecutionFindsNoClobberedLiveBuffer) {
+TEST(FrameGraph, PoisonedExecutionFindsNoClobberedLiveBuffer) {
   Rng rng(2024, 0);
   for (int trial = 0; trial < 200; ++trial) {
     const auto l = random_lifetimes(rng, trial % 2 == 0);
@@ -180,7 +180,7 @@ TEST(DynamicFrameGraph, PoisonedExecutionFindsNoClobberedLiveBuffer) {
 
 // The checking mode can fail: a pass that reads a transient after its
 // declared lifetime (an undeclared read) gets the NaN written at its death.
-TEST(DynamicFrameGraph, PoisonShowsAReadAfterTheLifetime) {
+TEST(FrameGraph, PoisonShowsAReadAfterTheLifetime) {
   FrameGraph g;
   float out = 0.0f;
   const auto result = g.add_imported("out", &out, sizeof(float));
@@ -198,7 +198,7 @@ TEST(DynamicFrameGraph, PoisonShowsAReadAfterTheLifetime) {
   EXPECT_TRUE(std::isnan(out));
 }
 
-TEST(DynamicFrameGraph, DynamicRadiosityGraphAliasesTheLocalUpdate) {
+TEST(FrameGraph, DynamicRadiosityGraphAliasesTheLocalUpdate) {
   for (bool temporal : {false, true}) {
     FrameGraph g = dynamic_radiosity_memory_graph(1736, 3, temporal);
     g.compile(true, 256);

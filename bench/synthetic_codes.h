@@ -20,7 +20,7 @@
 
 #include "compress/ordering_permutation.h"
 
-namespace bounce::cli {
+namespace bounce {
 
 struct SyntheticCodes {
   std::size_t n = 0;
@@ -36,4 +36,4 @@ struct SyntheticCodes {
 SyntheticCodes synthetic_codes(std::size_t n, std::size_t channels, double kept_fraction,
                                std::uint64_t seed);
 
-}  // namespace bounce::cli
+}  // namespace bounce

@@ -5,7 +5,7 @@
 // e.g. the matrix, the temporal history, the output) or transient (live
 // only within the frame, memory owned by the graph). compile() derives each
 // transient's lifetime (first to last pass that touches it) and places all
-// transients in one arena, with aliasing (dynamic/transient_allocator.h) or
+// transients in one arena, with aliasing (runtime/transient_allocator.h) or
 // without (each its own range), so the two can be measured and run on the
 // same code path. execute() runs the passes; a pass reaches its resources'
 // memory through the context.
@@ -16,7 +16,7 @@
 
 #include <glm/glm.hpp>
 
-#include "dynamic/transient_allocator.h"
+#include "runtime/transient_allocator.h"
 
 namespace bounce {
 

@@ -1,4 +1,4 @@
-#include "dynamic/transient_allocator.h"
+#include "runtime/transient_allocator.h"
 
 #include <algorithm>
 #include <numeric>

@@ -11,7 +11,7 @@
 #include "base/error.h"
 #include "base/random.h"
 
-namespace bounce::cli {
+namespace bounce {
 
 namespace {
 
@@ -138,4 +138,4 @@ SyntheticCodes synthetic_codes(std::size_t n, std::size_t channels, double kept_
   return s;
 }
 
-}  // namespace bounce::cli
+}  // namespace bounce
