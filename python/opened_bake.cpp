@@ -104,7 +104,7 @@ CameraImages OpenedBake::camera_images(const CameraImageSettings& settings, int 
   const std::vector<glm::vec3>& indirect = frame.indirect();
   if (gather_rays > 0 && camera_gather_possible(bake_))
     return CameraGather(*tracer_, bake_, settings, gather_rays)
-        .images(first_hit, indirect, frame.sample_irradiance());
+        .images(first_hit, indirect, frame.sample_irradiance(), scene_.lights, area_lights(scene_));
   const PatchGather nearest(bake_.patches.patches, indirect,
                             TransferGrid::from_manifest(bake_.manifest), tracer_.get(),
                             GatherSettings{});

@@ -221,7 +221,9 @@ void run_solve(const SolveOptions& opt) {
         if (gather->samples > 0)
           sample_light = sample_exitance(bake.samples, bake.patches, frame.sample_irradiance(),
                                          exact_indirect);
-        gather->irradiance(reflected, sample_light, gathered);
+        gather->irradiance(reflected, sample_light,
+                           near_exitance(gather->near, &tracer, scene.lights, area, exact_indirect),
+                           gathered);
         light_vertices(tracer, scene.lights, area, gathered, exact_mesh);
       } else {
         std::vector<glm::vec3> exitance(n);
@@ -263,7 +265,9 @@ void run_solve(const SolveOptions& opt) {
       pixels.emplace(tracer, bake, cs, opt.camera_gather_rays, &console.progress());
     camera_transfer = pixels ? "final gather" : "nearest patches";
     const auto render = [&](const std::vector<glm::vec3>& patch_indirect) {
-      if (pixels) return pixels->images(first_hit, patch_indirect, frame.sample_irradiance());
+      if (pixels)
+        return pixels->images(first_hit, patch_indirect, frame.sample_irradiance(), scene.lights,
+                              area);
       const PatchGather nearest(bake.patches.patches, patch_indirect, grid, &tracer,
                                 GatherSettings{});
       return render_camera(tracer, nearest, cs, &console.progress());

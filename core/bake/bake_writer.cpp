@@ -410,14 +410,24 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
            return settings.sample_cap();
          }()},
         {"sample_coverage", FinalGatherSettings{}.sample_coverage},
-        {"sample_entries",
-         std::count_if(fg.source.begin(), fg.source.end(),
-                       [&fg](std::uint32_t source) { return source >= fg.patches + fg.clusters; })},
+        {"sample_entries", std::count_if(fg.source.begin(), fg.source.end(),
+                                         [&fg](std::uint32_t source) {
+                                           return source >= fg.patches + fg.clusters &&
+                                                  source < fg.patches + fg.clusters + fg.samples;
+                                         })},
+        {"near_sources", fg.near.size()},
+        {"near_entries", std::count_if(fg.source.begin(), fg.source.end(),
+                                       [&fg](std::uint32_t source) {
+                                         return source >= fg.patches + fg.clusters + fg.samples;
+                                       })},
+        {"near_distance_voxels", FinalGatherSettings{}.near_cells},
+        {"near_resolution_per_voxel", FinalGatherSettings{}.near_resolution},
         {"clusters", fg.clusters},
         {"rays",
          {{"landed", fg.rays_landed},
           {"escaped", fg.rays_escaped},
           {"back_faces", fg.rays_back},
+          {"near", fg.rays_near},
           {"unrepresented_surface", fg.rays_unrepresented}}},
         {"bytes", 4 * (fg.first.size() + fg.source.size() + fg.weight.size() +
                        2 * fg.cluster_of_patch.size())}};
@@ -523,10 +533,19 @@ json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const Bake
     write_final_gather(dir.path(), r.vertex_gather);
     record(bake_file::kGatherFirst, "uint32 [lit-mesh vertices + 1]: final gather row starts");
     record(bake_file::kGatherSource,
-           "uint32 [entries]: patch each entry gathers from, or patches + cluster index");
+           "uint32 [entries]: patch each entry gathers from, or patches + cluster index, or "
+           "patches + clusters + sample index, or patches + clusters + samples + near source");
     record(bake_file::kGatherWeight, "float32 [entries]: vertex-to-patch (or cluster) form factor");
     record(bake_file::kGatherCluster, "uint32 [patches]: cluster of each patch");
     record(bake_file::kGatherShare, "float32 [patches]: each patch's share of its cluster's area");
+    if (r.vertex_gather.near.size() > 0) {
+      record(bake_file::kGatherNearPosition,
+             "float32 [near sources x 3]: where each near source is lit every frame");
+      record(bake_file::kGatherNearNormal, "float32 [near sources x 3]: the side it is lit on");
+      record(bake_file::kGatherNearAlbedo, "float32 [near sources x 3]: its mean albedo");
+      record(bake_file::kGatherNearPatch,
+             "uint32 [near sources]: the patch whose multi-bounce light T b it carries");
+    }
   }
   if (r.settings.dump_matrices) {
     write_npy(dir.path() / bake_file::kFormFactors, r.form_factors.values, {n, n});

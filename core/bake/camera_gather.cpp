@@ -21,7 +21,7 @@ bool camera_gather_possible(const LoadedBake& bake) {
 
 CameraGather::CameraGather(const RayTracer& tracer, const LoadedBake& bake,
                            const CameraImageSettings& settings, int rays, Progress* progress)
-    : bake_(bake) {
+    : bake_(bake), tracer_(tracer) {
   if (!camera_gather_possible(bake))
     throw Error(bake.dir.string(),
                 "does not say which triangle its surface pieces lie on (made "
@@ -113,7 +113,9 @@ CameraGather::~CameraGather() = default;
 
 CameraImages CameraGather::images(const std::vector<glm::vec3>& first_hit,
                                   const std::vector<glm::vec3>& patch_indirect,
-                                  const std::vector<glm::vec3>& sample_irradiance) const {
+                                  const std::vector<glm::vec3>& sample_irradiance,
+                                  const std::vector<Light>& lights,
+                                  const std::vector<AreaLight>& area) const {
   const std::size_t n = bake_.size();
   if (first_hit.size() != n || patch_indirect.size() != n)
     throw Error("camera gather", "the light has " + std::to_string(patch_indirect.size()) +
@@ -122,7 +124,8 @@ CameraImages CameraGather::images(const std::vector<glm::vec3>& first_hit,
   for (std::size_t p = 0; p < n; ++p) reflected[p] = first_hit[p] + patch_indirect[p];
   if (gather_.samples > 0)
     sample_light = sample_exitance(bake_.samples, bake_.patches, sample_irradiance, patch_indirect);
-  gather_.irradiance(reflected, sample_light, gathered);
+  gather_.irradiance(reflected, sample_light,
+                     near_exitance(gather_.near, &tracer_, lights, area, patch_indirect), gathered);
   CameraImages images = direct_;
   add_indirect(images, hits_, filtered(gathered));
   return images;

@@ -20,6 +20,7 @@
 #include "bake/bake_reader.h"
 #include "base/progress.h"
 #include "raytrace/ray_tracer.h"
+#include "runtime/area_lights.h"
 #include "runtime/camera_image.h"
 #include "runtime/final_gather.h"
 
@@ -48,10 +49,12 @@ class CameraGather {
   // The pictures with the indirect light of `patch_indirect` (T b per patch):
   // each hit gathers b + T b from the patches it sees and the first-hit light
   // of the samples it sees most (`sample_irradiance`: each sample's direct
-  // irradiance of the same frame), reflected with the hit's albedo.
+  // irradiance of the same frame) and the near sources next to it, lit by
+  // `lights` and `area` (the frame's), reflected with the hit's albedo.
   CameraImages images(const std::vector<glm::vec3>& first_hit,
                       const std::vector<glm::vec3>& patch_indirect,
-                      const std::vector<glm::vec3>& sample_irradiance) const;
+                      const std::vector<glm::vec3>& sample_irradiance,
+                      const std::vector<Light>& lights, const std::vector<AreaLight>& area) const;
 
   // Each hit's gathered irradiance is a Monte Carlo estimate: neighbouring
   // pixels' estimates of the same surface are averaged (an edge-aware filter
@@ -66,6 +69,7 @@ class CameraGather {
 
  private:
   const LoadedBake& bake_;
+  const RayTracer& tracer_;
   CameraImages direct_;
   std::vector<CameraHit> hits_;
   FinalGather gather_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <span>
 
 #include "bake/bake_format.h"
 #include "base/error.h"
@@ -21,6 +22,14 @@ void write_final_gather(const fs::path& dir, const FinalGather& g) {
   write_npy(dir / bake_file::kGatherWeight, g.weight, {g.weight.size()});
   write_npy(dir / bake_file::kGatherCluster, g.cluster_of_patch, {g.cluster_of_patch.size()});
   write_npy(dir / bake_file::kGatherShare, g.cluster_share, {g.cluster_share.size()});
+  if (g.near.size() == 0) return;
+  const auto rows = [](const std::vector<glm::vec3>& v) {
+    return std::span<const float>(reinterpret_cast<const float*>(v.data()), 3 * v.size());
+  };
+  write_npy(dir / bake_file::kGatherNearPosition, rows(g.near.position), {g.near.size(), 3});
+  write_npy(dir / bake_file::kGatherNearNormal, rows(g.near.normal), {g.near.size(), 3});
+  write_npy(dir / bake_file::kGatherNearAlbedo, rows(g.near.albedo), {g.near.size(), 3});
+  write_npy(dir / bake_file::kGatherNearPatch, g.near.patch, {g.near.size()});
 }
 
 std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t patches,
@@ -52,12 +61,34 @@ std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t pa
   for (const std::uint32_t c : g.cluster_of_patch)
     clusters = std::max<std::size_t>(clusters, std::size_t{c} + 1);
   g.clusters = clusters;
-  // Sources past the clusters are samples (validate() checks the range).
+  // Sources past the clusters are samples, then near sources (validate()
+  // checks the range).
   for (const std::uint32_t s : g.source)
     if (s >= patches + clusters) {
       g.samples = samples;
       break;
     }
+  if (fs::exists(dir / bake_file::kGatherNearPatch)) {
+    g.samples = samples;
+    const auto rows = [&dir](const char* name) {
+      const fs::path file = dir / name;
+      auto array = read_npy_f32(file);
+      if (array.shape.size() != 2 || array.shape[1] != 3)
+        throw Error(file.string(), "expected an array of shape [near sources, 3]");
+      std::vector<glm::vec3> out(array.shape[0]);
+      for (std::size_t i = 0; i < out.size(); ++i)
+        out[i] = glm::vec3(array.data[3 * i], array.data[3 * i + 1], array.data[3 * i + 2]);
+      return out;
+    };
+    g.near.patch = vector_of(bake_file::kGatherNearPatch, u32);
+    g.near.position = rows(bake_file::kGatherNearPosition);
+    g.near.normal = rows(bake_file::kGatherNearNormal);
+    g.near.albedo = rows(bake_file::kGatherNearAlbedo);
+    if (g.near.position.size() != g.near.patch.size() ||
+        g.near.normal.size() != g.near.patch.size() || g.near.albedo.size() != g.near.patch.size())
+      throw Error((dir / bake_file::kGatherNearPatch).string(),
+                  "the near sources' files differ in length");
+  }
   g.validate((dir / "gather_*.npy").string());
   return g;
 }

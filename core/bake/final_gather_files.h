@@ -3,10 +3,15 @@
 // files of the bake folder (docs/bake-format.md):
 //   gather_first.npy   <u4 [vertices + 1]   row starts
 //   gather_source.npy  <u4 [entries]        patch index, or patches + cluster,
-//                                           or patches + clusters + sample
+//                                           or patches + clusters + sample,
+//                                           or patches + clusters + samples +
+//                                           near source
 //   gather_weight.npy  <f4 [entries]        point-to-source form factor
 //   gather_cluster.npy <u4 [patches]        each patch's cluster
 //   gather_share.npy   <f4 [patches]        its share of the cluster's area
+//   gather_near_position.npy, gather_near_normal.npy, gather_near_albedo.npy
+//                      <f4 [near, 3]        the near sources (absent: none)
+//   gather_near_patch.npy <u4 [near]        the patch whose T b each carries
 // The vertices are those build_transfer_mesh makes from the scene and the
 // bake's grid with default settings, in its order; a reader rebuilds that
 // mesh and checks the count.

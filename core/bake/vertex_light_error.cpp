@@ -29,7 +29,8 @@ IndirectLightError vertex_light_error(const FinalGather& gather, const SampleSet
   const std::vector<glm::vec3> no_first_hit(samples.samples.size(), glm::vec3(0.0f));
   const auto gathered = [&](const std::vector<glm::vec3>& indirect, std::vector<glm::vec3>& out) {
     if (gather.samples > 0)
-      gather.irradiance(indirect, sample_exitance(samples, patches, no_first_hit, indirect), out);
+      gather.irradiance(indirect, sample_exitance(samples, patches, no_first_hit, indirect),
+                        near_exitance(gather.near, nullptr, {}, {}, indirect), out);
     else
       gather.irradiance(indirect, out);
   };

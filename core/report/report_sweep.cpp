@@ -262,16 +262,18 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
       };
       const auto measure = [&](const std::vector<glm::vec3>& patch_indirect,
                                const std::vector<glm::vec3>& patch_reflected,
-                               const std::vector<glm::vec3>& sample_light) {
+                               const std::vector<glm::vec3>& sample_light,
+                               const std::vector<glm::vec3>& pixel_near_light,
+                               const std::vector<glm::vec3>& vertex_near_light) {
         Measured m;
         CameraImages images;
         std::vector<glm::vec3> vertex_light;
         if (final_gather) {
           images = direct_images;
           std::vector<glm::vec3> e;
-          pixel_gather.irradiance(patch_reflected, sample_light, e);
+          pixel_gather.irradiance(patch_reflected, sample_light, pixel_near_light, e);
           add_indirect(images, camera_hits, e);
-          vertex_gather.irradiance(patch_reflected, sample_light, vertex_light);
+          vertex_gather.irradiance(patch_reflected, sample_light, vertex_near_light, vertex_light);
           for (std::size_t v = 0; v < vertex_light.size(); ++v) vertex_light[v] *= vertex_albedo[v];
         } else {
           const PatchGather gather(bake.patches.patches, patch_indirect, grid, &tracer,
@@ -303,7 +305,15 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
         if (bake.patch_of_sample[si] >= 0)
           exact_sample_light[si] =
               exact.reflected[static_cast<std::size_t>(bake.patch_of_sample[si])];
-      const Measured layout = measure(exact.indirect, exact.reflected, exact_sample_light);
+      // And each near source its patch's.
+      const auto exact_near_light = [&](const FinalGather& g) {
+        std::vector<glm::vec3> out(g.near.size());
+        for (std::size_t k = 0; k < out.size(); ++k) out[k] = exact.reflected[g.near.patch[k]];
+        return out;
+      };
+      const Measured layout =
+          measure(exact.indirect, exact.reflected, exact_sample_light,
+                  exact_near_light(pixel_gather), exact_near_light(vertex_gather));
       std::vector<glm::vec3> albedo;
       for (const Patch& p : bake.patches.patches) albedo.push_back(p.albedo);
       for (std::size_t bi = 0; bi < bounces.size(); ++bi) {
@@ -361,7 +371,9 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
             reflected[p] = light.first_hit[p] + light.indirect[p];
           const Measured m = measure(
               light.indirect, reflected,
-              sample_exitance(bake.samples, bake.patches, light.sample_irradiance, light.indirect));
+              sample_exitance(bake.samples, bake.patches, light.sample_irradiance, light.indirect),
+              near_exitance(pixel_gather.near, &tracer, scene.lights, area, light.indirect),
+              near_exitance(vertex_gather.near, &tracer, scene.lights, area, light.indirect));
           row.full = m.full;
           row.indirect = m.indirect;
           row.vertex = m.vertex;

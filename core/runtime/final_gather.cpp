@@ -5,6 +5,7 @@
 #include <map>
 #include <numbers>
 #include <tuple>
+#include <unordered_map>
 
 #include "base/error.h"
 #include "base/random.h"
@@ -23,6 +24,18 @@ void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
 void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
                              const std::vector<glm::vec3>& sample_exitance,
                              std::vector<glm::vec3>& out) const {
+  if (near.size() > 0)
+    throw Error("final gather", "the gather reads near sources: their light is needed too");
+  irradiance(patch_exitance, sample_exitance, {}, out);
+}
+
+void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
+                             const std::vector<glm::vec3>& sample_exitance,
+                             const std::vector<glm::vec3>& near_exitance,
+                             std::vector<glm::vec3>& out) const {
+  if (near_exitance.size() != near.size())
+    throw Error("final gather", "light for " + std::to_string(near_exitance.size()) +
+                                    " near sources, the gather has " + std::to_string(near.size()));
   if (patch_exitance.size() != patches)
     throw Error("final gather", "light for " + std::to_string(patch_exitance.size()) +
                                     " patches, the gather was made for " + std::to_string(patches));
@@ -30,14 +43,16 @@ void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
     throw Error("final gather", "light for " + std::to_string(sample_exitance.size()) +
                                     " samples, the gather was made for " + std::to_string(samples));
   // The patches' light, then each cluster's area-weighted mean, then the
-  // samples'.
-  std::vector<glm::vec3> light(patches + clusters + samples, glm::vec3(0.0f));
+  // samples', then the near sources'.
+  std::vector<glm::vec3> light(patches + clusters + samples + near.size(), glm::vec3(0.0f));
   std::copy(patch_exitance.begin(), patch_exitance.end(), light.begin());
   for (std::size_t p = 0; p < patches; ++p)
     light[patches + cluster_of_patch[p]] += cluster_share[p] * patch_exitance[p];
   if (samples > 0)
     std::copy(sample_exitance.begin(), sample_exitance.end(),
               light.begin() + static_cast<std::ptrdiff_t>(patches + clusters));
+  std::copy(near_exitance.begin(), near_exitance.end(),
+            light.begin() + static_cast<std::ptrdiff_t>(patches + clusters + samples));
   const std::size_t n = points();
   out.resize(n);
   const glm::vec3* b = light.data();
@@ -65,6 +80,30 @@ std::vector<glm::vec3> sample_exitance(const SampleSet& samples, const PatchSet&
   return out;
 }
 
+std::vector<glm::vec3> near_exitance(const NearSources& near, const RayTracer* tracer,
+                                     const std::vector<Light>& lights,
+                                     const std::vector<AreaLight>& area,
+                                     const std::vector<glm::vec3>& patch_indirect) {
+  const std::size_t n = near.size();
+  std::vector<glm::vec3> out(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (near.patch[i] >= patch_indirect.size())
+      throw Error("final gather", "near source " + std::to_string(i) + " names patch " +
+                                      std::to_string(near.patch[i]) + " of " +
+                                      std::to_string(patch_indirect.size()));
+  const float eps = tracer ? 10.0f * tracer->epsilon() : 0.0f;
+#pragma omp parallel for schedule(dynamic, 512)
+  for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    glm::vec3 e(0.0f);
+    if (tracer)
+      e = irradiance_at(*tracer, near.position[i] + eps * near.normal[i], near.normal[i], lights,
+                        area, 4, i);
+    out[i] = near.albedo[i] * e + patch_indirect[near.patch[i]];
+  }
+  return out;
+}
+
 void FinalGather::validate(const std::string& what) const {
   if (first.empty() || first.front() != 0 || first.back() != source.size() ||
       source.size() != weight.size())
@@ -74,15 +113,29 @@ void FinalGather::validate(const std::string& what) const {
   for (std::size_t p = 0; p < patches; ++p)
     if (cluster_of_patch[p] >= clusters || !(cluster_share[p] >= 0.0f && cluster_share[p] <= 1.0f))
       throw Error(what, "patch " + std::to_string(p) + "'s cluster or share is out of range");
+  if (near.normal.size() != near.size() || near.albedo.size() != near.size() ||
+      near.patch.size() != near.size())
+    throw Error(what, "near sources need a position, normal, albedo and patch each");
+  if (near.size() > 0 && samples == 0)
+    throw Error(what, "near sources without the bake's sample count");
+  for (std::size_t k = 0; k < near.size(); ++k) {
+    const glm::vec3 v[3] = {near.position[k], near.normal[k], near.albedo[k]};
+    for (const glm::vec3& x : v)
+      if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
+        throw Error(what, "near source " + std::to_string(k) + " is not finite");
+    if (near.patch[k] >= patches)
+      throw Error(what, "near source " + std::to_string(k) + " names patch " +
+                            std::to_string(near.patch[k]) + " of " + std::to_string(patches));
+  }
   for (std::size_t i = 0; i + 1 < first.size(); ++i) {
     if (first[i + 1] < first[i])
       throw Error(what, "row offsets decrease at point " + std::to_string(i));
     double total = 0.0;
     for (std::uint64_t k = first[i]; k < first[i + 1]; ++k) {
-      if (source[k] >= patches + clusters + samples)
+      if (source[k] >= patches + clusters + samples + near.size())
         throw Error(what, "point " + std::to_string(i) + " gathers from source " +
                               std::to_string(source[k]) + " of " +
-                              std::to_string(patches + clusters + samples));
+                              std::to_string(patches + clusters + samples + near.size()));
       if (!(weight[k] >= 0.0f && weight[k] <= 1.0f))
         throw Error(what, "point " + std::to_string(i) + " has a weight outside [0, 1]");
       total += weight[k];
@@ -173,6 +226,35 @@ void make_clusters(const std::vector<Patch>& patches, const VoxelGrid& grid, int
   }
 }
 
+// A near source's identity: the sample whose surface the rays landed on and
+// the cell of the near-source lattice they landed in.
+struct NearKey {
+  std::int32_t sample, x, y, z;
+  bool operator==(const NearKey&) const = default;
+};
+
+struct NearKeyHash {
+  std::size_t operator()(const NearKey& k) const {
+    std::uint64_t h = static_cast<std::uint32_t>(k.sample) * 0x9E3779B97F4A7C15ull;
+    for (const std::int32_t v : {k.x, k.y, k.z})
+      h = (h ^ static_cast<std::uint32_t>(v)) * 0xBF58476D1CE4E5B9ull;
+    return static_cast<std::size_t>(h ^ (h >> 31));
+  }
+};
+
+// The near sources one chunk of points found, numbered in order of first
+// landing: sums of the landing points and their albedo, and the side's normal.
+struct ChunkNearSources {
+  std::vector<NearKey> keys;
+  std::vector<glm::dvec3> position_sum, albedo_sum;
+  std::vector<glm::vec3> normal;
+  std::vector<std::uint32_t> count;
+};
+
+// Chunk rows name a near source by its chunk-local number with this bit set
+// until the chunks are merged.
+constexpr std::uint32_t kChunkNearSource = 0x80000000u;
+
 }  // namespace
 
 FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup& lookup,
@@ -187,6 +269,11 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   if (settings.sample_kept < 0 ||
       !(settings.sample_coverage >= 0.0 && settings.sample_coverage <= 1.0))
     throw Error("final gather", "kept samples must be >= 0 and their coverage in [0, 1]");
+  if (!(settings.near_cells >= 0.0f && settings.near_cells <= 16.0f) ||
+      settings.near_resolution < 1 || settings.near_resolution > 1024)
+    throw Error("final gather",
+                "the near distance must be in [0, 16] voxels and the near sources' resolution "
+                "in [1, 1024] per voxel");
   const std::size_t patch_count = patch_list.size();
   FinalGather g;
   g.patches = patch_count;
@@ -197,7 +284,10 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   const auto kept = static_cast<std::size_t>(settings.kept);
   const std::size_t sample_kept = settings.sample_cap();
   const bool sample_sources = sample_kept > 0 && settings.sample_coverage > 0.0;
-  if (sample_sources) g.samples = lookup.sample_count();
+  const bool near_sources = settings.near_cells > 0.0f;
+  if (sample_sources || near_sources) g.samples = lookup.sample_count();
+  const float near_distance = settings.near_cells * grid.cell_size();
+  const float near_cell = grid.cell_size() / static_cast<float>(settings.near_resolution);
   const std::size_t sample_base = patch_count + g.clusters;
   const float eps = settings.offset_epsilons * tracer.epsilon();
   const Scene& scene = tracer.scene();
@@ -211,10 +301,13 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   std::vector<std::vector<std::uint32_t>> chunk_patch(chunks);
   std::vector<std::vector<float>> chunk_weight(chunks);
   std::vector<std::vector<std::uint32_t>> chunk_count(chunks);
+  std::vector<ChunkNearSources> chunk_near(chunks);
   if (progress) progress->begin_stage("final gather", std::max<std::size_t>(1, chunks));
-  std::size_t escaped = 0, backs = 0, unrepresented = 0, landed_rays = 0;
-#pragma omp parallel reduction(+ : escaped, backs, unrepresented, landed_rays)
+  std::size_t escaped = 0, backs = 0, unrepresented = 0, landed_rays = 0, near_rays = 0;
+#pragma omp parallel reduction(+ : escaped, backs, unrepresented, landed_rays, near_rays)
   {
+    std::unordered_map<NearKey, std::uint32_t, NearKeyHash> near_index;
+    std::vector<std::uint32_t> near_hits, near_touched;
     std::vector<std::uint32_t> hits(patch_count, 0), cluster_hits(g.clusters, 0);
     std::vector<std::uint32_t> touched, cluster_touched;
     std::vector<std::uint32_t> sample_hits(sample_sources ? g.samples : 0, 0), samples_touched;
@@ -222,10 +315,14 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
     for (std::int64_t ci = 0; ci < static_cast<std::int64_t>(chunks); ++ci) {
       if (progress && progress->should_stop()) continue;
       const auto c = static_cast<std::size_t>(ci);
+      ChunkNearSources& cn = chunk_near[c];
+      near_index.clear();
+      near_hits.clear();
       for (std::size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
         const glm::vec3 nrm = normals[i];
         touched.clear();
         samples_touched.clear();
+        near_touched.clear();
         if (glm::dot(nrm, nrm) > 0.5f) {
           Rng rng(settings.seed, 0xF1A1u ^ (static_cast<std::uint64_t>(i) << 16));
           const CosineLattice::Frame frame(nrm, 2.0f * std::numbers::pi_v<float> * rng.uniform());
@@ -250,6 +347,27 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
             }
             const std::int32_t p = lookup.patch_of(static_cast<std::uint32_t>(s));
             ++landed_rays;
+            const glm::vec3 x = origin + h.t * dir;
+            if (near_sources && glm::distance(x, lifted) < near_distance) {
+              const glm::ivec3 cell(glm::floor(x / near_cell));
+              const auto [it, added] = near_index.try_emplace(
+                  NearKey{s, cell.x, cell.y, cell.z}, static_cast<std::uint32_t>(cn.keys.size()));
+              const std::uint32_t id = it->second;
+              if (added) {
+                cn.keys.push_back(it->first);
+                cn.position_sum.emplace_back(0.0);
+                cn.albedo_sum.emplace_back(0.0);
+                cn.normal.push_back(back ? -h.geometric_normal : h.geometric_normal);
+                cn.count.push_back(0);
+                near_hits.push_back(0);
+              }
+              cn.position_sum[id] += glm::dvec3(x);
+              cn.albedo_sum[id] += glm::dvec3(scene.albedo_at(h.triangle, x));
+              ++cn.count[id];
+              if (near_hits[id]++ == 0) near_touched.push_back(id);
+              ++near_rays;
+              continue;
+            }
             if (hits[static_cast<std::size_t>(p)]++ == 0)
               touched.push_back(static_cast<std::uint32_t>(p));
             if (sample_sources && sample_hits[static_cast<std::size_t>(s)]++ == 0)
@@ -313,6 +431,14 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
           cluster_hits[cl] = 0;
           ++entries;
         }
+        // The near sources, in order of first landing within the chunk.
+        std::sort(near_touched.begin(), near_touched.end());
+        for (std::uint32_t id : near_touched) {
+          chunk_patch[c].push_back(kChunkNearSource | id);
+          chunk_weight[c].push_back(static_cast<float>(per_ray * near_hits[id]));
+          near_hits[id] = 0;
+          ++entries;
+        }
         chunk_count[c].push_back(static_cast<std::uint32_t>(entries));
         for (std::uint32_t p : touched) hits[p] = 0;
       }
@@ -327,6 +453,43 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   g.rays_escaped = escaped;
   g.rays_back = backs;
   g.rays_unrepresented = unrepresented;
+  g.rays_near = near_rays;
+  // Near sources found by several chunks become one, numbered in chunk order
+  // (the same whatever the thread count).
+  std::vector<std::vector<std::uint32_t>> near_number(chunks);
+  {
+    std::unordered_map<NearKey, std::uint32_t, NearKeyHash> index;
+    std::vector<glm::dvec3> position_sum, albedo_sum;
+    std::vector<std::uint32_t> count;
+    for (std::size_t c = 0; c < chunks; ++c) {
+      const ChunkNearSources& cn = chunk_near[c];
+      for (std::size_t l = 0; l < cn.keys.size(); ++l) {
+        const auto [it, added] =
+            index.try_emplace(cn.keys[l], static_cast<std::uint32_t>(count.size()));
+        if (added) {
+          position_sum.emplace_back(0.0);
+          albedo_sum.emplace_back(0.0);
+          count.push_back(0);
+          g.near.normal.push_back(cn.normal[l]);
+          g.near.patch.push_back(static_cast<std::uint32_t>(
+              lookup.patch_of(static_cast<std::uint32_t>(cn.keys[l].sample))));
+        }
+        position_sum[it->second] += cn.position_sum[l];
+        albedo_sum[it->second] += cn.albedo_sum[l];
+        count[it->second] += cn.count[l];
+        near_number[c].push_back(it->second);
+      }
+    }
+    for (std::size_t k = 0; k < count.size(); ++k) {
+      g.near.position.push_back(glm::vec3(position_sum[k] / static_cast<double>(count[k])));
+      g.near.albedo.push_back(glm::vec3(albedo_sum[k] / static_cast<double>(count[k])));
+    }
+  }
+  const std::size_t near_base = patch_count + g.clusters + g.samples;
+  for (std::size_t c = 0; c < chunks; ++c)
+    for (std::uint32_t& src : chunk_patch[c])
+      if (src & kChunkNearSource)
+        src = static_cast<std::uint32_t>(near_base + near_number[c][src & ~kChunkNearSource]);
   g.first.reserve(n + 1);
   g.first.push_back(0);
   for (std::size_t c = 0; c < chunks; ++c) {

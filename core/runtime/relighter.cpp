@@ -34,6 +34,7 @@ Relighter::Relighter(const RayTracer& tracer, const SampleSet& samples, const Pa
                      Diagnostics* diagnostics)
     : multiplier_(timed_multiplier(transport, settings, diagnostics, multiply_seconds_)),
       compile_start_(Clock::now()),
+      tracer_(tracer),
       samples_(samples),
       patches_(patches),
       frame_(tracer, samples, patches, multiplier_.multiply_into(),
@@ -43,6 +44,8 @@ Relighter::Relighter(const RayTracer& tracer, const SampleSet& samples, const Pa
 
 void Relighter::light(const std::vector<Light>& lights, const std::vector<AreaLight>& area) {
   frame_.solve(lights, area);
+  lights_ = lights;
+  area_ = area;
 }
 
 void Relighter::first_hit_and_indirect(std::vector<glm::vec3>& b,
@@ -80,7 +83,11 @@ void Relighter::gather(const FinalGather& gather, std::vector<glm::vec3>& irradi
   for (std::size_t p = 0; p < b.size(); ++p) light[p] = b[p] + tb[p];
   if (gather.samples > 0)
     sample_light = sample_exitance(samples_, patches_, frame_.sample_irradiance(), tb);
-  gather.irradiance(light, sample_light, irradiance);
+  const auto start = Clock::now();
+  const std::vector<glm::vec3> near_light =
+      near_exitance(gather.near, &tracer_, lights_, area_, tb);
+  near_seconds_ = since(start);
+  gather.irradiance(light, sample_light, near_light, irradiance);
 }
 
 }  // namespace bounce

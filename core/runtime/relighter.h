@@ -56,6 +56,8 @@ class Relighter {
   // loop's measurement), and building and compiling the frame graph.
   double multiply_seconds() const { return multiply_seconds_; }
   double compile_seconds() const { return compile_seconds_; }
+  // Seconds the last gather spent lighting its near sources.
+  double near_seconds() const { return near_seconds_; }
 
  private:
   void first_hit_and_indirect(std::vector<glm::vec3>& b, std::vector<glm::vec3>& tb) const;
@@ -63,8 +65,13 @@ class Relighter {
   double multiply_seconds_ = 0.0, compile_seconds_ = 0.0;
   TransportMultiplier multiplier_;
   std::chrono::steady_clock::time_point compile_start_;
+  const RayTracer& tracer_;
   const SampleSet& samples_;
   const PatchSet& patches_;
+  // The last frame's lights: a gather's near sources are lit with them.
+  std::vector<Light> lights_;
+  std::vector<AreaLight> area_;
+  mutable double near_seconds_ = 0.0;
   RuntimeFrame frame_;
 };
 

@@ -104,7 +104,8 @@ TEST(CameraGather, EqualsTheGatherBuiltFromTheBakeInMemory) {
   Relighter relighter(tracer, f.loaded.samples, f.loaded.patches, stored_transport(f.loaded));
   relighter.light(f.scene.lights, area_lights(f.scene));
   const std::vector<glm::vec3> b = relighter.frame().first_hit(), tb = relighter.frame().indirect();
-  const CameraImages images = pixels.images(b, tb, relighter.frame().sample_irradiance());
+  const CameraImages images = pixels.images(b, tb, relighter.frame().sample_irradiance(),
+                                            f.scene.lights, area_lights(f.scene));
 
   // The same picture from the in-memory bake's lookup and patches.
   std::vector<CameraHit> hits;
@@ -125,7 +126,7 @@ TEST(CameraGather, EqualsTheGatherBuiltFromTheBakeInMemory) {
   gather.irradiance(
       reflected,
       sample_exitance(f.bake.samples, f.bake.patches, relighter.frame().sample_irradiance(), tb),
-      e);
+      near_exitance(gather.near, &tracer, f.scene.lights, area_lights(f.scene), tb), e);
   add_indirect(expected, hits, e);
   ASSERT_EQ(images.indirect.pixels.size(), expected.indirect.pixels.size());
   double sum = 0.0;
@@ -149,10 +150,12 @@ TEST(CameraGather, FilterKeepsTheLightAndRemovesGrain) {
   const auto& frame = relighter.frame();
   pixels.set_filter_radius(0);
   const CameraImages raw =
-      pixels.images(frame.first_hit(), frame.indirect(), frame.sample_irradiance());
+      pixels.images(frame.first_hit(), frame.indirect(), frame.sample_irradiance(), f.scene.lights,
+                    area_lights(f.scene));
   pixels.set_filter_radius(3);
   const CameraImages smooth =
-      pixels.images(frame.first_hit(), frame.indirect(), frame.sample_irradiance());
+      pixels.images(frame.first_hit(), frame.indirect(), frame.sample_irradiance(), f.scene.lights,
+                    area_lights(f.scene));
   // Light: the picture's total indirect light moves by a few percent at
   // most (the filter only moves light between neighbouring pixels of the
   // same surface; where a surface's light has a slope, the mean over a

@@ -318,8 +318,10 @@ TEST(Closure, EmptyCornellBoxIndirectOverDirectPerWallMatchesThePathTracer) {
     FinalGatherSettings fs;
     fs.rays = 2048;
     std::vector<glm::vec3> gathered;
-    build_final_gather(tracer, lookup, r.patches.patches, r.voxels.grid, points, normals, fs)
-        .irradiance(reflected, sample_light, gathered);
+    const FinalGather g =
+        build_final_gather(tracer, lookup, r.patches.patches, r.voxels.grid, points, normals, fs);
+    g.irradiance(reflected, sample_light, near_exitance(g.near, &tracer, {}, area, indirect),
+                 gathered);
     const PointReference ref = pt.estimate_points(ref_points);
     glm::dvec3 bounce_direct(0.0), bounce_indirect(0.0), ref_direct(0.0), ref_indirect(0.0),
         ref_var(0.0);

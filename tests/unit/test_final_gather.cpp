@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
+#include <utility>
 #include <vector>
 
 #include "bake/bake.h"
@@ -76,6 +78,89 @@ TEST(FinalGather, WeightsFacingALargeSquareSumToItsExactFormFactor) {
   }
 }
 
+// The form factor from a point at height h above a plane, facing it, to a
+// rectangle a x b of the plane with one corner under the point.
+double corner_form_factor(double a, double b, double h) {
+  const double x = a / h, y = b / h;
+  return (x / std::sqrt(1.0 + x * x) * std::atan(y / std::sqrt(1.0 + x * x)) +
+          y / std::sqrt(1.0 + y * y) * std::atan(x / std::sqrt(1.0 + y * y))) /
+         (2.0 * std::numbers::pi);
+}
+
+TEST(FinalGather, NearSourcesFollowAShadowEdgeUnderThePoint) {
+  // A floor (y = 0, x and z in [-1, 1]) under a sun straight above, its
+  // half x < 0 shaded by a board at y = 0.5. Points 5 cm above the floor,
+  // facing it, across the shadow's edge: each sees the lit half with the
+  // analytic form factor of a rectangle, and nothing else reflects (the
+  // board's underside is a one-sided back face), so its indirect irradiance
+  // is albedo x sun x F (a wall at the far edge gets no sun). A sample stands for ~9 cm of floor
+  // and is lit at its centre: every point across the edge would read the same few samples.
+  Scene scene;
+  test_scenes::add_quad(scene, "floor", {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1});
+  test_scenes::add_quad(scene, "board", {-1.5f, 0.5f, -1.5f}, {-1.5f, 0.5f, 1.5f}, {0, 0.5f, 1.5f},
+                        {0, 0.5f, -1.5f});
+  // A wall at the floor's far edge, so that patches see each other: the sun
+  // grazes it (no first-hit light), and it stands where the points' rays
+  // would leave past the floor.
+  test_scenes::add_quad(scene, "wall", {1, 0, -1}, {1, 0, 1}, {1, 0.5f, 1}, {1, 0.5f, -1});
+  scene.lights.push_back({Light::Type::Directional, "sun", glm::vec3(0.0f),
+                          glm::vec3(0.0f, -1.0f, 0.0f), glm::vec3(1.0f), 1.0f});
+  const BakeResult bake = bake_of(scene, 8);
+  const RayTracer tracer(scene);
+  const SurfacePatchLookup lookup(bake.voxels, bake.samples, bake.patch_of_sample);
+  std::vector<glm::vec3> irradiance(bake.patches.size()),
+      sample_irradiance(bake.samples.samples.size());
+  direct_irradiance(tracer, bake.samples, bake.patches, scene.lights, {}, 4, irradiance,
+                    sample_irradiance);
+  const std::vector<glm::vec3> b = first_bounce(bake.patches, irradiance);
+  const std::vector<glm::vec3> no_indirect(b.size(), glm::vec3(0.0f));
+  const double h = 0.05, albedo = 0.5;
+  const std::vector<double> offsets = {-0.06, -0.03, 0.0, 0.03, 0.06};
+  std::vector<glm::vec3> points, normals;
+  for (double d : offsets) {
+    points.emplace_back(static_cast<float>(d), static_cast<float>(h), 0.0f);
+    normals.emplace_back(0.0f, -1.0f, 0.0f);
+  }
+  FinalGatherSettings with_near;
+  with_near.rays = 4096;
+  with_near.near_cells = 1.0f;     // every ray within a voxel
+  with_near.near_resolution = 96;  // 4 mm cells: the edge blurs over one
+  FinalGatherSettings without_near = with_near;
+  without_near.near_cells = 0.0f;
+  const auto gathered = [&](const FinalGatherSettings& fs) {
+    const FinalGather g = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
+                                             points, normals, fs);
+    g.validate("shadow edge");
+    std::vector<glm::vec3> e;
+    g.irradiance(b, sample_exitance(bake.samples, bake.patches, sample_irradiance, no_indirect),
+                 near_exitance(g.near, &tracer, scene.lights, {}, no_indirect), e);
+    return std::make_pair(e, g.near.size());
+  };
+  const auto [near_e, near_count] = gathered(with_near);
+  const auto [far_e, far_count] = gathered(without_near);
+  EXPECT_GT(near_count, 100u);
+  EXPECT_EQ(far_count, 0u);
+  double near_error = 0.0, sample_error = 0.0;
+  for (std::size_t i = 0; i < offsets.size(); ++i) {
+    const double d = offsets[i];
+    // Lit: x in [0, 1], z in [-1, 1], split at the point's foot x = d.
+    const double f = 2.0 * corner_form_factor(1.0 - d, 1.0, h) +
+                     (d >= 0.0 ? 1.0 : -1.0) * 2.0 * corner_form_factor(std::abs(d), 1.0, h);
+    const double exact = albedo * f;
+    // Bound: three standard deviations of the rays' binomial estimate of f,
+    // plus a 4 mm band of the floor at the edge read wrong (the form factor
+    // per metre across the edge is at most 1 / (pi h)).
+    const double sigma = albedo * std::sqrt(f * (1.0 - f) / with_near.rays);
+    const double band = albedo * 0.004 / (std::numbers::pi * h);
+    std::printf("shadow edge at %+.2f m: exact %.4f, near sources %.4f, samples only %.4f\n", d,
+                exact, near_e[i].r, far_e[i].r);
+    EXPECT_NEAR(near_e[i].r, exact, 3.0 * sigma + band) << d;
+    near_error += std::abs(near_e[i].r - exact);
+    sample_error += std::abs(far_e[i].r - exact);
+  }
+  EXPECT_LT(near_error, 0.5 * sample_error);
+}
+
 TEST(FinalGather, ConcaveCornerGetsItsLightFromTheWallBesideIt) {
   // A floor and a wall meeting at a right angle, the wall lit evenly by a
   // directional light grazing the floor: a floor point next to the corner
@@ -110,7 +195,7 @@ TEST(FinalGather, ConcaveCornerGetsItsLightFromTheWallBesideIt) {
       build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid, {x}, {n}, fs);
   std::vector<glm::vec3> e;
   g.irradiance(reflected, sample_exitance(bake.samples, bake.patches, sample_irradiance, indirect),
-               e);
+               near_exitance(g.near, &tracer, scene.lights, {}, indirect), e);
   const double gathered = e[0].r;
 
   // The patch the point lies in: its own indirect irradiance, (T b) / albedo.
@@ -156,6 +241,7 @@ TEST(FinalGather, SampleSourcesSplitThePatchesRaysAndKeepTheirLight) {
   // differ between the two), so that only the sample entries differ.
   FinalGatherSettings with_samples;
   ASSERT_GT(with_samples.sample_kept, 0);
+  with_samples.near_cells = 0.0f;  // sample sources alone
   with_samples.kept = 100000;
   with_samples.coverage = 1.0;
   FinalGatherSettings patches_only = with_samples;

@@ -276,7 +276,10 @@ TEST(MeshTransfer, FinalGatherSeesNoLightThroughAWallThinnerThanAVoxel) {
     for (std::uint32_t k = s.bake.patches.member_first[p]; k < s.bake.patches.member_first[p + 1];
          ++k)
       sample_light[s.bake.patches.member_samples[k]] = s.light[p];
-  g.irradiance(s.light, sample_light, m.radiosity);
+  // And so does each near source.
+  std::vector<glm::vec3> near_light(g.near.size());
+  for (std::size_t k = 0; k < near_light.size(); ++k) near_light[k] = s.light[g.near.patch[k]];
+  g.irradiance(s.light, sample_light, near_light, m.radiosity);
   const SlabLevels l = slab_levels(m);
   std::printf(
       "final gather, thin slab: far side max %.2e over %zu, floor under it max %.2e over "
