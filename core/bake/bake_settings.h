@@ -57,6 +57,9 @@ struct BakeSettings {
   // (runtime/final_gather.h) the bake stores; 0: none, the run time spreads
   // patch light to vertices from the nearest patches instead.
   int final_gather_rays = 256;
+  // Within this many voxels of a vertex its gather rays read near sources,
+  // lit at their own position each frame (runtime/final_gather.h); 0: none.
+  double final_gather_near = 0.25;
   std::uint64_t seed = 1;
   bool dump_matrices = false;
 

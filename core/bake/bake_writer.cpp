@@ -288,6 +288,7 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                    {"visibility_rays", s.visibility_rays},
                    {"closure_rays", s.closure_rays},
                    {"final_gather_rays", s.final_gather_rays},
+                   {"final_gather_near", s.final_gather_near},
                    {"seed", s.seed},
                    {"dump_matrices", s.dump_matrices},
                    {"out_of_core", to_string(s.out_of_core)}};
@@ -420,7 +421,7 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                                        [&fg](std::uint32_t source) {
                                          return source >= fg.patches + fg.clusters + fg.samples;
                                        })},
-        {"near_distance_voxels", FinalGatherSettings{}.near_cells},
+        {"near_distance_voxels", r.settings.final_gather_near},
         {"near_resolution_per_voxel", FinalGatherSettings{}.near_resolution},
         {"clusters", fg.clusters},
         {"rays",

@@ -44,6 +44,14 @@ void set_optional_real(BakeSettings& s, const SettingValue& v) {
     s.*M = std::get<double>(v);
 }
 template <auto M>
+SettingValue get_real(const BakeSettings& s) {
+  return s.*M;
+}
+template <auto M>
+void set_real(BakeSettings& s, const SettingValue& v) {
+  s.*M = std::get<double>(v);
+}
+template <auto M>
 SettingValue get_flag(const BakeSettings& s) {
   return s.*M;
 }
@@ -239,6 +247,28 @@ std::vector<SettingRow> make_rows() {
       .stage = BakeStage::Geometry,
       .get = get_int<&S::final_gather_rays>,
       .set = set_int<&S::final_gather_rays>,
+  });
+  rows.push_back({
+      .name = "final_gather_near",
+      .manifest_key = "final_gather_near",
+      .flag = "--final-gather-near",
+      .type = SettingType::Real,
+      .min = 0.0,
+      .max = 16.0,
+      .range_note = "0: no near sources",
+      .help_shows_default = true,
+      .help = "Distance in voxels within which a vertex's gather rays read near sources: "
+              "cells of 1/24 voxel on the surface they hit, lit every frame at their own "
+              "position (one shadow ray per light each), instead of a sample's light, which "
+              "is that of its centre. Follows sun edges and contact light next to the vertex; "
+              "each frame traces one more shadow ray per near source. 0: none",
+      .label = "Near sources (voxels)",
+      .studio_help = "Vertices read the light of the surface within this many voxels at their "
+                     "own resolution (sunlit ledges, shadow edges next to them); more costs "
+                     "shadow rays every frame",
+      .stage = BakeStage::Geometry,
+      .get = get_real<&S::final_gather_near>,
+      .set = set_real<&S::final_gather_near>,
   });
   rows.push_back({
       .name = "seed",

@@ -30,6 +30,7 @@ const std::map<std::string, Expected>& expected() {
       {"visibility_rays", {"--visibility-rays", BakeStage::Geometry}},
       {"closure_rays", {"--closure-rays", BakeStage::Geometry}},
       {"final_gather_rays", {"--final-gather-rays", BakeStage::Geometry}},
+      {"final_gather_near", {"--final-gather-near", BakeStage::Geometry}},
       {"seed", {"--seed", BakeStage::Geometry}},
       {"bounces", {"--bounces", BakeStage::Transport}},
       {"gemm", {"--gemm", BakeStage::Transport}},
@@ -137,7 +138,7 @@ TEST(SettingsTable, OutOfRangeValuesNameTheSetting) {
       expect_rejected(s, row.name);
     }
   }
-  EXPECT_EQ(rows_with_range, 11);
+  EXPECT_EQ(rows_with_range, 12);
   // Spot checks against the documented ranges.
   BakeSettings s;
   s.error_budget = 1.0;
