@@ -5,12 +5,13 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QTableWidget>
-#include <QThread>
 #include <QVBoxLayout>
 
 #include "bounce/compression.h"
 #include "bounce/diagnostics.h"
+#include "bounce/error.h"
 #include "error_histogram.h"
+#include "view_jobs.h"
 
 namespace bounce::views {
 
@@ -19,8 +20,9 @@ constexpr int kMaxPictureSize = 4096;
 constexpr int kUnset = -1;  // combo data: the bake's codec / the codec's own ordering
 }  // namespace
 
-ErrorView::ErrorView(QWidget* parent)
+ErrorView::ErrorView(ViewJobs& jobs, QWidget* parent)
     : QWidget(parent),
+      jobs_(jobs),
       codec_box_(new QComboBox(this)),
       ordering_box_(new QComboBox(this)),
       figures_(new QLabel(this)),
@@ -35,8 +37,8 @@ ErrorView::ErrorView(QWidget* parent)
   codec_box_->setToolTip(
       tr("Compare codecs on this bake: re-compresses its "
          "exact matrix (T.npy) with the bake's "
-         "compression stage at the bake's kept fraction, on "
-         "a worker thread. 'as baked' shows "
+         "compression stage at the bake's kept fraction, in "
+         "the background. 'as baked' shows "
          "the stored T.dds"));
   ordering_box_->addItem(tr("codec's own"), kUnset);
   for (OrderingMethod m :
@@ -91,25 +93,16 @@ ErrorView::ErrorView(QWidget* parent)
             [this](int) { compare_from_boxes(); });
 }
 
-ErrorView::~ErrorView() { stop_worker(); }
-
-void ErrorView::stop_worker() {
-  if (!worker_) return;
-  cancel_.store(true);
-  worker_->disconnect(this);
-  worker_->wait();
-  delete worker_;
-  worker_ = nullptr;
-}
+ErrorView::~ErrorView() = default;
 
 void ErrorView::set_data(std::shared_ptr<const BakeViewData> bake) {
-  stop_worker();
+  jobs_.forget(this);
+  comparing_ = false;
   data_ = std::move(bake);
   shown_ = nullptr;
+  shown_data_.reset();
+  own_.reset();
   comparisons_.clear();
-  own_abs_error_.clear();
-  exact_mean_.clear();
-  decoded_mean_.clear();
   table_->clearContents();
   for (QComboBox* box : {codec_box_, ordering_box_}) {
     const QSignalBlocker quiet(box);
@@ -130,11 +123,38 @@ void ErrorView::set_data(std::shared_ptr<const BakeViewData> bake) {
     histogram_->set_values({});
     return;
   }
-  std::vector<const float*> exact;
-  for (const auto& m : b->dense) exact.push_back(m.data());
-  // The core's own measurement, the one the bake put in its manifest.
-  own_errors_ = measure_compression(exact, *b->compressed, b->probe, &own_abs_error_);
-  show_matrix(*b->compressed, own_errors_, own_abs_error_, tr("as baked"));
+  measure_own(false);
+}
+
+void ErrorView::measure_own(bool ready) {
+  figures_->setText(tr("Measuring the compression error..."));
+  comparing_ = true;
+  auto bake = data_;
+  jobs_.run<std::shared_ptr<const Shown>>(
+      this, kShowJob,
+      [bake](const ViewJobs::KeepGoing&) {
+        const LoadedBake& b = bake->bake;
+        std::vector<const float*> exact;
+        for (const auto& m : b.dense) exact.push_back(m.data());
+        // The core's own measurement, the one the bake put in its manifest.
+        std::vector<float> abs_error;
+        const CompressionErrors errors =
+            measure_compression(exact, *b.compressed, b.probe, &abs_error);
+        return std::make_shared<const Shown>(
+            Shown{nullptr, compression_error_maps(exact, b.size(), *b.compressed, errors,
+                                                  std::move(abs_error), kMaxPictureSize)});
+      },
+      [this, ready](std::shared_ptr<const Shown> own) {
+        comparing_ = false;
+        own_ = own;
+        show_matrix(std::move(own), tr("as baked"));
+        if (ready) emit comparison_ready();
+      },
+      [this](const QString& message) {
+        comparing_ = false;
+        figures_->setText(tr("Measuring the compression error failed: %1").arg(message));
+        emit comparison_failed(message);
+      });
 }
 
 void ErrorView::compare_from_boxes() {
@@ -156,10 +176,16 @@ void ErrorView::compare(std::optional<CodecChoice> codec, std::optional<Ordering
     const QSignalBlocker quiet(box);
     box->setCurrentIndex(box->findData(value));
   }
+  // A newer choice replaces one still being computed.
+  jobs_.forget(this);
+  comparing_ = false;
   const CompressedMatrix& own = *data_->bake.compressed;
   if (!codec && !ordering) {
-    stop_worker();
-    show_matrix(own, own_errors_, own_abs_error_, tr("as baked"));
+    if (!own_) {
+      measure_own(true);
+      return;
+    }
+    show_matrix(own_, tr("as baked"));
     emit comparison_ready();
     return;
   }
@@ -171,64 +197,55 @@ void ErrorView::compare(std::optional<CodecChoice> codec, std::optional<Ordering
   const Key key{static_cast<int>(s.codec), ordering ? static_cast<int>(*ordering) : kUnset};
   const QString source = tr("re-compressed from T.npy");
   if (const auto it = comparisons_.find(key); it != comparisons_.end()) {
-    stop_worker();
-    show_matrix(*it->second->compressed, it->second->errors, it->second->abs_error_sum, source);
+    show_matrix(it->second, source);
     emit comparison_ready();
     return;
   }
-  stop_worker();  // a newer choice replaces a running one
-  cancel_.store(false);
   figures_->setText(
       tr("Re-compressing with %1 (ordering %2)...")
           .arg(QString::fromUtf8(to_string(s.codec)),
                ordering ? QString::fromUtf8(ordering_name(*ordering)) : tr("the codec's own")));
+  comparing_ = true;
   auto bake = data_;
-  auto result = std::make_shared<std::shared_ptr<const MatrixStorage>>();
-  auto error = std::make_shared<QString>();
-  QThread* thread = QThread::create([this, bake, s, result, error] {
-    Progress progress([this](const std::string&, double) { return !cancel_.load(); });
-    Diagnostics diagnostics;
-    std::vector<const float*> exact;
-    for (const auto& m : bake->bake.dense) exact.push_back(m.data());
-    try {
-      *result = std::make_shared<const MatrixStorage>(
-          store_matrices(exact, bake->bake.size(), bake->bake.probe, s, &progress, diagnostics));
-    } catch (const Cancelled&) {
-    } catch (const std::exception& e) {
-      *error = QString::fromStdString(e.what());
-    }
-  });
-  worker_ = thread;
-  connect(thread, &QThread::finished, this, [this, thread, key, source, result, error] {
-    // A finish queued before stop_worker() replaced or deleted this
-    // thread.
-    if (thread != worker_) return;
-    thread->deleteLater();
-    worker_ = nullptr;
-    if (!error->isEmpty()) {
-      figures_->setText(tr("Re-compression failed: %1").arg(*error));
-      emit comparison_failed(*error);
-      return;
-    }
-    if (!*result || !(*result)->compressed) {
-      emit comparison_failed(tr("the re-compression was cancelled"));
-      return;
-    }
-    comparisons_[key] = *result;
-    show_matrix(*(*result)->compressed, (*result)->errors, (*result)->abs_error_sum, source);
-    emit comparison_ready();
-  });
-  worker_->start();
+  jobs_.run<std::shared_ptr<const Shown>>(
+      this, kShowJob,
+      [bake, s](const ViewJobs::KeepGoing& keep_going) {
+        Progress progress([&keep_going](const std::string&, double) { return keep_going(); });
+        Diagnostics diagnostics;
+        const LoadedBake& b = bake->bake;
+        std::vector<const float*> exact;
+        for (const auto& m : b.dense) exact.push_back(m.data());
+        auto storage = std::make_shared<const MatrixStorage>(
+            store_matrices(exact, b.size(), b.probe, s, &progress, diagnostics));
+        if (!storage->compressed) throw Error("re-compression", "no compressed matrix came out");
+        CompressionErrorMaps maps =
+            compression_error_maps(exact, b.size(), *storage->compressed, storage->errors,
+                                   storage->abs_error_sum, kMaxPictureSize);
+        return std::make_shared<const Shown>(Shown{std::move(storage), std::move(maps)});
+      },
+      [this, key, source](std::shared_ptr<const Shown> shown) {
+        comparing_ = false;
+        comparisons_[key] = shown;
+        show_matrix(std::move(shown), source);
+        emit comparison_ready();
+      },
+      [this](const QString& message) {
+        comparing_ = false;
+        figures_->setText(tr("Re-compression failed: %1").arg(message));
+        emit comparison_failed(message);
+      });
 }
 
 QString ErrorView::figures_text() const { return figures_->text(); }
 
-void ErrorView::show_matrix(const CompressedMatrix& c, const CompressionErrors& errors,
-                            const std::vector<float>& abs_error, const QString& source) {
-  const LoadedBake& b = data_->bake;
-  const std::size_t n = b.size();
+void ErrorView::show_matrix(std::shared_ptr<const Shown> shown, const QString& source) {
+  const std::size_t n = data_->bake.size();
+  shown_data_ = std::move(shown);
+  const CompressedMatrix& c =
+      shown_data_->storage ? *shown_data_->storage->compressed : *data_->bake.compressed;
+  const CompressionErrorMaps& maps = shown_data_->maps;
   shown_ = &c;
-  errors_ = errors;
+  errors_ = maps.errors;
   table_->clearContents();
   table_caption_->setText(tr("Click a block of the right heatmap"));
   const MatrixError& e = errors_.matrix;
@@ -242,35 +259,11 @@ void ErrorView::show_matrix(const CompressedMatrix& c, const CompressionErrors& 
                         .arg(e.sum_abs, 0, 'g', 4)
                         .arg(e.rel_frobenius, 0, 'g', 4)
                         .arg(errors_.indirect.rel_rms_mean, 0, 'g', 4));
-  // Means over stored channels for the block table.
-  exact_mean_.assign(n * n, 0.0f);
-  decoded_mean_.assign(n * n, 0.0f);
-  std::vector<float> decoded(n * n);
-  const float scale = 1.0f / static_cast<float>(c.channels);
-  for (int ch = 0; ch < c.channels; ++ch) {
-    decompress_channel(c, ch, decoded.data());
-    const std::vector<float>& t = b.dense[static_cast<std::size_t>(ch)];
-    for (std::size_t k = 0; k < n * n; ++k) {
-      exact_mean_[k] += t[k] * scale;
-      decoded_mean_[k] += decoded[k] * scale;
-    }
-  }
-  MatrixPictureSettings s;
-  s.max_size = kMaxPictureSize;
-  s.title = "|T~ - T| per entry, reordered (" + c.ordering + ")";
-  element_->set_picture(matrix_picture(abs_error.data(), n, s, &c.permutation),
-                        MatrixPictureLayout::of(n, s.max_size, s.title));
-  // Blocks live in the stored (reordered) matrix.
-  std::vector<float> stored(n * n);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j)
-      stored[i * n + j] = abs_error[c.permutation[i] * n + c.permutation[j]];
-  std::size_t blocks = 0;
-  const std::vector<float> sums = block_error_sums(stored.data(), n, blocks);
-  s.title = "|T~ - T| per 4x4 block of T.dds (" + c.codec + ")";
-  block_->set_picture(matrix_picture(sums.data(), blocks, s),
-                      MatrixPictureLayout::of(blocks, s.max_size, s.title));
-  histogram_->set_values(abs_error);
+  element_->set_picture(maps.entry_picture,
+                        MatrixPictureLayout::of(n, kMaxPictureSize, maps.entry_title));
+  block_->set_picture(maps.block_picture,
+                      MatrixPictureLayout::of(maps.blocks, kMaxPictureSize, maps.block_title));
+  histogram_->set_values(maps.abs_error);
   element_->fit();
   block_->fit();
 }
@@ -294,8 +287,8 @@ void ErrorView::select_block(std::size_t block_row, std::size_t block_col) {
       if (i < n && j < n) {
         const std::size_t k = c.permutation[i] * n + c.permutation[j];
         text = QString("%1 -> %2")
-                   .arg(static_cast<double>(exact_mean_[k]), 0, 'g', 4)
-                   .arg(static_cast<double>(decoded_mean_[k]), 0, 'g', 4);
+                   .arg(static_cast<double>(shown_data_->maps.exact_mean[k]), 0, 'g', 4)
+                   .arg(static_cast<double>(shown_data_->maps.decoded_mean[k]), 0, 'g', 4);
       }
       table_->setItem(r, col, new QTableWidgetItem(text));
     }

@@ -34,6 +34,7 @@
 #include "bounce/metrics.h"
 #include "bounce/pictures.h"
 #include "bounce/relight.h"
+#include "view_jobs.h"
 #include "vtk_scene.h"
 
 namespace bounce::views {
@@ -61,8 +62,9 @@ QString rgb_text(const glm::dvec3& v) {
 
 }  // namespace
 
-PatchView::PatchView(QWidget* parent)
+PatchView::PatchView(ViewJobs& jobs, QWidget* parent)
     : QWidget(parent),
+      jobs_(jobs),
       vtk_widget_(new QVTKOpenGLNativeWidget(this)),
       colour_box_(new QComboBox(this)),
       light_box_(new QComboBox(this)),
@@ -232,7 +234,7 @@ void PatchView::set_data(std::shared_ptr<const BakeViewData> bake) {
   centres_->SetPoints(points);
   centres_->GetPointData()->SetNormals(normals);
   centres_->GetPointData()->SetScalars(radius);
-  decoded_.clear();
+  decoded_.reset();
   light_box_->blockSignals(true);
   light_box_->clear();
   if (data_) {
@@ -276,7 +278,6 @@ void PatchView::select_patch(int p) {
 
 void PatchView::recolour() {
   const std::size_t n = data_ ? data_->patch_count() : 0;
-  colours_.assign(n, {0, 0, 0});
   auto by = static_cast<ColourBy>(colour_box_->currentIndex());
   if (by == ColourBy::FormFactorRow && (selected_ < 0 || !data_ || data_->form_factors.empty()))
     by = ColourBy::Albedo;
@@ -285,37 +286,22 @@ void PatchView::recolour() {
   if (by == ColourBy::IndirectError && !can_show_indirect_error()) by = ColourBy::Albedo;
   light_box_->setEnabled(by == ColourBy::IndirectError);
   explanation_.reset();
+  // A colouring still being computed gives way to this one.
+  jobs_.forget(this);
+  if (by == ColourBy::Radiosity) {
+    colour_by_radiosity();
+    return;
+  }
+  if (by == ColourBy::IndirectError) {
+    colour_by_indirect_error();
+    return;
+  }
+  colours_.assign(n, {0, 0, 0});
   QString what;
   if (by == ColourBy::Albedo) {
     for (std::size_t p = 0; p < n; ++p) colours_[p] = srgb(data_->bake.patches.patches[p].albedo);
   } else if (by == ColourBy::PatchId) {
     for (std::size_t p = 0; p < n; ++p) colours_[p] = id_colour(p);
-  } else if (by == ColourBy::Radiosity) {
-    const LoadedBake& b = data_->bake;
-    std::vector<glm::vec3> indirect;
-    const bool lit = !b.probe.first_hit.empty() && !b.dense.empty();
-    if (lit) {
-      std::vector<const float*> matrices;
-      for (const auto& m : b.dense) matrices.push_back(m.data());
-      dense_indirect(matrices, n, b.channel_of_rgb, b.probe.first_hit[0], indirect);
-    }
-    std::vector<glm::vec3> radiosity(n);
-    std::vector<float> lum(n);
-    for (std::size_t p = 0; p < n; ++p) {
-      radiosity[p] = b.patches.patches[p].emission;
-      if (lit) radiosity[p] += b.probe.first_hit[0][p] + indirect[p];
-      lum[p] = luminance(radiosity[p]);
-    }
-    const float exposure = ToneMap::exposure_for(lum);
-    for (std::size_t p = 0; p < n; ++p) colours_[p] = srgb(radiosity[p] * exposure);
-    what = lit ? tr("radiosity under %1")
-                     .arg(QString::fromStdString(
-                         b.manifest.at("scene").at("lights").empty()
-                             ? std::string("the first evaluation light")
-                             : b.manifest.at("scene").at("lights")[0].value("name", "light 1")))
-               : tr("no exact T in this bake: emission only");
-  } else if (by == ColourBy::IndirectError) {
-    what = indirect_error_colours();
   } else if (by == ColourBy::Closure) {
     float lo = 1.0f;
     for (std::size_t p = 0; p < n; ++p) {
@@ -355,6 +341,21 @@ void PatchView::recolour() {
                .arg(selected_)
                .arg(static_cast<double>(vmax), 0, 'g', 3);
   }
+  show_colours(what);
+}
+
+void PatchView::show_pending(const QString& what) {
+  // The last colours stay on screen until the new ones arrive.
+  const std::size_t n = data_ ? data_->patch_count() : 0;
+  if (colours_.size() != n) {
+    colours_.assign(n, {0, 0, 0});
+    for (std::size_t p = 0; p < n; ++p) colours_[p] = srgb(data_->bake.patches.patches[p].albedo);
+  }
+  show_colours(what);
+}
+
+void PatchView::show_colours(const QString& what) {
+  const std::size_t n = data_ ? data_->patch_count() : 0;
   auto array = vtkSmartPointer<vtkUnsignedCharArray>::New();
   array->SetName("colour");
   array->SetNumberOfComponents(3);
@@ -373,59 +374,82 @@ void PatchView::recolour() {
   render();
 }
 
-QString PatchView::indirect_error_colours() {
-  const LoadedBake& b = data_->bake;
-  const std::size_t n = data_->patch_count();
-  if (decoded_.empty())
-    for (int c = 0; c < b.compressed->channels; ++c) {
-      decoded_.emplace_back(n * n);
-      decompress_channel(*b.compressed, c, decoded_.back().data());
-    }
-  std::vector<const float*> exact, approx;
-  for (const auto& m : b.dense) exact.push_back(m.data());
-  for (const auto& m : decoded_) approx.push_back(m.data());
-  // Light 0: the scene's lights as `bounce solve` lights the bake, i.e. the
-  // first hits of the scene's own lights (the first entries of the
-  // evaluation lights) and, with emissive triangles, of the area light (the
-  // last entry).
-  const int index = std::max(0, light_box_->currentIndex());
-  std::vector<glm::vec3> light(n, glm::vec3(0.0f));
-  QString name;
-  if (index == 0) {
-    const std::size_t scene_lights = b.manifest.at("scene").at("lights").size();
-    const bool area = b.probe.first_hit.size() >
-                      scene_lights + kEvaluationPointLights + std::size(kEvaluationSuns);
-    for (std::size_t l = 0; l < b.probe.first_hit.size(); ++l)
-      if (l < scene_lights || (area && l + 1 == b.probe.first_hit.size()))
-        for (std::size_t p = 0; p < n; ++p) light[p] += b.probe.first_hit[l][p];
-    name = tr("the scene's lights");
-  } else {
-    light = b.probe.first_hit[static_cast<std::size_t>(index - 1)];
-    name = tr("evaluation light %1").arg(index - 1);
-  }
-  std::vector<float> area;
-  for (const Patch& p : b.patches.patches) area.push_back(p.area);
-  const PatchLightError e = patch_light_error(exact, approx, n, b.channel_of_rgb, light, area);
-  error_rms_ = e.rel_rms;
-  for (std::size_t p = 0; p < n; ++p) {
-    std::uint8_t c[3];
-    colormap(std::min(1.0, static_cast<double>(e.relative[p]) / kErrorFullScale), c);
-    colours_[p] = {c[0], c[1], c[2]};
-  }
-  QString what = tr("indirect-light error under %1: %2 relative RMS (area-weighted), per patch "
-                    "0 .. %3%")
-                     .arg(name)
-                     .arg(e.rel_rms, 0, 'g', 4)
-                     .arg(100.0 * kErrorFullScale, 0, 'g', 3);
-  if (selected_ >= 0) {
-    const auto p = static_cast<std::size_t>(selected_);
-    explanation_ = row_error_contributions(*b.compressed, exact, b.channel_of_rgb, light, p);
-    what += tr("; patch %1: exact %2, compressed %3 (its matrix row explained beside the view)")
-                .arg(selected_)
-                .arg(rgb_text(explanation_->exact))
-                .arg(rgb_text(explanation_->compressed));
-  }
-  return what;
+void PatchView::colour_by_radiosity() {
+  show_pending(tr("computing the radiosity..."));
+  auto bake = data_;
+  jobs_.run<PatchRadiosity>(
+      this, kColourJob, [bake](const ViewJobs::KeepGoing&) { return patch_radiosity(bake->bake); },
+      [this](PatchRadiosity r) {
+        const LoadedBake& b = data_->bake;
+        const std::size_t n = r.radiosity.size();
+        std::vector<float> lum(n);
+        for (std::size_t p = 0; p < n; ++p) lum[p] = luminance(r.radiosity[p]);
+        const float exposure = ToneMap::exposure_for(lum);
+        colours_.resize(n);
+        for (std::size_t p = 0; p < n; ++p) colours_[p] = srgb(r.radiosity[p] * exposure);
+        const QString what =
+            r.lit ? tr("radiosity under %1")
+                        .arg(QString::fromStdString(
+                            b.manifest.at("scene").at("lights").empty()
+                                ? std::string("the first evaluation light")
+                                : b.manifest.at("scene").at("lights")[0].value("name", "light 1")))
+                  : tr("no exact T in this bake: emission only");
+        show_colours(what);
+      },
+      [this](const QString& message) { show_pending(tr("radiosity failed: %1").arg(message)); });
+}
+
+void PatchView::colour_by_indirect_error() {
+  show_pending(tr("computing the indirect-light error..."));
+  struct Result {
+    std::shared_ptr<const std::vector<std::vector<float>>> decoded;
+    PatchIndirectError error;
+  };
+  auto bake = data_;
+  auto decoded = decoded_;
+  const std::size_t set = static_cast<std::size_t>(std::max(0, light_box_->currentIndex()));
+  const std::optional<std::size_t> patch =
+      selected_ >= 0 ? std::optional(static_cast<std::size_t>(selected_)) : std::nullopt;
+  jobs_.run<Result>(
+      this, kColourJob,
+      [bake, decoded, set, patch](const ViewJobs::KeepGoing&) {
+        Result r{decoded, {}};
+        // The decoded matrix is made once per bake and kept by the view.
+        if (!r.decoded)
+          r.decoded = std::make_shared<const std::vector<std::vector<float>>>(
+              decode_compressed(bake->bake));
+        r.error = compressed_indirect_error(bake->bake, *r.decoded, set, patch);
+        return r;
+      },
+      [this, set](Result r) {
+        decoded_ = std::move(r.decoded);
+        const PatchLightError& e = r.error.error;
+        error_rms_ = e.rel_rms;
+        colours_.resize(e.relative.size());
+        for (std::size_t p = 0; p < e.relative.size(); ++p) {
+          std::uint8_t c[3];
+          colormap(std::min(1.0, static_cast<double>(e.relative[p]) / kErrorFullScale), c);
+          colours_[p] = {c[0], c[1], c[2]};
+        }
+        const QString name =
+            set == 0 ? tr("the scene's lights") : tr("evaluation light %1").arg(set - 1);
+        QString what = tr("indirect-light error under %1: %2 relative RMS (area-weighted), per "
+                          "patch 0 .. %3%")
+                           .arg(name)
+                           .arg(e.rel_rms, 0, 'g', 4)
+                           .arg(100.0 * kErrorFullScale, 0, 'g', 3);
+        explanation_ = std::move(r.error.explanation);
+        if (explanation_)
+          what +=
+              tr("; patch %1: exact %2, compressed %3 (its matrix row explained beside the view)")
+                  .arg(explanation_->patch)
+                  .arg(rgb_text(explanation_->exact))
+                  .arg(rgb_text(explanation_->compressed));
+        show_colours(what);
+      },
+      [this](const QString& message) {
+        show_pending(tr("indirect-light error failed: %1").arg(message));
+      });
 }
 
 QString PatchView::explanation_text() const { return explain_text_->text(); }

@@ -35,6 +35,8 @@ class vtkRenderer;
 
 namespace bounce::views {
 
+class ViewJobs;
+
 class PatchView : public QWidget {
   Q_OBJECT
  public:
@@ -56,7 +58,9 @@ class PatchView : public QWidget {
   // Colour of the picked patch's member samples.
   static constexpr unsigned char kSampleColour[3] = {255, 0, 255};
 
-  explicit PatchView(QWidget* parent = nullptr);
+  // The radiosity and the indirect-light error are computed on `jobs` (the
+  // core's bake_patch_light.h); the other colourings map data at hand.
+  explicit PatchView(ViewJobs& jobs, QWidget* parent = nullptr);
   ~PatchView() override;
 
   void set_data(std::shared_ptr<const BakeViewData> bake);
@@ -107,15 +111,25 @@ class PatchView : public QWidget {
   void matrix_requested();
 
  private:
+  // Colours the patches as the menus say: at once, or through a job whose
+  // result colours them when it arrives.
   void recolour();
-  // Colours the patches by IndirectError; returns what the status says.
-  QString indirect_error_colours();
+  void colour_by_radiosity();
+  void colour_by_indirect_error();
+  // Shows colours_ with `what` in the status.
+  void show_colours(const QString& what);
+  // Shows `what` while a job computes the colours (the last ones stay).
+  void show_pending(const QString& what);
   // Fills the panel from explanation_ (hides it when there is none).
   void show_explanation();
   void emit_source(int rank);
   void show_samples();
   void render();
 
+  // The one job of this view: the colours being computed.
+  static constexpr int kColourJob = 0;
+
+  ViewJobs& jobs_;
   std::shared_ptr<const BakeViewData> data_;
   QVTKOpenGLNativeWidget* vtk_widget_;
   QComboBox* colour_box_;
@@ -134,9 +148,9 @@ class PatchView : public QWidget {
   vtkSmartPointer<vtkCellPicker> picker_;
   std::vector<std::array<unsigned char, 3>> colours_;
   int selected_ = -1;
-  // The decoded compressed matrix (stored channels, patch order), made when
-  // IndirectError first needs it.
-  std::vector<std::vector<float>> decoded_;
+  // The decoded compressed matrix (stored channels, patch order), made by
+  // the job when IndirectError first needs it.
+  std::shared_ptr<const std::vector<std::vector<float>>> decoded_;
   double error_rms_ = 0.0;
   std::optional<RowErrorContributions> explanation_;
 };

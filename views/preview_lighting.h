@@ -15,7 +15,7 @@
 // left out of both the direct and the indirect light, so the two always
 // belong to the same light; emissive surfaces still show their emission.
 //
-// Not thread-safe: one solve() at a time (the preview's worker, or the UI
+// Not thread-safe: one solve() at a time (on the view jobs or the UI
 // thread, never both).
 #include <memory>
 #include <optional>

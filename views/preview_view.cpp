@@ -9,9 +9,9 @@
 
 namespace bounce::views {
 
-PreviewView::PreviewView(QWidget* parent)
+PreviewView::PreviewView(ViewJobs& jobs, QWidget* parent)
     : QWidget(parent),
-      preview_(new PreviewWidget(this)),
+      preview_(new PreviewWidget(jobs, this)),
       direct_(new QCheckBox(tr("Direct"), this)),
       indirect_(new QCheckBox(tr("Indirect"), this)),
       ao_(new QCheckBox(tr("Ambient occlusion"), this)),

@@ -14,11 +14,13 @@ class QLabel;
 namespace bounce::views {
 
 class PreviewWidget;
+class ViewJobs;
 
 class PreviewView : public QWidget {
   Q_OBJECT
  public:
-  explicit PreviewView(QWidget* parent = nullptr);
+  // The preview solves on `jobs` when a solve is too slow for the UI thread.
+  explicit PreviewView(ViewJobs& jobs, QWidget* parent = nullptr);
   // A bake the preview cannot show (no scene on disk, no point or spot
   // light) leaves the preview empty and says why in the tab.
   void set_data(std::shared_ptr<const BakeViewData> data);

@@ -5,11 +5,9 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <map>
 #include <random>
 #include <string>
 
-#include <QMetaObject>
 #include <QMouseEvent>
 #include <QOpenGLShaderProgram>
 #include <QPainter>
@@ -27,6 +25,7 @@
 #include "preview_lighting.h"
 #include "preview_programs.h"
 #include "preview_tangents.h"
+#include "view_jobs.h"
 
 namespace bounce::views {
 
@@ -47,7 +46,7 @@ constexpr glm::vec3 kCubeUp[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1},
 
 }  // namespace
 
-PreviewWidget::PreviewWidget(QWidget* parent) : QOpenGLWidget(parent) {
+PreviewWidget::PreviewWidget(ViewJobs& jobs, QWidget* parent) : QOpenGLWidget(parent), jobs_(jobs) {
   QSurfaceFormat format = QSurfaceFormat::defaultFormat();
   format.setVersion(3, 3);
   format.setProfile(QSurfaceFormat::CoreProfile);
@@ -70,7 +69,6 @@ PreviewWidget::PreviewWidget(QWidget* parent) : QOpenGLWidget(parent) {
 }
 
 PreviewWidget::~PreviewWidget() {
-  stop_worker();
   if (gl_ready_) {
     makeCurrent();
     release_gl();
@@ -87,7 +85,7 @@ std::size_t PreviewWidget::triangle_count() const {
 }
 
 void PreviewWidget::clear() {
-  stop_worker();
+  jobs_.forget(this);
   lighting_.reset();
   data_.reset();
   vertex_indirect_.clear();
@@ -99,7 +97,7 @@ void PreviewWidget::clear() {
 
 void PreviewWidget::set_data(std::shared_ptr<const BakeViewData> bake) {
   clear();
-  auto lighting = std::make_unique<PreviewLighting>(bake);
+  auto lighting = std::make_shared<PreviewLighting>(bake);
   data_ = std::move(bake);
   lighting_ = std::move(lighting);
   reset_camera();
@@ -113,7 +111,6 @@ void PreviewWidget::set_data(std::shared_ptr<const BakeViewData> bake) {
   solve_on_worker_ = std::min(first, s.frame_seconds + s.transfer_seconds) > kUiSolveBudget;
   apply({s.light_position, s.vertex_irradiance, s.frame_seconds, s.transfer_seconds});
   mesh_dirty_ = true;
-  if (solve_on_worker_) start_worker();
   update();
 }
 
@@ -121,7 +118,7 @@ void PreviewWidget::export_lit_glb(const std::string& path) {
   if (!lighting_) throw Error(path, "nothing to export: open or bake a scene first");
   LitMesh mesh;
   {
-    std::lock_guard<std::mutex> lock(lighting_mutex_);
+    std::lock_guard<std::mutex> lock(*lighting_mutex_);
     mesh = lighting_->lit_mesh(light_position_);
   }
   // The scene is never changed after construction: no lock needed to read it.
@@ -143,15 +140,23 @@ void PreviewWidget::set_light_position(const glm::vec3& position, bool wait) {
   light_position_ = position;
   shadow_dirty_ = true;  // the direct light follows at once, the indirect when solved
   if (wait || !solve_on_worker_) {
-    std::lock_guard<std::mutex> lock(lighting_mutex_);
+    std::lock_guard<std::mutex> lock(*lighting_mutex_);
     const PreviewLighting::Solve s = lighting_->solve(position);
     apply({s.light_position, s.vertex_irradiance, s.frame_seconds, s.transfer_seconds});
   } else {
-    {
-      std::lock_guard<std::mutex> lock(request_mutex_);
-      request_ = position;
-    }
-    request_ready_.notify_one();
+    jobs_.run<SolveResult>(
+        this, kSolveJob,
+        [lighting = lighting_, mutex = lighting_mutex_, position](const ViewJobs::KeepGoing&) {
+          std::lock_guard<std::mutex> lock(*mutex);
+          const PreviewLighting::Solve s = lighting->solve(position);
+          return SolveResult{s.light_position, s.vertex_irradiance, s.frame_seconds,
+                             s.transfer_seconds};
+        },
+        [this](SolveResult r) { apply(std::move(r)); },
+        [this](const QString& message) {
+          gl_error_ = tr("solve failed: ") + message;
+          update();
+        });
   }
   update();
 }
@@ -164,52 +169,6 @@ void PreviewWidget::apply(SolveResult result) {
   indirect_dirty_ = true;
   update();
   emit solved();
-}
-
-void PreviewWidget::start_worker() {
-  stop_ = false;
-  worker_ = std::thread([this] {
-    for (;;) {
-      glm::vec3 position;
-      {
-        std::unique_lock<std::mutex> lock(request_mutex_);
-        request_ready_.wait(lock, [this] { return stop_ || request_.has_value(); });
-        if (stop_) return;
-        position = *request_;
-        request_.reset();  // requests made while this one solves replace each other
-      }
-      SolveResult r;
-      try {
-        std::lock_guard<std::mutex> lock(lighting_mutex_);
-        const PreviewLighting::Solve s = lighting_->solve(position);
-        r = {s.light_position, s.vertex_irradiance, s.frame_seconds, s.transfer_seconds};
-      } catch (const std::exception& e) {
-        const QString message = QString::fromStdString(e.what());
-        QMetaObject::invokeMethod(
-            this,
-            [this, message] {
-              gl_error_ = tr("solve failed: ") + message;
-              update();
-            },
-            Qt::QueuedConnection);
-        continue;
-      }
-      // Queued to the UI thread; dropped if the widget is gone by then.
-      QMetaObject::invokeMethod(
-          this, [this, r = std::move(r)]() mutable { apply(std::move(r)); }, Qt::QueuedConnection);
-    }
-  });
-}
-
-void PreviewWidget::stop_worker() {
-  if (!worker_.joinable()) return;
-  {
-    std::lock_guard<std::mutex> lock(request_mutex_);
-    stop_ = true;
-    request_.reset();
-  }
-  request_ready_.notify_one();
-  worker_.join();
 }
 
 // --- camera ------------------------------------------------------------------
@@ -359,9 +318,7 @@ void PreviewWidget::release_gl() {
   if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
   if (static_vbo_) glDeleteBuffers(1, &static_vbo_);
   if (indirect_vbo_) glDeleteBuffers(1, &indirect_vbo_);
-  if (!material_images_.empty())
-    glDeleteTextures(static_cast<GLsizei>(material_images_.size()), material_images_.data());
-  material_images_.clear();
+  material_images_.release();
   draws_.clear();
   if (shadow_fbo_) glDeleteFramebuffers(1, &shadow_fbo_);
   if (shadow_cube_) glDeleteTextures(1, &shadow_cube_);
@@ -379,10 +336,8 @@ void PreviewWidget::upload_mesh() {
   if (mesh_vao_) glDeleteVertexArrays(1, &mesh_vao_);
   if (static_vbo_) glDeleteBuffers(1, &static_vbo_);
   if (indirect_vbo_) glDeleteBuffers(1, &indirect_vbo_);
-  if (!material_images_.empty())
-    glDeleteTextures(static_cast<GLsizei>(material_images_.size()), material_images_.data());
+  material_images_.release();
   mesh_vao_ = static_vbo_ = indirect_vbo_ = 0;
-  material_images_.clear();
   draws_.clear();
   corner_count_ = 0;
   corner_vertex_.clear();
@@ -439,7 +394,7 @@ void PreviewWidget::upload_mesh() {
     draw.count = static_cast<GLsizei>(corner_vertex_.size()) - draw.first;
     draws_.push_back(draw);
   }
-  upload_material_images();
+  for (MaterialDraw& draw : draws_) draw.images = material_images_.upload(scene, draw.material);
   corner_count_ = static_cast<GLsizei>(corner_vertex_.size());
   glGenVertexArrays(1, &mesh_vao_);
   glBindVertexArray(mesh_vao_);
@@ -476,68 +431,6 @@ void PreviewWidget::upload_mesh() {
   indirect_dirty_ = true;
 }
 
-void PreviewWidget::upload_material_images() {
-  // The core's decoded images, uploaded as they are: the albedo and
-  // emissive textures in linear RGB and the normal map's stored values, each
-  // with the core's own MIP pyramid (each level half the last, as OpenGL
-  // expects), the alpha mask's coverage at its one level. All are stored row
-  // 0 first, the top of the image, which is v = 1: the shaders look up
-  // (u, 1 - v). R11F_G11F_B10F keeps linear light in 4 bytes a texel, so a
-  // scene with many large textures fits; a normal map needs more than its 6
-  // bits of mantissa (a degree of tilt is 0.009 of a channel): RGB16F; a
-  // mask needs 8 bits.
-  const Scene& scene = lighting_->scene();
-  if (scene.triangle_uv.empty()) return;
-  std::map<const void*, GLuint> uploaded;  // a texture shared by materials is uploaded once
-  auto make = [this](GLint min_filter) {
-    GLuint name = 0;
-    glGenTextures(1, &name);
-    glBindTexture(GL_TEXTURE_2D, name);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, min_filter);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);  // the core's wrapping
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    material_images_.push_back(name);
-    return name;
-  };
-  const auto upload = [&](const Texture* t, GLint format) -> GLuint {
-    if (t == nullptr || t->levels.empty()) return 0;
-    GLuint& name = uploaded[t];
-    if (name == 0) {
-      name = make(GL_LINEAR_MIPMAP_LINEAR);
-      for (std::size_t level = 0; level < t->levels.size(); ++level) {
-        const Texture::Level& l = t->levels[level];
-        glTexImage2D(GL_TEXTURE_2D, static_cast<GLint>(level), format, l.width, l.height, 0, GL_RGB,
-                     GL_FLOAT, l.texels.data());
-      }
-      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL,
-                      static_cast<GLint>(t->levels.size()) - 1);
-    }
-    return name;
-  };
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  for (MaterialDraw& draw : draws_) {
-    const Material& m = scene.materials[draw.material];
-    draw.texture = upload(m.texture.get(), GL_R11F_G11F_B10F);
-    draw.emission = upload(m.emission_texture.get(), GL_R11F_G11F_B10F);
-    draw.normal_map = upload(m.normal_map.get(), GL_RGB16F);
-    if (const AlphaMask* a = m.alpha_mask.get(); a != nullptr && !a->values.empty()) {
-      GLuint& name = uploaded[a];
-      if (name == 0) {
-        // No MIP levels: the core cuts with the full-resolution mask, and
-        // averaged coverage would fade holes away with distance.
-        name = make(GL_LINEAR);
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_R8, a->width, a->height, 0, GL_RED, GL_FLOAT,
-                     a->values.data());
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-      }
-      draw.mask = name;
-    }
-  }
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glBindTexture(GL_TEXTURE_2D, 0);
-}
-
 void PreviewWidget::draw_mesh(QOpenGLShaderProgram& program) {
   const Scene& scene = lighting_->scene();
   program.setUniformValue("albedo_texture", 0);
@@ -547,17 +440,18 @@ void PreviewWidget::draw_mesh(QOpenGLShaderProgram& program) {
   glBindVertexArray(mesh_vao_);
   for (const MaterialDraw& draw : draws_) {
     const Material& m = scene.materials[draw.material];
-    const GLuint normal_map = passes_.normal_maps ? draw.normal_map : 0;
-    const GLuint images[] = {draw.texture, draw.mask, normal_map, draw.emission};
+    const PreviewMaterialImages::Images& own = draw.images;
+    const GLuint normal_map = passes_.normal_maps ? own.normal_map : 0;
+    const GLuint images[] = {own.texture, own.mask, normal_map, own.emission};
     for (int unit = 0; unit < 4; ++unit) {
       glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
       glBindTexture(GL_TEXTURE_2D, images[unit]);
     }
-    program.setUniformValue("has_texture", draw.texture != 0);
+    program.setUniformValue("has_texture", own.texture != 0);
     program.setUniformValue("has_normal_map", normal_map != 0);
     program.setUniformValue("normal_scale", m.normal_scale);
-    program.setUniformValue("has_emission_texture", draw.emission != 0);
-    program.setUniformValue("has_mask", draw.mask != 0);
+    program.setUniformValue("has_emission_texture", own.emission != 0);
+    program.setUniformValue("has_mask", own.mask != 0);
     program.setUniformValue("constant_mask",
                             m.alpha_mask != nullptr && m.alpha_mask->is_constant());
     program.setUniformValue("alpha_factor", m.alpha_factor);

@@ -20,19 +20,17 @@
 // All light transport comes from the core through PreviewLighting (the
 // runtime frame graph and the mesh transfer of `bounce solve`); the widget
 // only draws. When the light moves the solve runs again: on the UI thread
-// when the last one fitted in kUiSolveBudget, otherwise on a worker thread
-// where only the latest light position is solved (positions the worker had
-// no time for are skipped).
+// when the last one fitted in kUiSolveBudget, otherwise on the studio's view
+// jobs (view_jobs.h), where only the latest light position is solved
+// (positions the jobs had no time for are skipped).
 //
 // Mouse: left drag orbits the camera, right drag or the wheel moves it
 // closer, Ctrl + left drag moves the light in the plane facing the camera,
 // Ctrl + wheel moves it towards or away from the camera. The light stays
 // inside the scene's bounds.
-#include <condition_variable>
 #include <memory>
 #include <mutex>
 #include <optional>
-#include <thread>
 
 #include <QElapsedTimer>
 #include <QOpenGLFunctions_3_3_Core>
@@ -41,12 +39,14 @@
 #include <glm/glm.hpp>
 
 #include "bake_view_data.h"
+#include "preview_material_images.h"
 #include "preview_programs.h"
 #include "preview_targets.h"
 
 namespace bounce::views {
 
 class PreviewLighting;
+class ViewJobs;
 
 class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core {
   Q_OBJECT
@@ -65,7 +65,7 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   static constexpr int kAoSamples = 32;  // the SSAO kernel size (docs/studio.md: m = 32)
   static constexpr int kShadowSize = 512;
 
-  explicit PreviewWidget(QWidget* parent = nullptr);
+  explicit PreviewWidget(ViewJobs& jobs, QWidget* parent = nullptr);
   ~PreviewWidget() override;
 
   // Builds the lighting (mesh refinement, frame graph) and solves (twice,
@@ -127,7 +127,6 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   void draw_overlay();
   void release_gl();
   void upload_mesh();
-  void upload_material_images();
   // Draws the mesh one material at a time with `program`, its textures bound
   // to units 0 (albedo), 1 (alpha mask), 2 (normal map) and 3 (emission)
   // and the uniforms that say which of them the material has.
@@ -135,24 +134,21 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   void upload_indirect();
   void render_shadow_map();
   void apply(SolveResult result);
-  void start_worker();
-  void stop_worker();
   void reset_camera();
   glm::mat4 view_matrix() const;
   glm::mat4 projection_matrix() const;
   glm::vec3 eye() const;
   void move_light_by(const glm::vec3& delta);
 
-  std::shared_ptr<const BakeViewData> data_;
-  std::unique_ptr<PreviewLighting> lighting_;
-  std::mutex lighting_mutex_;  // one solve at a time
+  // The one job of this widget: the light solved at its latest position.
+  static constexpr int kSolveJob = 0;
 
-  // Worker: the latest requested light position wins.
-  std::thread worker_;
-  std::mutex request_mutex_;
-  std::condition_variable request_ready_;
-  std::optional<glm::vec3> request_;
-  bool stop_ = false;
+  ViewJobs& jobs_;
+  std::shared_ptr<const BakeViewData> data_;
+  // Shared with the solve running on the jobs, which may outlive the widget.
+  std::shared_ptr<PreviewLighting> lighting_;
+  std::shared_ptr<std::mutex> lighting_mutex_ =
+      std::make_shared<std::mutex>();  // one solve at a time
   bool solve_on_worker_ = false;
 
   Passes passes_;
@@ -186,10 +182,10 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
     GLint first = 0;
     GLsizei count = 0;
     std::size_t material = 0;
-    GLuint texture = 0, mask = 0, normal_map = 0, emission = 0;
+    PreviewMaterialImages::Images images;
   };
   std::vector<MaterialDraw> draws_;
-  std::vector<GLuint> material_images_;  // every texture draws_ names, each once
+  PreviewMaterialImages material_images_{*this};  // every image draws_ names, each once
   GLuint shadow_fbo_ = 0, shadow_cube_ = 0;
   PreviewTargets targets_{*this};
   GLuint noise_texture_ = 0;

@@ -14,6 +14,7 @@
 #include "preview_widget.h"
 #include "report_screenshot.h"
 #include "settings_panel.h"
+#include "view_jobs.h"
 #include "voxel_view.h"
 #include "vtk_error_capture.h"
 
@@ -102,6 +103,9 @@ void take_screenshot(const ScreenshotRequest& r) {
         run_bake_job(r.input.toStdString(), panel.settings(), folder.toStdString(), progress).data;
   }
 
+  // The views' computations run here; the picture is taken once they are
+  // shown.
+  views::ViewJobs jobs;
   QWidget* view = nullptr;
   std::unique_ptr<QWidget> owner;
   if (r.view == "voxels") {
@@ -110,7 +114,7 @@ void take_screenshot(const ScreenshotRequest& r) {
     v->set_data(data);
     view = v;
   } else if (r.view == "patches") {
-    auto* v = new views::PatchView;
+    auto* v = new views::PatchView(jobs);
     owner.reset(v);
     v->set_data(data);
     if (r.pick_patch >= 0) {
@@ -121,21 +125,21 @@ void take_screenshot(const ScreenshotRequest& r) {
     }
     view = v;
   } else if (r.view == "preview") {
-    auto* v = new views::PreviewWidget;
+    auto* v = new views::PreviewWidget(jobs);
     owner.reset(v);
     v->set_data(data);
     v->set_passes(preview_passes(r.passes));
     if (r.has_light) v->set_light_position({r.light_x, r.light_y, r.light_z}, true);
     view = v;
   } else if (r.view == "error") {
-    auto* v = new views::ErrorView;
+    auto* v = new views::ErrorView(jobs);
     owner.reset(v);
     v->set_data(data);
     if (!r.compare_codec.isEmpty()) {
       if (r.compare_codec != "paper" && r.compare_codec != "ours")
         throw Error("--compare-codec",
                     "must be paper or ours, got '" + r.compare_codec.toStdString() + "'");
-      // The comparison runs on the view's worker thread: wait for it.
+      // The comparison runs on the view jobs: wait for it.
       bool done = false;
       QString failure;
       QObject::connect(v, &views::ErrorView::comparison_ready, [&] { done = true; });
@@ -154,6 +158,7 @@ void take_screenshot(const ScreenshotRequest& r) {
     v->set_data(data);
     view = v;
   }
+  jobs.wait_idle();
   view->resize(r.width, r.height);
   view->show();
   settle();

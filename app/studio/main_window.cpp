@@ -31,6 +31,7 @@
 #include "report_controller.h"
 #include "report_view.h"
 #include "settings_panel.h"
+#include "view_jobs.h"
 #include "voxel_view.h"
 
 namespace bounce::studio {
@@ -51,12 +52,13 @@ MainWindow::MainWindow(QWidget* parent)
     : QMainWindow(parent),
       settings_(new SettingsPanel(this)),
       controller_(new BakeController(this)),
+      jobs_(new views::ViewJobs(this)),
       tabs_(new QTabWidget(this)),
       voxel_view_(new views::VoxelView(this)),
-      patch_view_(new views::PatchView(this)),
+      patch_view_(new views::PatchView(*jobs_, this)),
       matrix_view_(new views::MatrixView(this)),
-      error_view_(new views::ErrorView(this)),
-      preview_view_(new views::PreviewView(this)),
+      error_view_(new views::ErrorView(*jobs_, this)),
+      preview_view_(new views::PreviewView(*jobs_, this)),
       bake_button_(new QPushButton(tr("Bake"), this)),
       cancel_button_(new QPushButton(tr("Cancel"), this)),
       stage_bars_(new QVBoxLayout),

@@ -22,6 +22,7 @@ class MatrixView;
 class PatchView;
 class ReportView;
 class PreviewView;
+class ViewJobs;
 class VoxelView;
 }  // namespace bounce::views
 
@@ -68,6 +69,11 @@ class MainWindow : public QMainWindow {
 
   SettingsPanel* settings_;
   BakeController* controller_;
+  // The one thread of the views' computations, shared by all of them. Made
+  // before the views (they keep a reference) and, as the first of this
+  // window's children, deleted before them: it stops and joins its running
+  // job, whose result is then dropped.
+  views::ViewJobs* jobs_;
   QTabWidget* tabs_;
   views::VoxelView* voxel_view_;
   views::PatchView* patch_view_;

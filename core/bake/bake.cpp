@@ -85,6 +85,9 @@ void run_stage(BakeStage stage, BakeRun& run) {
     } else {
       step.run(run);
     }
+    // A stop asked for during a step whose loops no longer polled (its last
+    // report) ends the bake here, not after the stages that follow.
+    run.progress.check();
     if (run.finished) return;
   }
   const std::vector<Diagnostic> all = run.diagnostics.all();

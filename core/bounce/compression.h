@@ -17,10 +17,13 @@
 // orderings before block encoding (our_ordering, paper_ordering) with the
 // cost that compares them (block_spread_cost). For a view that explains one
 // patch's error: row_error_contributions, the blocks and kept entries of its
-// row ranked by how much of the difference they make.
+// row ranked by how much of the difference they make. For a view that draws
+// a matrix's error: compression_error_maps, its pictures and the numbers
+// under them in one call.
 #include "bake/matrix_storage.h"
 #include "compress/codec.h"
 #include "compress/compression_error.h"
+#include "compress/compression_error_maps.h"
 #include "compress/entry_importance.h"
 #include "compress/light_rebalance.h"
 #include "compress/matrix_picture.h"

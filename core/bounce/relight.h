@@ -20,7 +20,10 @@
 // patches (direct_light.h), the patches' light for a set of lights
 // (PatchLighting), the dense product itself, and the gather from nearby
 // patches over a grid (PatchGather), which a bake without a stored final
-// gather uses.
+// gather uses. For a view of the patches of a bake read back: the light
+// sets its probe lights them with, their radiosity, and the indirect-light
+// error of its compressed matrix under a light set (bake_patch_light.h).
+#include "bake/bake_patch_light.h"
 #include "bake/camera_gather.h"
 #include "bake/stored_transport.h"
 #include "raytrace/ray_tracer.h"

@@ -7,7 +7,7 @@
 #include <map>
 #include <numbers>
 
-#include "formfactor/kernel.h"
+#include "base/form_factor_kernel.h"
 #include "voxel/polygon.h"
 
 namespace bounce {

@@ -6,7 +6,7 @@
 #include <queue>
 #include <unordered_map>
 
-#include "formfactor/kernel.h"
+#include "base/form_factor_kernel.h"
 
 namespace bounce {
 

@@ -10,6 +10,7 @@
 #include "error_view.h"
 #include "io/npy.h"
 #include "render_support.h"
+#include "view_jobs.h"
 
 namespace bounce::render_test {
 
@@ -24,8 +25,15 @@ class ErrorView : public RenderTest {
     view_.set_data(data_);
     settle();
   }
+  // Processes events until the view jobs have run and shown their results
+  // (the error maps are computed there).
+  void settle() {
+    jobs_.wait_idle();
+    render_test::settle();
+  }
   std::shared_ptr<const views::BakeViewData> data_;
-  views::ErrorView view_;
+  views::ViewJobs jobs_;
+  views::ErrorView view_{jobs_};
 };
 
 TEST_F(ErrorView, NumbersMatchTheManifest) {

@@ -14,6 +14,7 @@
 #include "patch_view.h"
 #include "render_support.h"
 #include "runtime/dense_transport.h"
+#include "view_jobs.h"
 
 namespace bounce::render_test {
 
@@ -40,8 +41,15 @@ class PatchView : public RenderTest {
     }
     return facing;
   }
+  // Processes events until the view jobs have run and shown their results
+  // (the radiosity and error colourings are computed there).
+  void settle() {
+    jobs_.wait_idle();
+    render_test::settle();
+  }
   std::shared_ptr<const views::BakeViewData> data_;
-  views::PatchView view_;
+  views::ViewJobs jobs_;
+  views::PatchView view_{jobs_};
 };
 
 TEST_F(PatchView, DiscsShowTheWallColours) {

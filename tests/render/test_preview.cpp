@@ -11,6 +11,7 @@
 
 #include "preview_widget.h"
 #include "render_support.h"
+#include "view_jobs.h"
 
 namespace bounce::render_test {
 
@@ -73,7 +74,8 @@ class Preview : public RenderTest {
     return image;
   }
   std::shared_ptr<const views::BakeViewData> data_;
-  views::PreviewWidget view_;
+  views::ViewJobs jobs_;
+  views::PreviewWidget view_{jobs_};
 };
 
 TEST_F(Preview, RendersTheLitBox) {
@@ -269,7 +271,8 @@ class PreviewOfBake : public RenderTest {
     settle();
   }
   std::shared_ptr<const views::BakeViewData> data_;
-  views::PreviewWidget view_;
+  views::ViewJobs jobs_;
+  views::PreviewWidget view_{jobs_};
 };
 
 class TexturedPreview : public PreviewOfBake {

@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "bake/bake.h"
+#include "base/form_factor_kernel.h"
 #include "base/random.h"
 #include "formfactor/balance.h"
 #include "formfactor/closure.h"
-#include "formfactor/kernel.h"
 #include "patches/surface_patch_lookup.h"
 #include "raytrace/ray_tracer.h"
 #include "reference/path_tracer.h"

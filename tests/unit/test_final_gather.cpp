@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "bake/bake.h"
-#include "formfactor/kernel.h"
+#include "base/form_factor_kernel.h"
 #include "patches/surface_patch_lookup.h"
 #include "raytrace/ray_tracer.h"
 #include "reference/path_tracer.h"

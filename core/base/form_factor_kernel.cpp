@@ -1,4 +1,4 @@
-#include "formfactor/kernel.h"
+#include "base/form_factor_kernel.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,9 @@
 #pragma once
-// Form-factor kernels shared by the clustering metric and the patch form
-// factors (form_factors.cpp explains where each is used).
+// Form-factor kernels: geometry of two small surfaces alone, shared by the
+// clustering metric (patches/clustering.cpp) and the patch form factors
+// (formfactor/form_factors.cpp explains where each is used). They sit in
+// base/ because both modules stand on them and patches/ stands below
+// formfactor/.
 #include <algorithm>
 #include <numbers>
 
