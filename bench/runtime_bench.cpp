@@ -48,10 +48,14 @@ double max_rel_diff(const std::vector<glm::vec3>& y, const std::vector<glm::vec3
 // The gather's rows summed one by one in double precision: the reference of
 // its rel diff column (float rounding of the sums is all that may differ).
 std::vector<glm::vec3> gather_in_double(const FinalGather& g, const std::vector<glm::vec3>& b,
-                                        const std::vector<glm::vec3>& sample_light) {
-  std::vector<glm::dvec3> light(g.patches + g.clusters + g.samples, glm::dvec3(0.0));
+                                        const std::vector<glm::vec3>& sample_light,
+                                        const std::vector<glm::vec3>& near_light) {
+  std::vector<glm::dvec3> light(g.patches + g.clusters + g.samples + g.near.size(),
+                                glm::dvec3(0.0));
   for (std::size_t s = 0; s < g.samples; ++s)
     light[g.patches + g.clusters + s] = glm::dvec3(sample_light[s]);
+  for (std::size_t k = 0; k < g.near.size(); ++k)
+    light[g.patches + g.clusters + g.samples + k] = glm::dvec3(near_light[k]);
   for (std::size_t p = 0; p < g.patches; ++p) {
     light[p] = glm::dvec3(b[p]);
     light[g.patches + g.cluster_of_patch[p]] +=
@@ -191,14 +195,20 @@ RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 
                          bench.gather_entries * (sizeof(std::uint32_t) + sizeof(float)) +
                          (gather->patches + gather->clusters) * sizeof(glm::vec3) +
                          bench.gather_points * sizeof(glm::vec3);
-    // Sample sources read a light of their own each frame.
-    std::vector<glm::vec3> sample_light(gather->samples);
+    // Sample and near sources read a light of their own each frame (the
+    // near sources' direct light, a shadow ray each, is not part of this
+    // product: bounce solve --json times it as final_gather_near_sources).
+    std::vector<glm::vec3> sample_light(gather->samples), near_light(gather->near.size());
     for (glm::vec3& v : sample_light) v = glm::vec3(u(rng), u(rng), u(rng));
-    bench.gather.bytes += gather->samples * sizeof(glm::vec3);
+    for (glm::vec3& v : near_light) v = glm::vec3(u(rng), u(rng), u(rng));
+    bench.gather.bytes += (gather->samples + gather->near.size()) * sizeof(glm::vec3);
     time_product(
-        [gather, &sample_light](const auto& x, auto& y) { gather->irradiance(x, sample_light, y); },
+        [gather, &sample_light, &near_light](const auto& x, auto& y) {
+          gather->irradiance(x, sample_light, near_light, y);
+        },
         b, bench.repeats, out, bench.gather);
-    bench.gather.max_rel_diff = max_rel_diff(out, gather_in_double(*gather, b, sample_light));
+    bench.gather.max_rel_diff =
+        max_rel_diff(out, gather_in_double(*gather, b, sample_light, near_light));
   }
   bench.stream_gb_per_s = measure_read_bandwidth();
   return bench;

@@ -205,10 +205,14 @@ void run_solve(const SolveOptions& opt) {
   const TransferGrid grid = TransferGrid::from_manifest(bake.manifest);
   ConsoleProgress console(opt.quiet || opt.json);
   if (!opt.no_mesh) {
-    double product = 0.0;
-    const LitMesh mesh = light_bake_mesh(tracer, bake, opt.bake, relighter, area, gather,
-                                         console.progress(), gather ? &product : nullptr);
-    if (gather) timings["final_gather_product"] = product;
+    double product = 0.0, near = 0.0;
+    const LitMesh mesh =
+        light_bake_mesh(tracer, bake, opt.bake, relighter, area, gather, console.progress(),
+                        gather ? &product : nullptr, gather ? &near : nullptr);
+    if (gather) {
+      timings["final_gather_product"] = product;
+      timings["final_gather_near_sources"] = near;
+    }
     std::vector<float> error_abs, error_rel;
     std::vector<PlyScalar> scalars;
     if (opt.compare_exact) {

@@ -18,11 +18,12 @@ namespace bounce::cli {
 // The lit mesh after relighter.light(): `folder` is the bake's (it names a
 // gather that does not fit), `area` the area lights the frame used. With
 // `product_seconds`, the per-frame part of the final gather runs five times
-// and its best time is stored there.
+// and the best time of its sparse product is stored there, and in
+// `near_seconds` the best time of lighting its near sources.
 LitMesh light_bake_mesh(const RayTracer& tracer, const LoadedBake& bake, const std::string& folder,
                         const Relighter& relighter, const std::vector<AreaLight>& area,
                         const std::optional<FinalGather>& gather, Progress& progress,
-                        double* product_seconds = nullptr);
+                        double* product_seconds = nullptr, double* near_seconds = nullptr);
 
 // Reads the bake folder `folder` of `scene`, lights it with the scene's own
 // lights and writes the lit mesh with its materials and textures to `glb`
