@@ -88,11 +88,4 @@ constexpr BakeStep kGeometrySteps[] = {
 
 std::span<const BakeStep> geometry_steps() { return kGeometrySteps; }
 
-std::vector<float> patch_densities(const Scene& scene) {
-  std::vector<float> d;
-  d.reserve(scene.meshes.size());
-  for (const MeshInfo& m : scene.meshes) d.push_back(m.patch_density);
-  return d;
-}
-
 }  // namespace bounce

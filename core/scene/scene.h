@@ -61,6 +61,12 @@ struct Material {
   bool is_emissive() const { return emission.r > 0.f || emission.g > 0.f || emission.b > 0.f; }
 };
 
+// The largest patch density a mesh may have (scene.json's
+// meshes[i].patch_density, the studio's mesh list): a mesh at 64 times the
+// others' density already takes nearly a whole budget from a scene of a few
+// dozen equal meshes; more is a typo.
+inline constexpr int kMaxPatchDensity = 64;
+
 struct MeshInfo {
   std::string name;    // from scene.json or the file's node/mesh name
   std::string source;  // file it came from
