@@ -56,8 +56,9 @@ PreviewLighting::PreviewLighting(std::shared_ptr<const BakeViewData> data)
                       "has " +
                       std::to_string(geometry_.positions.size()) + ": not this scene");
   } else {
-    for (const std::uint32_t t : vertex_source_triangles(geometry_)) {
-      const glm::vec3 albedo = scene.material_of(t).albedo;
+    const std::vector<std::uint32_t> source = vertex_source_triangles(geometry_);
+    for (std::size_t v = 0; v < source.size(); ++v) {
+      const glm::vec3 albedo = scene.flat_albedo_at(source[v], geometry_.positions[v]);
       glm::vec3 inverse(0.0f);
       for (int c = 0; c < 3; ++c)
         if (albedo[c] > 1e-4f) inverse[c] = 1.0f / albedo[c];

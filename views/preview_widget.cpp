@@ -382,7 +382,9 @@ void PreviewWidget::upload_mesh() {
       for (int c = 0; c < 3; ++c) {
         const std::uint32_t v = mesh.triangles[f][c];
         corner_vertex_.push_back(v);
-        for (const glm::vec3& a : {mesh.positions[v], mesh.normals[v], albedo, emission})
+        // The vertex colour multiplies the albedo (or the texture's factor).
+        const glm::vec3 coloured = albedo * scene.colour_at(source, mesh.positions[v]);
+        for (const glm::vec3& a : {mesh.positions[v], mesh.normals[v], coloured, emission})
           corners.insert(corners.end(), {a.x, a.y, a.z});
         const glm::vec2 uv =
             mapped ? texture_coordinates(scene, source, mesh.positions[v]) : glm::vec2(0.0f);

@@ -31,10 +31,12 @@ vtkSmartPointer<vtkActor> make_scene_mesh_actor(const Scene& scene) {
     const vtkIdType ids[3] = {tri.x, tri.y, tri.z};
     cells->InsertNextCell(3, ids);
     const Material& m = scene.material_of(t);
-    // The albedo as the surface colour; a lamp shows its emission's hue.
+    // The albedo as the surface colour (with the vertex colour at the
+    // triangle's centre); a lamp shows its emission's hue.
+    const glm::vec3 centre = (scene.vertex(t, 0) + scene.vertex(t, 1) + scene.vertex(t, 2)) / 3.0f;
     glm::vec3 c = m.is_emissive()
                       ? m.emission / std::max({m.emission.r, m.emission.g, m.emission.b})
-                      : m.albedo;
+                      : scene.flat_albedo_at(t, centre);
     c = glm::clamp(c, 0.0f, 1.0f) * 255.0f;
     colours->InsertNextTuple3(c.r, c.g, c.b);
   }

@@ -9,9 +9,10 @@ BakeController::BakeController(QObject* parent) : QObject(parent) {
 BakeController::~BakeController() { worker_.cancel_and_wait(); }
 
 void BakeController::start(const QString& scene_path, const BakeSettings& settings,
-                           const QString& folder, std::shared_ptr<const BakeJobResult> previous) {
+                           const QString& folder, std::shared_ptr<const BakeJobResult> previous,
+                           std::vector<float> patch_density) {
   const std::string scene = scene_path.toStdString(), out = folder.toStdString();
-  worker_.start([this, scene, settings, out, previous] {
+  worker_.start([this, scene, settings, out, previous, patch_density] {
     std::string stage;
     auto stage_start = std::chrono::steady_clock::now();
     Progress progress([&](const std::string& name, double fraction) {
@@ -28,7 +29,7 @@ void BakeController::start(const QString& scene_path, const BakeSettings& settin
     });
     try {
       auto job = std::make_shared<const BakeJobResult>(
-          run_bake_job(scene, settings, out, progress, previous));
+          run_bake_job(scene, settings, out, progress, previous, patch_density));
       emit finished(job);
     } catch (const Cancelled&) {
       emit cancelled();

@@ -5,6 +5,7 @@
 // poll; core/base/progress.h).
 #include <chrono>
 #include <memory>
+#include <vector>
 
 #include <QObject>
 #include <QString>
@@ -24,8 +25,10 @@ class BakeController : public QObject {
   // Starts a bake into `folder` (replaced when the bake succeeds). With
   // `previous` (an earlier job of the same scene), only the stages the
   // settings change affects run (run_bake_job).
+  // `patch_density`: the meshes' densities (empty: the scene's own).
   void start(const QString& scene_path, const BakeSettings& settings, const QString& folder,
-             std::shared_ptr<const BakeJobResult> previous = {});
+             std::shared_ptr<const BakeJobResult> previous = {},
+             std::vector<float> patch_density = {});
   void cancel() { worker_.cancel(); }
 
  signals:

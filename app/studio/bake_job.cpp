@@ -1,5 +1,7 @@
 #include "bake_job.h"
 
+#include <string>
+
 #include "bounce/bake.h"
 #include "bounce/scene.h"
 
@@ -9,7 +11,8 @@ namespace fs = std::filesystem;
 
 BakeJobResult run_bake_job(const fs::path& scene_path, const BakeSettings& settings,
                            const fs::path& folder, Progress& progress,
-                           std::shared_ptr<const BakeJobResult> previous) {
+                           std::shared_ptr<const BakeJobResult> previous,
+                           const std::vector<float>& patch_density) {
   settings.validate();
   BakeJobResult job;
   job.scene_path = scene_path;
@@ -29,6 +32,24 @@ BakeJobResult run_bake_job(const fs::path& scene_path, const BakeSettings& setti
   } else {
     job.scene = std::make_shared<const Scene>(SceneLoader(*job.diagnostics).load(scene_path));
     job.load_diagnostics = job.diagnostics->all();
+  }
+  if (!patch_density.empty() && patch_density != patch_densities(*job.scene)) {
+    const std::string where = scene_path.string();
+    if (patch_density.size() != job.scene->meshes.size())
+      throw Error(where, std::to_string(patch_density.size()) +
+                             " patch densities given for a scene of " +
+                             std::to_string(job.scene->meshes.size()) + " meshes");
+    // A copy: the previous job's scene stays as its bake had it.
+    auto edited = std::make_shared<Scene>(*job.scene);
+    for (std::size_t i = 0; i < patch_density.size(); ++i) {
+      const float d = patch_density[i];
+      if (!(d > 0.0f && d <= static_cast<float>(kMaxPatchDensity)))
+        throw Error(where, "patch density of mesh '" + edited->meshes[i].name +
+                               "' must be > 0 and <= " + std::to_string(kMaxPatchDensity) +
+                               ", got " + std::to_string(d));
+      edited->meshes[i].patch_density = d;
+    }
+    job.scene = std::move(edited);
   }
   job.result = std::make_shared<const BakeResult>(
       Baker(*job.scene, settings, *job.diagnostics)

@@ -27,9 +27,14 @@ struct BakeJobResult {
 // `previous`, an earlier job of the same scene path, its loaded scene is
 // reused and only the stages the settings change affects run (the core's
 // plan_rebake, Baker::run with a previous result); the rest is taken from it.
+// `patch_density` (empty: the scene's own), one per mesh, replaces the
+// meshes' patch densities (the studio's mesh list); a changed density
+// re-runs the bake from its geometry stage. Throws bounce::Error naming the
+// scene when there is not one per mesh or one is not > 0 and <= 64.
 BakeJobResult run_bake_job(const std::filesystem::path& scene_path, const BakeSettings& settings,
                            const std::filesystem::path& folder, Progress& progress,
-                           std::shared_ptr<const BakeJobResult> previous = {});
+                           std::shared_ptr<const BakeJobResult> previous = {},
+                           const std::vector<float>& patch_density = {});
 
 // Exports a finished bake: the same folder format as `bounce bake --out`.
 void export_bake(const BakeJobResult& job, const std::filesystem::path& folder);

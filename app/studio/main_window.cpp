@@ -25,6 +25,7 @@
 #include "error_source_link.h"
 #include "error_view.h"
 #include "matrix_view.h"
+#include "mesh_density_panel.h"
 #include "patch_view.h"
 #include "preview_view.h"
 #include "preview_widget.h"
@@ -51,6 +52,7 @@ QString eta_text(double seconds) {
 MainWindow::MainWindow(QWidget* parent)
     : QMainWindow(parent),
       settings_(new SettingsPanel(this)),
+      meshes_(new MeshDensityPanel(this)),
       controller_(new BakeController(this)),
       jobs_(new views::ViewJobs(this)),
       tabs_(new QTabWidget(this)),
@@ -98,6 +100,7 @@ MainWindow::MainWindow(QWidget* parent)
 
   build_menus();
   build_report_tab();
+  build_mesh_dock();
   views::link_error_sources(
       patch_view_, matrix_view_, [this] { show_tab(Tab::Matrix); },
       [this] { show_tab(Tab::Patches); });
@@ -124,6 +127,7 @@ MainWindow::MainWindow(QWidget* parent)
                                          .arg(job->result->total_seconds, 0, 'f', 2)
                                          .arg(rerun));
             show_data(job->data);
+            show_meshes(*job->data, true);
           });
   connect(controller_, &BakeController::failed, this, [this](const QString& message) {
     set_busy(false);
@@ -213,6 +217,24 @@ void MainWindow::build_report_tab() {
   });
 }
 
+void MainWindow::build_mesh_dock() {
+  auto* dock = new QDockWidget(tr("Meshes"), this);
+  dock->setObjectName("mesh_dock");
+  dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
+  dock->setWidget(meshes_);
+  addDockWidget(Qt::RightDockWidgetArea, dock);
+  connect(meshes_, &MeshDensityPanel::rebake_requested, this, &MainWindow::start_bake);
+}
+
+void MainWindow::show_meshes(const views::BakeViewData& bake, bool editable) {
+  try {
+    meshes_->show_meshes(manifest_meshes(bake.bake), editable);
+  } catch (const std::exception& e) {
+    meshes_->clear();
+    statusBar()->showMessage(tr("Mesh list: %1").arg(QString::fromStdString(e.what())));
+  }
+}
+
 void MainWindow::rebuild_recent_menu() {
   recent_menu_->clear();
   const QStringList recent = QSettings().value("recent").toStringList();
@@ -237,7 +259,10 @@ void MainWindow::open(const QString& path) {
 
   if (is_bake_folder(path.toStdString())) {
     try {
-      show_data(views::load_bake_view_data(path.toStdString()));
+      const auto bake = views::load_bake_view_data(path.toStdString());
+      show_data(bake);
+      // No scene held to bake again: the densities are shown, not edited.
+      show_meshes(*bake, false);
       scene_label_->setText(tr("Bake folder %1").arg(info.absoluteFilePath()));
       scene_path_.clear();
       bake_button_->setEnabled(false);
@@ -249,8 +274,12 @@ void MainWindow::open(const QString& path) {
   scene_path_ = info.absoluteFilePath();
   scene_label_->setText(tr("Scene %1").arg(scene_path_));
   bake_button_->setEnabled(!controller_->busy());
-  // Opening reads the scene afresh (it may have changed on disk): a full bake.
-  if (!controller_->busy()) last_job_.reset();
+  // Opening reads the scene afresh (it may have changed on disk): a full
+  // bake, with the scene's own densities.
+  if (!controller_->busy()) {
+    last_job_.reset();
+    meshes_->clear();
+  }
   start_bake();
 }
 
@@ -300,10 +329,15 @@ void MainWindow::start_bake() {
   statusBar()->showMessage(tr("Baking %1...").arg(scene_path_));
   // A re-bake of the same scene runs only the stages the changed settings
   // affect (core plan_rebake); the rest comes from the last bake.
+  // The mesh list's densities apply to a re-bake of the scene it shows.
   std::shared_ptr<const BakeJobResult> previous;
-  if (last_job_ && last_job_->result && last_job_->scene_path == scene_path_.toStdString())
+  std::vector<float> densities;
+  if (last_job_ && last_job_->result && last_job_->scene_path == scene_path_.toStdString()) {
     previous = last_job_;
-  controller_->start(scene_path_, settings, session_folder(), previous);
+    if (static_cast<std::size_t>(meshes_->mesh_count()) == previous->scene->meshes.size())
+      densities = meshes_->densities();
+  }
+  controller_->start(scene_path_, settings, session_folder(), previous, densities);
 }
 
 void MainWindow::on_stage_progress(const QString& stage, double fraction, double eta) {
@@ -327,6 +361,7 @@ void MainWindow::set_busy(bool busy) {
   bake_button_->setEnabled(!busy && !scene_path_.isEmpty());
   cancel_button_->setEnabled(busy);
   settings_->setEnabled(!busy);
+  meshes_->setEnabled(!busy);
 }
 
 void MainWindow::export_bake_folder() {

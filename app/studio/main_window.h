@@ -2,7 +2,8 @@
 // Bounce Studio's main window: open a scene (dialog, recent files, drag and
 // drop) or a bake folder, tune the bake settings, bake on a worker thread
 // with a progress bar per stage, ETA and Cancel, look at the result in the
-// views' tabs, export the bake folder. Errors go to message boxes.
+// views' tabs, set each mesh's patch density in the mesh list and re-bake,
+// export the bake folder. Errors go to message boxes.
 #include <memory>
 
 #include <QMainWindow>
@@ -28,6 +29,7 @@ class VoxelView;
 
 namespace bounce::studio {
 
+class MeshDensityPanel;
 class SettingsPanel;
 
 class MainWindow : public QMainWindow {
@@ -43,6 +45,7 @@ class MainWindow : public QMainWindow {
   void show_data(std::shared_ptr<const views::BakeViewData> bake);
   void show_tab(Tab tab);
   SettingsPanel* settings_panel() const { return settings_; }
+  MeshDensityPanel* mesh_panel() const { return meshes_; }
   views::VoxelView* voxel_view() const { return voxel_view_; }
   views::PatchView* patch_view() const { return patch_view_; }
   views::MatrixView* matrix_view() const { return matrix_view_; }
@@ -58,6 +61,12 @@ class MainWindow : public QMainWindow {
   // The report tab: the error-against-run-time chart, its quick sweep on a
   // worker thread, report.json files, clicked points into the settings panel.
   void build_report_tab();
+  // The mesh list (a dock): each mesh's patches and its density, which a
+  // re-bake applies.
+  void build_mesh_dock();
+  // Fills the mesh list from a bake folder's manifest; editable when the
+  // studio holds the scene it was baked from.
+  void show_meshes(const views::BakeViewData& bake, bool editable);
   void rebuild_recent_menu();
   void start_bake();
   void export_bake_folder();
@@ -68,6 +77,7 @@ class MainWindow : public QMainWindow {
   QString session_folder() const;
 
   SettingsPanel* settings_;
+  MeshDensityPanel* meshes_;
   BakeController* controller_;
   // The one thread of the views' computations, shared by all of them. Made
   // before the views (they keep a reference) and, as the first of this

@@ -127,14 +127,7 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
   BakeResult r;
   RebakePlan plan;  // a full bake
   if (previous) {
-    plan = plan_rebake(scene_, previous->settings, settings_);
-    // The scene itself is taken to be the previous bake's, except for the
-    // patch densities, which a scene.json edit may change without touching
-    // the geometry.
-    if (plan.first != BakeStage::Geometry && previous->patch_density != patch_densities(scene_)) {
-      plan.first = BakeStage::Geometry;
-      plan.reasons.push_back("patch density of a mesh (re-runs from geometry)");
-    }
+    plan = plan_rebake(scene_, previous->settings, previous->patch_density, settings_);
     if (plan.first != BakeStage::Geometry) {
       r = *previous;
       r.stages.clear();

@@ -49,7 +49,4 @@ std::span<const BakeStep> form_factor_steps();
 std::span<const BakeStep> transport_steps();
 std::span<const BakeStep> compression_steps();
 
-// Each mesh's patch density, as the patches were made with it.
-std::vector<float> patch_densities(const Scene& scene);
-
 }  // namespace bounce

@@ -1,5 +1,5 @@
 // The geometry stage of a bake: voxel grid, ray tracer, samples, their
-// texture albedo and the patches.
+// albedo from textures and vertex colours, and the patches.
 #include <string>
 
 #include "bake/bake_steps.h"
@@ -41,8 +41,11 @@ void sample_step(BakeRun& run) {
                 "no surface samples: no ray hit the scene's surfaces from inside any voxel");
 }
 
-// A step of its own, so that what textures cost shows in the manifest.
-bool has_texture_coordinates(const BakeRun& run) { return !run.scene.triangle_uv.empty(); }
+// A step of its own, so that what textures and vertex colours cost shows in
+// the manifest.
+bool has_surface_detail(const BakeRun& run) {
+  return !run.scene.triangle_uv.empty() || run.scene.has_vertex_colours();
+}
 
 void texture_step(BakeRun& run) {
   apply_surface_textures(run.scene, run.result.voxels, run.result.samples, &run.progress);
@@ -77,19 +80,12 @@ void patches_step(BakeRun& run) {
 
 constexpr BakeStep kGeometrySteps[] = {
     {"voxelize", nullptr, voxelize_step}, {"ray tracer (BVH build)", nullptr, build_tracer_step},
-    {"sample", nullptr, sample_step},     {"texture", has_texture_coordinates, texture_step},
+    {"sample", nullptr, sample_step},     {"texture", has_surface_detail, texture_step},
     {"patches", nullptr, patches_step},
 };
 
 }  // namespace
 
 std::span<const BakeStep> geometry_steps() { return kGeometrySteps; }
-
-std::vector<float> patch_densities(const Scene& scene) {
-  std::vector<float> d;
-  d.reserve(scene.meshes.size());
-  for (const MeshInfo& m : scene.meshes) d.push_back(m.patch_density);
-  return d;
-}
 
 }  // namespace bounce

@@ -70,4 +70,31 @@ RebakePlan plan_rebake(const Scene& scene, const BakeSettings& previous, const B
   return plan;
 }
 
+std::vector<float> patch_densities(const Scene& scene) {
+  std::vector<float> d;
+  d.reserve(scene.meshes.size());
+  for (const MeshInfo& m : scene.meshes) d.push_back(m.patch_density);
+  return d;
+}
+
+RebakePlan plan_rebake(const Scene& scene, const BakeSettings& previous,
+                       const std::vector<float>& previous_densities, const BakeSettings& next) {
+  RebakePlan plan = plan_rebake(scene, previous, next);
+  const std::vector<float> now = patch_densities(scene);
+  if (now == previous_densities) return plan;
+  const auto stage = " (re-runs from " + std::string(to_string(BakeStage::Geometry)) + ")";
+  if (now.size() != previous_densities.size()) {
+    plan.reasons.push_back(text_format("patch densities of %zu meshes, the previous bake had %zu",
+                                       now.size(), previous_densities.size()) +
+                           stage);
+  } else {
+    for (std::size_t i = 0; i < now.size(); ++i)
+      if (now[i] != previous_densities[i])
+        plan.reasons.push_back("patch density of '" + scene.meshes[i].name + "': " +
+                               text_format("%g -> %g", previous_densities[i], now[i]) + stage);
+  }
+  plan.first = BakeStage::Geometry;
+  return plan;
+}
+
 }  // namespace bounce

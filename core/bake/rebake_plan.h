@@ -39,4 +39,17 @@ struct RebakePlan {
 // the writer writes (dump_matrices, pictures) re-run nothing.
 RebakePlan plan_rebake(const Scene& scene, const BakeSettings& previous, const BakeSettings& next);
 
+// Each mesh's patch density (MeshInfo::patch_density), in mesh order: what
+// a bake's patches are made with (BakeResult::patch_density).
+std::vector<float> patch_densities(const Scene& scene);
+
+// The plan Baker::run follows: the settings' plan above, and the scene
+// itself taken to be the previous bake's except for its meshes' patch
+// densities (`previous_densities`, the previous bake's), which a scene.json
+// edit or the studio's mesh list may change without touching the geometry.
+// A changed density re-runs from geometry (the patches and everything after
+// them), one reason per mesh ("patch density of 'floor': 1 -> 4").
+RebakePlan plan_rebake(const Scene& scene, const BakeSettings& previous,
+                       const std::vector<float>& previous_densities, const BakeSettings& next);
+
 }  // namespace bounce

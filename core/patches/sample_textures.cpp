@@ -6,7 +6,8 @@ namespace bounce {
 
 std::size_t apply_surface_textures(const Scene& scene, const Voxelization& vox, SampleSet& set,
                                    Progress* progress) {
-  if (scene.triangle_uv.empty()) return 0;
+  const bool coloured = scene.has_vertex_colours();
+  if (scene.triangle_uv.empty() && !coloured) return 0;
   const std::size_t n = set.samples.size();
   if (progress) progress->begin_stage("surface textures", n);
   std::atomic<std::size_t> changed{0};
@@ -19,7 +20,7 @@ std::size_t apply_surface_textures(const Scene& scene, const Voxelization& vox, 
     }
     bool albedo = false, emission = false;
     for (std::uint32_t c = set.carried_first[s]; c < set.carried_first[s + 1]; ++c) {
-      albedo = albedo || scene.textured(vox.parts[set.carried[c].part].triangle);
+      albedo = albedo || coloured || scene.textured(vox.parts[set.carried[c].part].triangle);
       emission = emission || scene.emission_textured(vox.parts[set.carried[c].part].triangle);
     }
     if (!albedo && !emission) continue;

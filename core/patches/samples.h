@@ -97,13 +97,13 @@ struct SamplingSettings {
 SampleSet generate_samples(const Scene& scene, const RayTracer& tracer, const Voxelization& vox,
                            const SamplingSettings& settings, Progress* progress = nullptr);
 
-// Albedo and emission of samples on textured surfaces: the mean of the
-// albedo (colour texture) and of the emission (emissive texture) over the
-// surface each sample stands for (its carried polygons, weighted by area),
-// not the texel under its position, so that the light a patch reflects or
-// emits follows the texture's mean over the patch. Samples carrying no
-// textured surface keep their material's values, bit for bit. Returns how
-// many samples changed.
+// Albedo and emission of samples on textured or vertex-coloured surfaces:
+// the mean of the albedo (colour texture times vertex colour) and of the
+// emission (emissive texture) over the surface each sample stands for (its
+// carried polygons, weighted by area), not the value under its position, so
+// that the light a patch reflects or emits follows the mean over the patch.
+// Samples carrying no textured or coloured surface keep their material's
+// values, bit for bit. Returns how many samples changed.
 std::size_t apply_surface_textures(const Scene& scene, const Voxelization& vox, SampleSet& set,
                                    Progress* progress = nullptr);
 

@@ -95,6 +95,12 @@ void hash_scene(ContentHash& h, const Scene& scene) {
   }
   h.integer(scene.triangle_uv.size())
       .bytes(scene.triangle_uv.data(), scene.triangle_uv.size() * sizeof(scene.triangle_uv[0]));
+  // Vertex colours only when there are some, so that results cached for a
+  // scene without them stay valid.
+  if (scene.has_vertex_colours())
+    h.integer(scene.triangle_colour.size())
+        .bytes(scene.triangle_colour.data(),
+               scene.triangle_colour.size() * sizeof(scene.triangle_colour[0]));
   h.integer(scene.meshes.size());
   for (const MeshInfo& m : scene.meshes)
     h.integer(m.first_triangle).integer(m.triangle_count).integer(m.two_sided ? 1 : 0);

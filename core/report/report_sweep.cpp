@@ -156,7 +156,7 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
   // Albedo per vertex from a face that uses it.
   const std::vector<std::uint32_t> vertex_triangle = vertex_source_triangles(eval_mesh);
   for (std::size_t v = 0; v < points.size(); ++v)
-    points[v].albedo = scene.material_of(vertex_triangle[v]).albedo;
+    points[v].albedo = scene.flat_albedo_at(vertex_triangle[v], points[v].position);
   const PointReference ref_points =
       cached_reference_points(pt, points, cache, &progress, &points_cached);
   std::vector<glm::vec3> ref_vertex_indirect(points.size()), ref_vertex_variance(points.size());

@@ -179,12 +179,12 @@ void light_vertices(const RayTracer& tracer, const std::vector<Light>& lights,
 #pragma omp parallel for schedule(dynamic, 256)
   for (std::int64_t vi = 0; vi < static_cast<std::int64_t>(n); ++vi) {
     const auto v = static_cast<std::size_t>(vi);
-    const Material& m = scene.material_of(triangle[v]);
     const glm::vec3 direct =
         irradiance_at(tracer, at[v] + 10.0f * tracer.epsilon() * mesh.normals[v], mesh.normals[v],
                       lights, area, 4, v);
     mesh.radiosity[v] =
-        scene.emission_at(triangle[v], mesh.positions[v]) + m.albedo * (direct + gathered[v]);
+        scene.emission_at(triangle[v], mesh.positions[v]) +
+        scene.flat_albedo_at(triangle[v], mesh.positions[v]) * (direct + gathered[v]);
   }
 }
 

@@ -15,7 +15,9 @@ namespace bounce {
 
 namespace {
 
-// The light without the albedo of material m, per channel.
+// The light without the albedo of material m, per channel. A vertex colour
+// that multiplied the albedo stays in it: a viewer multiplies COLOR_0 by the
+// texture and its factor, so the colour reaches the picture as it did the bake.
 glm::vec3 light_without_albedo(const glm::vec3& radiosity, const Material& m) {
   glm::vec3 out(0.0f);
   for (glm::length_t c = 0; c < 3; ++c)

@@ -353,10 +353,36 @@ class FileImporter {
         const unsigned* i = face.mIndices;
         piece.triangles.emplace_back(i[0], mirror ? i[2] : i[1], mirror ? i[1] : i[2]);
       }
-      if (mesh.HasVertexColors(0)) with_vertex_colours_.push_back(piece.name);
+      if (mesh.HasVertexColors(0)) read_colours(mesh, piece);
       out_.pieces.push_back(std::move(piece));
     }
     for (unsigned c = 0; c < node->mNumChildren; ++c) walk(node->mChildren[c], node_global);
+  }
+
+  // The first set of vertex colours, decoded to linear (see
+  // import_mesh_file): glTF's are linear already, other formats' are sRGB.
+  void read_colours(const aiMesh& mesh, ImportedPiece& piece) {
+    const std::string ext = lower(file_.extension().string());
+    const bool linear = ext == ".gltf" || ext == ".glb";
+    std::size_t clamped = 0;
+    piece.colours.reserve(mesh.mNumVertices);
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+      const aiColor4D& c = mesh.mColors[0][v];
+      glm::vec3 colour(c.r, c.g, c.b);
+      if (!finite(colour))
+        throw SceneLoader::LoadError(where_, "mesh '" + piece.name + "': vertex " +
+                                                 std::to_string(v) + " has a non-finite colour " +
+                                                 format_vec(colour));
+      const glm::vec3 in_range = glm::clamp(colour, glm::vec3(0.0f), glm::vec3(1.0f));
+      if (in_range != colour) ++clamped;
+      if (!linear)
+        for (glm::length_t k = 0; k < 3; ++k) colour[k] = srgb_to_linear(in_range[k]);
+      else
+        colour = in_range;
+      piece.colours.push_back(colour);
+    }
+    if (clamped > 0)
+      out_of_range_colours_.push_back("'" + piece.name + "' (" + std::to_string(clamped) + ")");
   }
 
   void name_pieces(const std::string& name) {
@@ -393,28 +419,28 @@ class FileImporter {
     }
   }
 
-  // Say what the file had that the albedo cannot follow: missing textures
-  // of materials in use (the albedo falls back to the material's colour)
-  // and per-vertex colours.
+  // Say what the file had that the albedo cannot follow as given: missing
+  // textures of materials in use (the albedo falls back to the material's
+  // colour) and vertex colours outside [0, 1].
   void report_ignored_attributes() {
     std::vector<bool> used(out_.materials.size(), false);
     for (const ImportedPiece& piece : out_.pieces)
       if (piece.material < used.size()) used[piece.material] = true;
     for (const auto& [material, message] : missing_textures_)
       if (used[material]) diagnostics_.warn(where_, message);
-    if (!with_vertex_colours_.empty()) {
+    if (!out_of_range_colours_.empty()) {
       // One line naming the first few meshes; the detail lists them all.
       constexpr std::size_t kFirstFew = 3;
-      const std::size_t n = with_vertex_colours_.size();
+      const std::size_t n = out_of_range_colours_.size();
       std::string names;
       for (std::size_t i = 0; i < std::min(n, kFirstFew); ++i)
-        names += (i ? ", " : "") + with_vertex_colours_[i];
+        names += (i ? ", " : "") + out_of_range_colours_[i];
       if (n > kFirstFew) names += " and " + std::to_string(n - kFirstFew) + " more";
       diagnostics_.warn(where_,
-                        "per-vertex colours are ignored in " + std::to_string(n) +
+                        "vertex colours outside [0, 1] clamped in " + std::to_string(n) +
                             (n == 1 ? " mesh" : " meshes") + ": " + names +
-                            " (albedo is the material's diffuse colour)",
-                        with_vertex_colours_);
+                            " (a colour multiplies the albedo, which must stay below 1)",
+                        out_of_range_colours_);
     }
   }
 
@@ -424,7 +450,7 @@ class FileImporter {
   Diagnostics& diagnostics_;
   const aiScene* scene_ = nullptr;
   ImportedFile out_;
-  std::vector<std::string> with_vertex_colours_;
+  std::vector<std::string> out_of_range_colours_;  // meshes, with how many vertices
   std::vector<std::pair<std::size_t, std::string>> missing_textures_;  // material, message
 };
 

@@ -3,8 +3,8 @@
 // its vertices moved into scene space (node transforms, then the scene.json
 // transform), its triangles (winding kept front-facing under mirroring) and
 // its material's stated diffuse and emissive colours as exact floats (and
-// colour, emissive and normal textures, found but not yet read) and texture
-// coordinates.
+// colour, emissive and normal textures, found but not yet read), texture
+// coordinates and per-vertex colours.
 // Degenerate triangles are kept here; the scene builder counts and skips
 // them once the scene's size is known. Internal to the scene module.
 #include <cstddef>
@@ -55,7 +55,10 @@ struct ImportedPiece {
   std::uint32_t material = 0;        // index into ImportedFile::materials
   std::vector<glm::vec3> positions;  // scene space; all finite where referenced
   std::vector<glm::uvec3> triangles;
-  std::vector<glm::vec2> uvs;     // per position (first UV channel); empty when the file has none
+  std::vector<glm::vec2> uvs;  // per position (first UV channel); empty when the file has none
+  // Per position: the first set of vertex colours, linear, in [0, 1] (see
+  // import_mesh_file); empty when the mesh has none.
+  std::vector<glm::vec3> colours;
   std::size_t non_triangles = 0;  // point and line primitives, which have no area
 };
 
@@ -69,6 +72,11 @@ struct ImportedFile {
 // piece takes it as is, several become "<name>/<piece>". Throws
 // SceneLoader::LoadError when Assimp cannot read the file, when a colour is
 // not finite, or when a referenced vertex is NaN/Inf after the transform.
+// Vertex colours: glTF's COLOR_0 is linear by its specification and is taken
+// as is; every other format's (PLY red/green/blue, OBJ `v x y z r g b`) are
+// display colours by convention, sRGB-encoded, and are decoded to linear.
+// Alpha is not read. A colour outside [0, 1] is clamped with one warning per
+// file; a non-finite one is an error.
 ImportedFile import_mesh_file(const std::filesystem::path& file, const glm::dmat4& transform,
                               const std::string& name, Diagnostics& diagnostics);
 

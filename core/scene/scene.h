@@ -61,6 +61,12 @@ struct Material {
   bool is_emissive() const { return emission.r > 0.f || emission.g > 0.f || emission.b > 0.f; }
 };
 
+// The largest patch density a mesh may have (scene.json's
+// meshes[i].patch_density, the studio's mesh list): a mesh at 64 times the
+// others' density already takes nearly a whole budget from a scene of a few
+// dozen equal meshes; more is a typo.
+inline constexpr int kMaxPatchDensity = 64;
+
 struct MeshInfo {
   std::string name;    // from scene.json or the file's node/mesh name
   std::string source;  // file it came from
@@ -131,6 +137,11 @@ struct Scene {
   // Texture coordinates of each triangle's corners; empty when no material
   // has a texture, mask or normal map (then every albedo is its material's).
   std::vector<std::array<glm::vec2, 3>> triangle_uv;
+  // Linear colour of each triangle's corners (the mesh files' per-vertex
+  // colours, in [0, 1]): the albedo anywhere on a triangle is its material's
+  // (texture x factor, or flat colour) times the colour interpolated there.
+  // White for corners of meshes without colours; empty when no mesh has any.
+  std::vector<std::array<glm::vec3, 3>> triangle_colour;
   std::vector<Material> materials;
   std::vector<MeshInfo> meshes;
   std::vector<Light> lights;
@@ -159,10 +170,21 @@ struct Scene {
   // The fraction of a planar polygon lying on triangle tri where the
   // surface is there (1 for an unmasked triangle).
   float solid_fraction(std::size_t tri, const glm::vec3* polygon, std::size_t count) const;
-  // Albedo at point p on triangle tri (the texel there when textured).
+  // Whether any mesh has per-vertex colours (then every albedo lookup
+  // multiplies them in).
+  bool has_vertex_colours() const { return !triangle_colour.empty(); }
+  // The per-vertex colour interpolated at point p on (or projected onto the
+  // plane of) triangle tri; white without vertex colours.
+  glm::vec3 colour_at(std::size_t tri, const glm::vec3& p) const;
+  // Albedo at point p on triangle tri (the texel there when textured, times
+  // the vertex colour there).
   glm::vec3 albedo_at(std::size_t tri, const glm::vec3& p) const;
   // Mean albedo over a planar polygon lying on triangle tri.
   glm::vec3 mean_albedo(std::size_t tri, const glm::vec3* polygon, std::size_t count) const;
+  // Albedo at point p on triangle tri for a renderer that does its own
+  // texture lookups (or draws textures as their mean): the material's flat
+  // albedo times the vertex colour there.
+  glm::vec3 flat_albedo_at(std::size_t tri, const glm::vec3& p) const;
   // Whether triangle tri's emission follows an emissive texture.
   bool emission_textured(std::size_t tri) const {
     return !triangle_uv.empty() && material_of(tri).emission_texture != nullptr;

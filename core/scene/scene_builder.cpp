@@ -374,6 +374,7 @@ void SceneBuilder::build(Scene& scene) {
       for (int d = 0; d < 3; ++d) key[static_cast<std::size_t>(3 * k + d)] = v[(first + k) % 3][d];
     return key;
   };
+  bool any_colours = false;
   for (std::size_t e = 0; e < entries_.size(); ++e) {
     const Entry& entry = entries_[e];
     const std::string where = entry.file.path.string();
@@ -399,6 +400,8 @@ void SceneBuilder::build(Scene& scene) {
       info.first_triangle = static_cast<std::uint32_t>(scene.triangles.size());
 
       const bool has_uvs = piece.uvs.size() == piece.positions.size();
+      const bool has_colours = piece.colours.size() == piece.positions.size();
+      any_colours = any_colours || has_colours;
       const Material& mat = resolved[piece_use[e][p]];
       if ((mat.texture || mat.emission_texture || mat.normal_map ||
            (mat.alpha_mask && !mat.alpha_mask->is_constant())) &&
@@ -436,6 +439,11 @@ void SceneBuilder::build(Scene& scene) {
         scene.triangle_uv.push_back({has_uvs ? piece.uvs[t.x] : none,
                                      has_uvs ? piece.uvs[t.y] : none,
                                      has_uvs ? piece.uvs[t.z] : none});
+        // No colours: white, which leaves the material's albedo as it is.
+        const glm::vec3 white(1.0f);
+        scene.triangle_colour.push_back({has_colours ? piece.colours[t.x] : white,
+                                         has_colours ? piece.colours[t.y] : white,
+                                         has_colours ? piece.colours[t.z] : white});
       }
       skipped_total += skipped + duplicates;
       if (duplicates > 0) duplicate.add(piece.name, duplicates, "");
@@ -465,6 +473,7 @@ void SceneBuilder::build(Scene& scene) {
         return m.texture || m.alpha_mask || m.emission_texture || m.normal_map;
       }))
     scene.triangle_uv.clear();
+  if (!any_colours) scene.triangle_colour.clear();
   if (scene.triangles.empty())
     throw SceneLoader::LoadError(
         scene_file_, "the scene has no geometry left" +

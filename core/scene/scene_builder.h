@@ -1,6 +1,7 @@
 #pragma once
 // Turns imported mesh files plus scene.json material definitions into the
-// Scene's flat triangle soup: one material table by name (file colours,
+// Scene's flat triangle soup (with the files' per-vertex colours per
+// triangle corner): one material table by name (file colours,
 // overridden by scene.json), albedo defaulted or clamped with a warning,
 // degenerate and duplicate triangles counted and skipped with one warning
 // per kind and file (naming the first few meshes), textures read once each, and

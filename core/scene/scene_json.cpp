@@ -22,9 +22,6 @@ constexpr long long kMaxVoxelResolution = 4096;
 constexpr long long kMaxPatchesTotal = 1'000'000;
 constexpr long long kMaxPatchesPerVoxel = 1024;
 constexpr long long kMaxSamplesPerFace = 65536;
-// A mesh at 64 times the others' density already takes nearly a whole budget
-// from a scene of a few dozen equal meshes; more is a typo.
-constexpr int kMaxPatchDensity = 64;
 
 std::string read_text_file(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -13,10 +13,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-float srgb_to_linear(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
 // Texel (x, y) of a level, wrapping both ways.
 const glm::vec3& texel(const Texture::Level& l, int x, int y) {
   x %= l.width;
@@ -51,6 +47,10 @@ std::string lower(std::string s) {
 }
 
 }  // namespace
+
+float srgb_to_linear(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
 
 glm::vec3 Texture::lookup(glm::vec2 uv, int level) const {
   const Level& l =

@@ -47,6 +47,11 @@ struct ImagePixels {
 // reason, without the file's name).
 std::optional<ImagePixels> read_image_pixels(const std::filesystem::path& file, std::string& error);
 
+// One sRGB-encoded component (in [0, 1]) decoded to linear, as 8- and
+// 16-bit images are on load; also for per-vertex colours stored as display
+// colours (PLY, OBJ).
+float srgb_to_linear(float c);
+
 // What a texture's texels are. Colours are decoded from sRGB when the file
 // is sRGB-encoded (see above); directions (a normal map's 2 c - 1) are taken
 // as stored whatever the file says: decoding would bend them.

@@ -7,6 +7,7 @@
 
 #include <set>
 #include <string>
+#include <vector>
 
 #include "bake/bake.h"
 #include "bake/rebake_plan.h"
@@ -106,6 +107,29 @@ TEST(RebakePlan, EachSettingReRunsFromTheStageItFeeds) {
   s = base;
   s.visibility_rays = 4;
   EXPECT_EQ(first_stage(s), BakeStage::Geometry);
+}
+
+TEST(RebakePlan, EachChangedPatchDensityIsOneReasonNamingItsMesh) {
+  const BakeSettings previous = resolved(small_settings());
+  const std::vector<float> baked = patch_densities(cornell_box());
+  ASSERT_GE(baked.size(), 4u);
+  EXPECT_EQ(plan_rebake(cornell_box(), previous, baked, small_settings()).first, BakeStage::None);
+  Scene edited = cornell_box();
+  edited.meshes[1].patch_density = 2.0f;
+  edited.meshes[3].patch_density = 0.5f;
+  const RebakePlan plan = plan_rebake(edited, previous, baked, small_settings());
+  EXPECT_EQ(plan.first, BakeStage::Geometry);
+  EXPECT_EQ(
+      plan.reasons,
+      (std::vector<std::string>{
+          "patch density of '" + edited.meshes[1].name + "': 1 -> 2 (re-runs from geometry)",
+          "patch density of '" + edited.meshes[3].name + "': 1 -> 0.5 (re-runs from geometry)"}));
+  // Densities of another number of meshes: not this scene's bake.
+  const RebakePlan other = plan_rebake(cornell_box(), previous, {1.0f}, small_settings());
+  EXPECT_EQ(other.first, BakeStage::Geometry);
+  ASSERT_EQ(other.reasons.size(), 1u);
+  EXPECT_EQ(other.reasons[0], "patch densities of " + std::to_string(baked.size()) +
+                                  " meshes, the previous bake had 1 (re-runs from geometry)");
 }
 
 TEST(RebakePlan, APatchTargetThatResolvesToTheSameGridReRunsNothing) {

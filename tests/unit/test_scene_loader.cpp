@@ -828,18 +828,6 @@ TEST_F(SceneLoaderInput, BareMeshGetsDerivedLightAndCamera) {
   EXPECT_EQ(diagnostics.warnings().size(), 1u) << all_warnings(diagnostics);
 }
 
-TEST_F(SceneLoaderInput, VertexColoursAreOneWarningNamingTheMesh) {
-  const fs::path ply = write("coloured.ply",
-                             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                             "property float y\nproperty float z\nproperty uchar red\n"
-                             "property uchar green\nproperty uchar blue\nelement face 1\n"
-                             "property list uchar int vertex_indices\nend_header\n"
-                             "0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n");
-  load(ply);
-  EXPECT_EQ(count_warnings(diagnostics, {"per-vertex colours are ignored in 1 mesh: coloured"}), 1u)
-      << all_warnings(diagnostics);
-}
-
 TEST_F(SceneLoaderInput, BarePlyAndGltfLoad) {
   const fs::path ply = write("tri.ply",
                              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
