@@ -76,7 +76,8 @@ TEST_F(FurnaceBake, ManifestFileListMatchesTheFilesOnDisk) {
                 "patches.npy", "voxels.npy", "samples.npy", "carried_polygons.npy",
                 "carried_area.npy", "carried_vertices.npy", "closure.npy", "gather_first.npy",
                 "gather_source.npy", "gather_weight.npy", "gather_cluster.npy", "gather_share.npy",
-                "F.npy", "T.npy", "T.png", "lights_first_hit.npy"}));
+                "gather_near_position.npy", "gather_near_normal.npy", "gather_near_albedo.npy",
+                "gather_near_patch.npy", "F.npy", "T.npy", "T.png", "lights_first_hit.npy"}));
   std::set<std::string> on_disk;
   for (const std::string& e : entries(out)) on_disk.insert(e);
   listed.insert("manifest.json");
@@ -211,7 +212,10 @@ TEST(BakeFolder, RebakingIntoTheSameOutReplacesThePreviousBake) {
   EXPECT_EQ(entries(out),
             (std::vector<std::string>{"T.npy", "T.png", "carried_area.npy", "carried_polygons.npy",
                                       "carried_vertices.npy", "closure.npy", "gather_cluster.npy",
-                                      "gather_first.npy", "gather_share.npy", "gather_source.npy",
+                                      "gather_first.npy", "gather_near_albedo.npy",
+                                      "gather_near_normal.npy", "gather_near_patch.npy",
+                                      "gather_near_position.npy", "gather_share.npy",
+                                      "gather_source.npy",
                                       "gather_weight.npy", "lights_first_hit.npy", "manifest.json",
                                       "patches.npy", "samples.npy", "voxels.npy"}));
 }

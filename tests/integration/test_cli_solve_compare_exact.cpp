@@ -139,13 +139,18 @@ TEST_F(Solve, ManifestVertexLightErrorIsTheGatheredIndirectLightsError) {
         const auto& m = t[static_cast<std::size_t>(b.channel_of_rgb[static_cast<std::size_t>(k)])];
         for (std::size_t j = 0; j < n; ++j) tb[p][k] += double(m[p * n + j]) * light[j][k];
       }
-    std::vector<glm::dvec3> source(g->patches + g->clusters + g->samples, glm::dvec3(0.0));
+    std::vector<glm::dvec3> source(g->patches + g->clusters + g->samples + g->near.size(),
+                                   glm::dvec3(0.0));
     for (std::size_t p = 0; p < n; ++p) {
       source[p] = tb[p];
       source[n + g->cluster_of_patch[p]] += double(g->cluster_share[p]) * tb[p];
     }
     for (std::size_t s = 0; s < g->samples; ++s)
       if (patch_of[s] >= 0) source[n + g->clusters + s] = tb[static_cast<std::size_t>(patch_of[s])];
+    // Near sources carry their patch's T b too (their direct part is not
+    // the matrix's).
+    for (std::size_t k = 0; k < g->near.size(); ++k)
+      source[n + g->clusters + g->samples + k] = tb[g->near.patch[k]];
     std::vector<glm::dvec3> e(g->points(), glm::dvec3(0.0));
     for (std::size_t v = 0; v < g->points(); ++v)
       for (std::uint64_t k = g->first[v]; k < g->first[v + 1]; ++k)
