@@ -1,5 +1,6 @@
 #include "view_jobs.h"
 
+#include <algorithm>
 #include <exception>
 
 #include <QCoreApplication>
@@ -21,19 +22,21 @@ ViewJobs::~ViewJobs() {
 }
 
 void ViewJobs::post(QObject* receiver, int key, Work work,
-                    std::function<void(const QString&)> failed) {
+                    std::function<void(const QString&)> failed, bool replaceable) {
   auto job = std::make_shared<Job>();
   job->receiver = receiver;
   job->owner = receiver;
   job->key = key;
   job->work = std::move(work);
   job->failed = std::move(failed);
+  job->replaceable = replaceable;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     job->epoch = epoch_[receiver];
-    std::erase_if(queue_, [&](const std::shared_ptr<Job>& queued) {
-      return queued->owner == receiver && queued->key == key;
-    });
+    if (replaceable)
+      std::erase_if(queue_, [&](const std::shared_ptr<Job>& queued) {
+        return queued->replaceable && queued->owner == receiver && queued->key == key;
+      });
     queue_.push_back(std::move(job));
   }
   ready_.notify_all();
@@ -45,6 +48,20 @@ void ViewJobs::forget(const QObject* receiver) {
                 [&](const std::shared_ptr<Job>& queued) { return queued->owner == receiver; });
   ++epoch_[receiver];
   if (running_ && running_->owner == receiver) running_->stop.store(true);
+}
+
+void ViewJobs::cancel(const QObject* receiver) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (const auto& queued : queue_)
+    if (queued->owner == receiver) queued->stop.store(true);
+  if (running_ && running_->owner == receiver) running_->stop.store(true);
+}
+
+bool ViewJobs::has_jobs(const QObject* receiver) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return (running_ && running_->owner == receiver) ||
+         std::any_of(queue_.begin(), queue_.end(),
+                     [&](const std::shared_ptr<Job>& queued) { return queued->owner == receiver; });
 }
 
 bool ViewJobs::current(const Job& job) const {
@@ -76,39 +93,45 @@ void ViewJobs::loop() {
       queue_.pop_front();
       running_ = job;
     }
-    const KeepGoing keep_going = [job] { return !job->stop.load(); };
+    Task task;
+    task.keep_going = [job] { return !job->stop.load(); };
+    task.on_ui_thread = [this, job](std::function<void()> show) { send(job, std::move(show)); };
     std::function<void()> show;
-    QString error;
-    bool threw = false;
     try {
-      show = job->work(keep_going);
+      show = job->work(task);
     } catch (const std::exception& e) {
-      threw = true;
-      error = QString::fromStdString(e.what());
+      show = [job, error = QString::fromStdString(e.what())] {
+        if (job->failed) job->failed(error);
+      };
     }
+    // Counted as on its way before the job stops being the running one, so
+    // that busy() never sees the runner idle with a result still to show.
+    send(job, std::move(show));
     {
       std::lock_guard<std::mutex> lock(mutex_);
       running_.reset();
-      ++results_on_the_way_;
     }
-    // Shown on the UI thread, this runner's; dropped with the runner.
-    QMetaObject::invokeMethod(
-        this,
-        [this, job, show = std::move(show), error, threw] {
-          bool shown = false;
-          {
-            std::lock_guard<std::mutex> lock(mutex_);
-            --results_on_the_way_;
-            shown = current(*job) && job->receiver;
-          }
-          if (!shown) return;
-          if (!threw)
-            show();
-          else if (job->failed)
-            job->failed(error);
-        },
-        Qt::QueuedConnection);
   }
+}
+
+void ViewJobs::send(const std::shared_ptr<Job>& job, std::function<void()> show) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++results_on_the_way_;
+  }
+  // Shown on the UI thread, this runner's; dropped with the runner.
+  QMetaObject::invokeMethod(
+      this,
+      [this, job, show = std::move(show)] {
+        bool shown = false;
+        {
+          std::lock_guard<std::mutex> lock(mutex_);
+          --results_on_the_way_;
+          shown = current(*job) && job->receiver;
+        }
+        if (shown) show();
+      },
+      Qt::QueuedConnection);
 }
 
 }  // namespace bounce::views

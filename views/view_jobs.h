@@ -1,10 +1,11 @@
 #pragma once
-// The one thread the studio's views hand their long computations to (a
-// compressed matrix decoded, re-compressed, measured; the preview's light
-// solved): the core does the work there, and the view is given the result
-// on its own (UI) thread and only draws it. The studio owns one runner and
-// passes it to every view, so views never compute next to each other and
-// the window stays responsive.
+// The one thread the studio's background work runs on: the views' long
+// computations (a compressed matrix decoded, re-compressed, measured; the
+// preview's light solved) and the studio's tasks (a bake, a report sweep).
+// The core does the work there, and the view or controller is given the
+// result on its own (UI) thread. The studio owns one runner and passes it
+// to every view and controller, so no two computations run next to each
+// other and the window stays responsive.
 //
 // Jobs run one at a time, in the order they were queued. A job belongs to a
 // receiver (a view) and a key (what it computes for that view): a newer job
@@ -15,6 +16,15 @@
 // result, which is asked to stop through keep_going(). The work must not
 // touch its view: it gets what it needs by value or shared pointer, so a
 // view may go away while its job runs (the result is then dropped).
+//
+// A task (run_task) is a job that is never replaced: each one queued runs.
+// It may hand progress to the UI thread while it works, and cancel() asks it
+// to stop while still delivering its result (a task reports that it was
+// cancelled). Tasks and view jobs share the one queue, in order: a view job
+// queued while a bake or sweep runs waits for it to end. That wait is
+// bounded (the task ends or is cancelled, and later tasks queue behind the
+// view job), and during a bake it mostly costs nothing, since the bake's
+// result replaces the data the views show and with it their queued jobs.
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
@@ -56,16 +66,46 @@ class ViewJobs : public QObject {
     post(
         receiver, key,
         [work = std::move(work),
-         show = std::move(show)](const KeepGoing& keep_going) -> std::function<void()> {
-          auto result = std::make_shared<Result>(work(keep_going));
+         show = std::move(show)](const Task& task) -> std::function<void()> {
+          auto result = std::make_shared<Result>(work(task.keep_going));
           return [show, result] { show(std::move(*result)); };
         },
         std::move(failed));
   }
 
+  // What a task's work is given: keep_going, as a view job's, and
+  // on_ui_thread(f), which runs f on the UI thread in order with the task's
+  // result, unless its receiver was forgotten since or is gone (progress
+  // shown while the task works).
+  struct Task {
+    KeepGoing keep_going;
+    std::function<void(std::function<void()>)> on_ui_thread;
+  };
+
+  // Queues `work` for `receiver` as a task: like run(), but never replaced
+  // and never replacing.
+  template <class Result>
+  void run_task(QObject* receiver, std::function<Result(const Task&)> work,
+                std::function<void(Result)> show,
+                std::function<void(const QString&)> failed = nullptr) {
+    post(
+        receiver, kTaskKey,
+        [work = std::move(work),
+         show = std::move(show)](const Task& task) -> std::function<void()> {
+          auto result = std::make_shared<Result>(work(task));
+          return [show, result] { show(std::move(*result)); };
+        },
+        std::move(failed), /*replaceable=*/false);
+  }
+
   // Drops the receiver's queued jobs and the results of its running one
   // (asked to stop): what a view does when it is given other data.
   void forget(const QObject* receiver);
+  // Asks the receiver's queued and running jobs to stop (their keep_going
+  // turns false) and still shows their results: how a task is cancelled.
+  void cancel(const QObject* receiver);
+  // Whether a job of the receiver is queued or running.
+  bool has_jobs(const QObject* receiver) const;
   // Whether a job is queued or running, or a result is on its way.
   bool busy() const;
   // Processes events until no job is queued or running and every result was
@@ -73,7 +113,9 @@ class ViewJobs : public QObject {
   void wait_idle();
 
  private:
-  using Work = std::function<std::function<void()>(const KeepGoing&)>;
+  // The key of every task: tasks are matched by their flag, not their key.
+  static constexpr int kTaskKey = -1;
+  using Work = std::function<std::function<void()>(const Task&)>;
   struct Job {
     QPointer<QObject> receiver;
     const QObject* owner = nullptr;  // the receiver's address, for matching
@@ -81,9 +123,14 @@ class ViewJobs : public QObject {
     std::uint64_t epoch = 0;  // its receiver's when queued
     Work work;
     std::function<void(const QString&)> failed;
+    bool replaceable = true;
     std::atomic<bool> stop{false};
   };
-  void post(QObject* receiver, int key, Work work, std::function<void(const QString&)> failed);
+  void post(QObject* receiver, int key, Work work, std::function<void(const QString&)> failed,
+            bool replaceable = true);
+  // Runs `show` on the UI thread if `job`'s receiver is still current and
+  // there; counted as a result on its way until then.
+  void send(const std::shared_ptr<Job>& job, std::function<void()> show);
   void loop();
   // Whether `job`'s receiver was not forgotten since it was queued (under
   // mutex_).

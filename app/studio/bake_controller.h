@@ -1,35 +1,46 @@
 #pragma once
-// Runs a bake job (bake_job.h) on a worker thread so the window never
-// freezes: reports each stage's progress with an ETA, and cancels through
-// the core's progress callback (returning false stops the bake at its next
-// poll; core/base/progress.h).
+// Runs a bake job (bake_job.h) as a task on the studio's one background
+// thread (views/view_jobs.h) so the window never freezes: reports each
+// stage's progress with an ETA, and cancels through the core's progress
+// callback (returning false stops the bake at its next poll;
+// core/base/progress.h).
 #include <chrono>
 #include <memory>
 #include <vector>
 
 #include <QObject>
+#include <QPointer>
 #include <QString>
 
 #include "bake_job.h"
-#include "worker_thread.h"
+
+namespace bounce::views {
+class ViewJobs;
+}
 
 namespace bounce::studio {
 
 class BakeController : public QObject {
   Q_OBJECT
  public:
-  explicit BakeController(QObject* parent = nullptr);
+  // Bakes on `jobs`, which may go before this controller (its end stops the
+  // bake, whose outcome is then dropped).
+  explicit BakeController(views::ViewJobs& jobs, QObject* parent = nullptr);
+  // Stops a queued or running bake and drops its outcome; does not wait.
   ~BakeController() override;
 
-  bool busy() const { return worker_.busy(); }
-  // Starts a bake into `folder` (replaced when the bake succeeds). With
-  // `previous` (an earlier job of the same scene), only the stages the
-  // settings change affects run (run_bake_job).
+  // From start() until one of finished, failed or cancelled was emitted.
+  bool busy() const { return busy_; }
+  // Starts a bake into `folder` (replaced when the bake succeeds); does
+  // nothing while busy. With `previous` (an earlier job of the same scene),
+  // only the stages the settings change affects run (run_bake_job).
   // `patch_density`: the meshes' densities (empty: the scene's own).
   void start(const QString& scene_path, const BakeSettings& settings, const QString& folder,
              std::shared_ptr<const BakeJobResult> previous = {},
              std::vector<float> patch_density = {});
-  void cancel() { worker_.cancel(); }
+  // Stops the bake at its next poll (or before it starts, if it waits for
+  // the jobs queued before it); cancelled() follows.
+  void cancel();
 
  signals:
   // fraction in [0,1]; eta_seconds < 0 while unknown.
@@ -39,7 +50,8 @@ class BakeController : public QObject {
   void cancelled();
 
  private:
-  WorkerThread worker_{this};
+  QPointer<views::ViewJobs> jobs_;
+  bool busy_ = false;
 };
 
 }  // namespace bounce::studio

@@ -51,10 +51,10 @@ QString eta_text(double seconds) {
 
 MainWindow::MainWindow(QWidget* parent)
     : QMainWindow(parent),
+      jobs_(new views::ViewJobs(this)),
       settings_(new SettingsPanel(this)),
       meshes_(new MeshDensityPanel(this)),
-      controller_(new BakeController(this)),
-      jobs_(new views::ViewJobs(this)),
+      controller_(new BakeController(*jobs_, this)),
       tabs_(new QTabWidget(this)),
       voxel_view_(new views::VoxelView(this)),
       patch_view_(new views::PatchView(*jobs_, this)),
@@ -174,7 +174,7 @@ void MainWindow::build_menus() {
 
 void MainWindow::build_report_tab() {
   report_view_ = new views::ReportView(this);
-  report_controller_ = new ReportController(this);
+  report_controller_ = new ReportController(*jobs_, this);
   tabs_->addTab(report_view_, tr("Report"));
   connect(report_view_, &views::ReportView::run_requested, this, [this] {
     if (scene_path_.isEmpty()) {

@@ -76,14 +76,15 @@ class MainWindow : public QMainWindow {
   void show_error(const QString& what, const QString& message);
   QString session_folder() const;
 
+  // The one background thread of the studio: the views' computations, the
+  // bake and the report sweep. Made before the views and the controllers
+  // (they keep a reference) and, as the first of this window's children,
+  // deleted before them: it stops and joins its running job, whose result
+  // is then dropped.
+  views::ViewJobs* jobs_;
   SettingsPanel* settings_;
   MeshDensityPanel* meshes_;
   BakeController* controller_;
-  // The one thread of the views' computations, shared by all of them. Made
-  // before the views (they keep a reference) and, as the first of this
-  // window's children, deleted before them: it stops and joins its running
-  // job, whose result is then dropped.
-  views::ViewJobs* jobs_;
   QTabWidget* tabs_;
   views::VoxelView* voxel_view_;
   views::PatchView* patch_view_;

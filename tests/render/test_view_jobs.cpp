@@ -2,7 +2,8 @@
 // and its result comes back on it, in order; a queued job is replaced by a
 // newer one of the same receiver and key; forget() stops a running job and
 // drops its result; a failure comes back as a message; a receiver that is
-// gone gets nothing.
+// gone gets nothing; tasks are never replaced, show their progress in order
+// with their results, and cancel() stops them but keeps their results.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -139,6 +140,65 @@ TEST(ViewJobs, AReceiverThatIsGoneGetsNothing) {
   gate.open.set_value();
   jobs.wait_idle();
   EXPECT_FALSE(shown);
+}
+
+TEST(ViewJobs, TasksAreNeverReplacedAndShowProgressAndResultsInOrder) {
+  ViewJobs jobs;
+  QObject receiver;
+  Gate gate;
+  gate.hold(jobs, &receiver);
+  std::vector<std::string> shown;
+  for (const std::string name : {"first", "second"})
+    jobs.run_task<std::string>(
+        &receiver,
+        [name, &shown](const ViewJobs::Task& task) {
+          task.on_ui_thread([name, &shown] { shown.push_back(name + " half"); });
+          return name;
+        },
+        [&shown](std::string r) { shown.push_back(r); });
+  // A view job of the same receiver replaces neither.
+  jobs.run<std::string>(
+      &receiver, -1, [](const ViewJobs::KeepGoing&) { return std::string("view"); },
+      [&shown](std::string r) { shown.push_back(r); });
+  EXPECT_TRUE(jobs.has_jobs(&receiver));
+  gate.open.set_value();
+  jobs.wait_idle();
+  EXPECT_EQ(shown,
+            (std::vector<std::string>{"first half", "first", "second half", "second", "view"}));
+  EXPECT_FALSE(jobs.has_jobs(&receiver));
+}
+
+TEST(ViewJobs, CancelStopsQueuedAndRunningTasksAndStillShowsTheirResults) {
+  ViewJobs jobs;
+  QObject receiver, other;
+  std::promise<void> started;
+  std::vector<std::string> shown;
+  // Runs until cancelled.
+  jobs.run_task<std::string>(
+      &receiver,
+      [&started](const ViewJobs::Task& task) {
+        started.set_value();
+        while (task.keep_going()) QThread::msleep(1);
+        return std::string("running stopped");
+      },
+      [&shown](std::string r) { shown.push_back(r); });
+  jobs.run_task<std::string>(
+      &receiver,
+      [](const ViewJobs::Task& task) {
+        return std::string(task.keep_going() ? "queued ran" : "queued stopped");
+      },
+      [&shown](std::string r) { shown.push_back(r); });
+  // Another receiver's job is not cancelled.
+  jobs.run<std::string>(
+      &other, 0,
+      [](const ViewJobs::KeepGoing& keep_going) {
+        return std::string(keep_going() ? "other ran" : "other stopped");
+      },
+      [&shown](std::string r) { shown.push_back(r); });
+  started.get_future().wait();
+  jobs.cancel(&receiver);
+  jobs.wait_idle();
+  EXPECT_EQ(shown, (std::vector<std::string>{"running stopped", "queued stopped", "other ran"}));
 }
 
 }  // namespace bounce::render_test
