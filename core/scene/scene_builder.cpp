@@ -120,9 +120,10 @@ SceneBuilder::SceneBuilder(std::string scene_file, std::map<std::string, Materia
       diagnostics_(diagnostics) {}
 
 void SceneBuilder::add(ImportedFile file, bool two_sided, std::optional<std::string> material,
-                       std::string key_path, float patch_density) {
-  entries_.push_back(
-      {std::move(file), two_sided, std::move(material), std::move(key_path), patch_density});
+                       std::string key_path, float patch_density,
+                       std::map<std::string, float> object_density) {
+  entries_.push_back({std::move(file), two_sided, std::move(material), std::move(key_path),
+                      patch_density, std::move(object_density)});
 }
 
 std::uint32_t SceneBuilder::material_index(const std::string& name, const Entry& entry,
@@ -227,6 +228,23 @@ Material SceneBuilder::resolve_material(const std::string& name, MaterialImages 
 }
 
 void SceneBuilder::build(Scene& scene) {
+  // Every object given a density of its own must be in its file.
+  for (const Entry& entry : entries_)
+    for (const auto& [name, density] : entry.object_density) {
+      std::string names;
+      bool found = false;
+      for (std::size_t p = 0; p < entry.file.pieces.size(); ++p) {
+        found = found || entry.file.pieces[p].name == name;
+        if (p < 8) names += (p > 0 ? ", '" : "'") + entry.file.pieces[p].name + "'";
+      }
+      if (entry.file.pieces.size() > 8)
+        names += " and " + std::to_string(entry.file.pieces.size() - 8) + " more";
+      if (!found)
+        throw SceneLoader::LoadError(scene_file_, entry.key_path + ".object_density." + name +
+                                                      ": " + entry.file.path.string() +
+                                                      " holds no object named '" + name +
+                                                      "' (its objects: " + names + ")");
+    }
   // Material of every piece, registered in order of first use.
   std::vector<std::vector<std::uint32_t>> piece_use(entries_.size());
   for (std::size_t e = 0; e < entries_.size(); ++e) {
@@ -396,7 +414,9 @@ void SceneBuilder::build(Scene& scene) {
       info.name = piece.name;
       info.source = where;
       info.two_sided = entry.two_sided;
-      info.patch_density = entry.patch_density;
+      const auto named = entry.object_density.find(piece.name);
+      info.patch_density =
+          named != entry.object_density.end() ? named->second : entry.patch_density;
       info.first_triangle = static_cast<std::uint32_t>(scene.triangles.size());
 
       const bool has_uvs = piece.uvs.size() == piece.positions.size();

@@ -31,7 +31,8 @@ class SceneBuilder {
   // `key_path` ("meshes[2]") names the scene.json entry in messages;
   // `patch_density` goes to every mesh of the file (MeshInfo::patch_density).
   void add(ImportedFile file, bool two_sided, std::optional<std::string> material,
-           std::string key_path, float patch_density = 1.0f);
+           std::string key_path, float patch_density = 1.0f,
+           std::map<std::string, float> object_density = {});
 
   // Fills geometry, materials and meshes of `scene`. Throws
   // SceneLoader::LoadError when no triangle is left or a material is unknown.
@@ -44,6 +45,7 @@ class SceneBuilder {
     std::optional<std::string> material;
     std::string key_path;
     float patch_density;
+    std::map<std::string, float> object_density;
   };
 
   std::uint32_t material_index(const std::string& name, const Entry& entry,

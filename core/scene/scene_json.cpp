@@ -133,8 +133,9 @@ void read_materials(const JsonReader& r, const Json& value, SceneDescription& sc
 MeshSpec read_mesh(const JsonReader& r, const Json& value, const std::string& path,
                    const std::filesystem::path& base_dir, SceneDescription& scene) {
   r.expect_object(value, path);
-  r.warn_unknown_keys(value, path,
-                      {"file", "name", "transform", "material", "two_sided", "patch_density"});
+  r.warn_unknown_keys(
+      value, path,
+      {"file", "name", "transform", "material", "two_sided", "patch_density", "object_density"});
   MeshSpec mesh;
   mesh.key_path = path;
   const Json* file = find(value, "file");
@@ -147,17 +148,27 @@ MeshSpec read_mesh(const JsonReader& r, const Json& value, const std::string& pa
     mesh.transform = read_transform(r, *t, join_key(path, "transform"));
   if (const Json* two = find(value, "two_sided"))
     mesh.two_sided = r.boolean(*two, join_key(path, "two_sided"));
-  if (const Json* d = find(value, "patch_density")) {
-    const std::string key = join_key(path, "patch_density");
-    if (!d->is_number())
+  // A patch density: a number in (0, kMaxPatchDensity].
+  const auto density_at = [&r](const Json& d, const std::string& key) {
+    if (!d.is_number())
       r.fail(key, "expected a number > 0 and <= " + std::to_string(kMaxPatchDensity) + ", got " +
-                      JsonReader::describe(*d));
-    const double density = d->get<double>();
+                      JsonReader::describe(d));
+    const double density = d.get<double>();
     // NaN fails both comparisons.
     if (!(density > 0.0 && density <= kMaxPatchDensity))
       r.fail(key, "must be a number > 0 and <= " + std::to_string(kMaxPatchDensity) +
-                      " (a multiplier on the mesh's share of patches), got " + d->dump());
-    mesh.patch_density = static_cast<float>(density);
+                      " (a multiplier on the mesh's share of patches), got " + d.dump());
+    return static_cast<float>(density);
+  };
+  if (const Json* d = find(value, "patch_density"))
+    mesh.patch_density = density_at(*d, join_key(path, "patch_density"));
+  if (const Json* objects = find(value, "object_density")) {
+    const std::string key = join_key(path, "object_density");
+    r.expect_object(*objects, key);
+    for (const auto& [name, d] : objects->items()) {
+      if (name.empty()) r.fail(key, "object names must not be empty");
+      mesh.object_density[name] = density_at(d, key + "." + name);
+    }
   }
   if (const Json* m = find(value, "material")) {
     const std::string mat_path = join_key(path, "material");

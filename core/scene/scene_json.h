@@ -30,6 +30,9 @@ struct MeshSpec {
   std::optional<std::string> material;  // every triangle gets this material
   bool two_sided = false;
   float patch_density = 1.0f;  // MeshInfo::patch_density
+  // Densities of named objects of the file (the meshes it holds, by name),
+  // in place of patch_density for those.
+  std::map<std::string, float> object_density;
 };
 
 struct SceneDescription {

@@ -46,7 +46,7 @@ Scene load_scene_json(const fs::path& json, Diagnostics& diagnostics) {
   for (const MeshSpec& mesh : description.meshes) {
     require_regular_file(mesh.file, mesh.key_path + ".file in " + json.string());
     builder.add(import_mesh_file(mesh.file, mesh.transform, mesh.name, diagnostics), mesh.two_sided,
-                mesh.material, mesh.key_path, mesh.patch_density);
+                mesh.material, mesh.key_path, mesh.patch_density, mesh.object_density);
   }
   Scene scene;
   scene.name = fs::absolute(json).parent_path().filename().string();

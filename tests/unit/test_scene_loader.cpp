@@ -493,6 +493,38 @@ TEST_F(SceneLoaderInput, PatchDensityIsAPositiveBoundedNumberNamedInErrors) {
   EXPECT_EQ(s.meshes[2].patch_density, 2.5f);
 }
 
+TEST_F(SceneLoaderInput, ObjectDensitySetsOneObjectOfAFileApart) {
+  write("two.obj",
+        "o statue\nv 0 0 2\nv 1 0 2\nv 0 1 2\nf 1 2 3\n"
+        "o wall\nv 0 0 1\nv 1 0 1\nv 0 1 1\nf 4 5 6\n");
+  // The named object gets its own density; the file's other objects the
+  // entry's.
+  const fs::path ok = write("ok.json", R"({"meshes": [{"file": "two.obj", "patch_density": 0.5,
+      "object_density": {"statue": 8}}]})");
+  const Scene s = load(ok);
+  ASSERT_EQ(s.meshes.size(), 2u);
+  EXPECT_EQ(s.meshes[0].name, "statue");
+  EXPECT_EQ(s.meshes[0].patch_density, 8.0f);
+  EXPECT_EQ(s.meshes[1].name, "wall");
+  EXPECT_EQ(s.meshes[1].patch_density, 0.5f);
+  // An object the file does not hold, or a bad density, is one error naming
+  // the key (and the objects the file does hold).
+  const std::pair<std::string, std::vector<std::string>> cases[] = {
+      {R"({"statu": 2})",
+       {"meshes[0].object_density.statu", "no object named 'statu'", "'statue', 'wall'"}},
+      {R"({"statue": 0})", {"meshes[0].object_density.statue", "> 0 and <= 64", "got 0"}},
+      {R"({"statue": "x"})", {"meshes[0].object_density.statue", "a string"}},
+      {R"([2])", {"meshes[0].object_density"}},
+  };
+  for (std::size_t i = 0; i < std::size(cases); ++i) {
+    SCOPED_TRACE(cases[i].first);
+    const fs::path json =
+        write("objects" + std::to_string(i) + ".json",
+              R"({"meshes": [{"file": "two.obj", "object_density": )" + cases[i].first + "}]}");
+    expect_error(json, json, cases[i].second);
+  }
+}
+
 TEST_F(SceneLoaderInput, BadLightsAreFatalNamingTheLight) {
   write_triangle_obj();
   const std::pair<std::string, std::vector<std::string>> cases[] = {
