@@ -340,14 +340,14 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
               ++backs;
               continue;
             }
-            const std::int32_t s = lookup.sample_at(h.triangle, back, origin + h.t * dir);
+            const glm::vec3 x = origin + h.t * dir;
+            const std::int32_t s = lookup.sample_at(h.triangle, back, x);
             if (s < 0) {
               ++unrepresented;
               continue;
             }
             const std::int32_t p = lookup.patch_of(static_cast<std::uint32_t>(s));
             ++landed_rays;
-            const glm::vec3 x = origin + h.t * dir;
             if (near_sources && glm::distance(x, lifted) < near_distance) {
               const glm::ivec3 cell(glm::floor(x / near_cell));
               const auto [it, added] = near_index.try_emplace(
