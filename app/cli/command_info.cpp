@@ -20,11 +20,12 @@ void run_info(const InfoOptions& opt) {
   Diagnostics diagnostics;
   const Scene scene = SceneLoader(diagnostics).load(opt.scene);
   const Bounds b = scene.bounds();
-  std::size_t emissive = 0;
+  std::size_t emissive = 0, textured = 0;
   double area = 0.0;
   for (std::size_t t = 0; t < scene.triangle_count(); ++t) {
     area += scene.triangle_area(t);
     if (scene.material_of(t).is_emissive()) ++emissive;
+    if (scene.textured(t) || scene.emission_textured(t)) ++textured;
   }
   if (opt.json) {
     nlohmann::json j;
@@ -34,6 +35,8 @@ void run_info(const InfoOptions& opt) {
     j["vertices"] = scene.positions.size();
     j["surface_area"] = area;
     j["emissive_triangles"] = emissive;
+    j["textured_triangles"] = textured;
+    j["vertex_colours"] = scene.has_vertex_colours();
     j["bounds"] = {{"min", {b.lo.x, b.lo.y, b.lo.z}}, {"max", {b.hi.x, b.hi.y, b.hi.z}}};
     for (const Material& m : scene.materials)
       j["materials"].push_back({{"name", m.name},
@@ -58,6 +61,10 @@ void run_info(const InfoOptions& opt) {
   std::printf("Scene '%s' (%s)\n", scene.name.c_str(), scene.path.c_str());
   std::printf("  triangles   %zu (%zu emissive), %zu vertices, surface area %.4g\n",
               scene.triangle_count(), emissive, scene.positions.size(), area);
+  // Where the samples' albedo comes from beyond the materials' flat colours:
+  // what the bake's "texture" step looks up.
+  std::printf("  surface     %zu of %zu triangles textured, %s\n", textured, scene.triangle_count(),
+              scene.has_vertex_colours() ? "vertex colours" : "no vertex colours");
   std::printf("  bounds      (%.4g, %.4g, %.4g) - (%.4g, %.4g, %.4g)\n", b.lo.x, b.lo.y, b.lo.z,
               b.hi.x, b.hi.y, b.hi.z);
   std::printf("  meshes      %zu\n", scene.meshes.size());

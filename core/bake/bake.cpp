@@ -6,6 +6,7 @@
 #include <set>
 #include <span>
 #include <string>
+#include <string_view>
 
 #include "bake/bake_steps.h"
 
@@ -40,6 +41,8 @@ std::span<const BakeStep> steps_of(BakeStage stage) {
   switch (stage) {
     case BakeStage::Geometry:
       return geometry_steps();
+    case BakeStage::Patches:
+      return patch_steps();
     case BakeStage::FormFactors:
       return form_factor_steps();
     case BakeStage::Transport:
@@ -52,22 +55,60 @@ std::span<const BakeStep> steps_of(BakeStage stage) {
   return {};
 }
 
+// Whether a step of a stage the plan runs is timed under `name`: the ray
+// tracer, which a run from the patches builds again, is not reused.
+bool timed_again(const RebakePlan& plan, const std::string& name) {
+  for (int s = static_cast<int>(plan.first); s < static_cast<int>(BakeStage::None); ++s)
+    for (const BakeStep& step : steps_of(static_cast<BakeStage>(s)))
+      if (step.timing && name == step.timing) return true;
+  return false;
+}
+
 // A stage a re-bake does not run: its steps' timings as they were measured
 // when they ran, and the diagnostics it raised then.
-void reuse_stage(BakeStage stage, const BakeResult& previous, BakeResult& r,
+void reuse_stage(BakeStage stage, const RebakePlan& plan, const BakeResult& previous, BakeResult& r,
                  Diagnostics& diagnostics) {
-  for (const StageStats& st : previous.stages)
-    for (const BakeStep& step : steps_of(stage))
-      if (step.timing && st.name == step.timing) {
-        r.stages.push_back(st);
-        r.stages.back().name += " (reused)";
-      }
+  static constexpr std::string_view kReused = " (reused)";
+  for (const StageStats& st : previous.stages) {
+    // A re-bake of a re-bake lists what it reused in turn under the same name.
+    std::string_view name = st.name;
+    if (name.ends_with(kReused)) name.remove_suffix(kReused.size());
+    const std::string reused = std::string(name) + std::string(kReused);
+    for (const BakeStep& step : steps_of(stage)) {
+      // Skipped: a step timed afresh in this run, and one already taken (the
+      // tracer's step is in two stages).
+      if (!step.timing || name != step.timing || timed_again(plan, step.timing) ||
+          std::ranges::any_of(r.stages, [&](const StageStats& s) { return s.name == reused; }))
+        continue;
+      r.stages.push_back(st);
+      r.stages.back().name = reused;
+    }
+  }
   for (const Diagnostic& d : previous.stage_diagnostics[static_cast<std::size_t>(stage)]) {
     if (d.kind == Diagnostic::Kind::Warning)
       diagnostics.warn(d.where, d.message, d.detail);
     else
       diagnostics.left_out(d.where, d.message);
   }
+}
+
+// What the stages before plan.first made, from `previous`. From the patches
+// on only the voxels and samples (with the settings that resolved the grid,
+// and the diagnostics a stage that runs replaces): copying the form factors
+// and transport only to replace them would double the bake's memory for a
+// while. The later stages never modify the voxels or samples (they prune
+// patches and number the samples' patches in patch_of_sample), so these are
+// the samples as the geometry stage made them.
+void take_reused(BakeStage first, const BakeResult& previous, BakeResult& r) {
+  if (first != BakeStage::Patches) {
+    r = previous;
+    r.stages.clear();
+    return;
+  }
+  r.settings = previous.settings;
+  r.voxels = previous.voxels;
+  r.samples = previous.samples;
+  r.stage_diagnostics = previous.stage_diagnostics;
 }
 
 // Runs a stage's steps that apply, each timed under its own name, when the
@@ -129,11 +170,10 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
   if (previous) {
     plan = plan_rebake(scene_, previous->settings, previous->patch_density, settings_);
     if (plan.first != BakeStage::Geometry) {
-      r = *previous;
-      r.stages.clear();
-      for (const BakeStage stage :
-           {BakeStage::Geometry, BakeStage::FormFactors, BakeStage::Transport, BakeStage::Compress})
-        if (!plan.runs(stage)) reuse_stage(stage, *previous, r, diagnostics_);
+      take_reused(plan.first, *previous, r);
+      for (std::size_t s = 0; s < kBakeStageCount; ++s)
+        if (!plan.runs(static_cast<BakeStage>(s)))
+          reuse_stage(static_cast<BakeStage>(s), plan, *previous, r, diagnostics_);
     }
   }
   const std::optional<int> resolved_resolution =
@@ -151,6 +191,7 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
                .progress = progress,
                .result = r};
   run_stage(BakeStage::Geometry, bake);
+  run_stage(BakeStage::Patches, bake);
   // Out of core: F is computed on the heap and moved to a mapped file once
   // final (after the checks), the transport maps each finished T (see
   // spill_to_file: matrices being written stay on the heap).

@@ -63,7 +63,7 @@ struct BakeResult {
   RebakePlan plan;
   // The warnings and left-out notes each stage raised (indexed by BakeStage),
   // repeated into the diagnostics of a re-bake that reuses the stage.
-  std::array<std::vector<Diagnostic>, 4> stage_diagnostics;
+  std::array<std::vector<Diagnostic>, kBakeStageCount> stage_diagnostics;
 };
 
 class Baker {

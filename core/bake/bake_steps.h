@@ -22,8 +22,9 @@ struct BakeRun {
   BakeDistribution* distribution;  // null for a bake in one process
   Progress& progress;
   BakeResult& result;
-  // Built with the geometry; only the geometry and the form-factor stage,
-  // which always runs with it, trace rays.
+  // Built with the geometry, or by the patch stage of a run that reuses the
+  // geometry; the geometry, the patch and the form-factor stage trace rays
+  // (a run of the form factors always runs the patches, see BakeStage).
   std::optional<RayTracer> tracer{};
   // Where F and each finished T go when the bake is out of core.
   std::optional<OutOfCorePolicy> out_of_core{};
@@ -37,6 +38,11 @@ struct BakeRun {
   bool finished = false;
 };
 
+// Builds BakeRun::tracer; a step of the geometry stage and, when the
+// geometry is reused, of the patch stage, under this timing name in both.
+void build_tracer(BakeRun& run);
+inline constexpr const char* kTracerTiming = "ray tracer (BVH build)";
+
 struct BakeStep {
   const char* timing;               // its entry in BakeResult::stages; null: not timed
   bool (*applies)(const BakeRun&);  // null: whenever its stage runs
@@ -45,6 +51,7 @@ struct BakeStep {
 
 // The steps of each stage, in the order they run.
 std::span<const BakeStep> geometry_steps();
+std::span<const BakeStep> patch_steps();
 std::span<const BakeStep> form_factor_steps();
 std::span<const BakeStep> transport_steps();
 std::span<const BakeStep> compression_steps();

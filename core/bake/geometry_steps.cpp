@@ -1,5 +1,5 @@
-// The geometry stage of a bake: voxel grid, ray tracer, samples, their
-// albedo from textures and vertex colours, and the patches.
+// The geometry stage of a bake: voxel grid, ray tracer, samples and their
+// albedo from textures and vertex colours.
 #include <string>
 
 #include "bake/bake_steps.h"
@@ -28,8 +28,6 @@ void voxelize_step(BakeRun& run) {
                                              " grid cells are empty and get no samples or patches");
 }
 
-void build_tracer_step(BakeRun& run) { run.tracer.emplace(run.scene); }
-
 void sample_step(BakeRun& run) {
   BakeResult& r = run.result;
   SamplingSettings s;
@@ -51,40 +49,16 @@ void texture_step(BakeRun& run) {
   apply_surface_textures(run.scene, run.result.voxels, run.result.samples, &run.progress);
 }
 
-void patches_step(BakeRun& run) {
-  BakeResult& r = run.result;
-  if (r.settings.patch_mode == PatchMode::Virtual) {
-    ClusteringSettings c;
-    c.patches_per_voxel = *r.settings.patches_per_voxel;
-    // A total patch count is a total: the grid was chosen for it at
-    // patches_per_voxel, the merges then go where they cost least.
-    if (r.settings.patches_total)
-      c.total_patches = static_cast<std::size_t>(*r.settings.patches_total);
-    c.mesh_density = patch_densities(run.scene);
-    if (run.distribution) c.sharing = run.distribution->sample_row_sharing();
-    r.patches =
-        cluster_virtual_patches(*run.tracer, r.voxels, r.samples, c, r.clustering, &run.progress);
-    if (r.clustering.voxels_above_target > 0)
-      run.diagnostics.warn("patches", std::to_string(r.clustering.voxels_above_target) +
-                                          " voxels kept more than " +
-                                          std::to_string(*r.settings.patches_per_voxel) +
-                                          " patches: their samples face opposite ways and are "
-                                          "never merged");
-  } else {
-    run.progress.begin_stage("voxel patches", 1);
-    r.patches = voxel_patches(r.samples);
-    run.progress.end_stage();
-  }
-  r.patch_density = patch_densities(run.scene);
-}
-
 constexpr BakeStep kGeometrySteps[] = {
-    {"voxelize", nullptr, voxelize_step}, {"ray tracer (BVH build)", nullptr, build_tracer_step},
-    {"sample", nullptr, sample_step},     {"texture", has_surface_detail, texture_step},
-    {"patches", nullptr, patches_step},
+    {"voxelize", nullptr, voxelize_step},
+    {kTracerTiming, nullptr, build_tracer},
+    {"sample", nullptr, sample_step},
+    {"texture", has_surface_detail, texture_step},
 };
 
 }  // namespace
+
+void build_tracer(BakeRun& run) { run.tracer.emplace(run.scene); }
 
 std::span<const BakeStep> geometry_steps() { return kGeometrySteps; }
 

@@ -23,12 +23,20 @@ int grid_resolution(const Scene& scene, const BakeSettings& previous, const Bake
                                            s.patch_mode);
 }
 
+// `what` changed, which re-runs `stage` and every later one.
+void rerun(RebakePlan& plan, BakeStage stage, const std::string& what) {
+  plan.reasons.push_back(what + " (re-runs from " + std::string(to_string(stage)) + ")");
+  plan.first = std::min(plan.first, stage);
+}
+
 }  // namespace
 
 const char* to_string(BakeStage stage) {
   switch (stage) {
     case BakeStage::Geometry:
       return "geometry";
+    case BakeStage::Patches:
+      return "patches";
     case BakeStage::FormFactors:
       return "form factors";
     case BakeStage::Transport:
@@ -47,9 +55,7 @@ RebakePlan plan_rebake(const Scene& scene, const BakeSettings& previous, const B
   RebakePlan plan;
   plan.first = BakeStage::None;
   const auto changed = [&plan](bool differs, BakeStage stage, const std::string& what) {
-    if (!differs) return;
-    plan.reasons.push_back(what + " (re-runs from " + std::string(to_string(stage)) + ")");
-    if (static_cast<int>(stage) < static_cast<int>(plan.first)) plan.first = stage;
+    if (differs) rerun(plan, stage, what);
   };
 
   // The grid rows together, by the resolution they resolve to.
@@ -82,18 +88,21 @@ RebakePlan plan_rebake(const Scene& scene, const BakeSettings& previous,
   RebakePlan plan = plan_rebake(scene, previous, next);
   const std::vector<float> now = patch_densities(scene);
   if (now == previous_densities) return plan;
-  const auto stage = " (re-runs from " + std::string(to_string(BakeStage::Geometry)) + ")";
+  // Another number of meshes: not the previous bake's scene, whose voxels
+  // and samples cannot be reused.
   if (now.size() != previous_densities.size()) {
-    plan.reasons.push_back(text_format("patch densities of %zu meshes, the previous bake had %zu",
-                                       now.size(), previous_densities.size()) +
-                           stage);
-  } else {
-    for (std::size_t i = 0; i < now.size(); ++i)
-      if (now[i] != previous_densities[i])
-        plan.reasons.push_back("patch density of '" + scene.meshes[i].name + "': " +
-                               text_format("%g -> %g", previous_densities[i], now[i]) + stage);
+    rerun(plan, BakeStage::Geometry,
+          text_format("patch densities of %zu meshes, the previous bake had %zu", now.size(),
+                      previous_densities.size()));
+    return plan;
   }
-  plan.first = BakeStage::Geometry;
+  // The voxels and samples do not depend on the densities: the clustering
+  // and what follows it run again.
+  for (std::size_t i = 0; i < now.size(); ++i)
+    if (now[i] != previous_densities[i])
+      rerun(plan, BakeStage::Patches,
+            "patch density of '" + scene.meshes[i].name +
+                "': " + text_format("%g -> %g", previous_densities[i], now[i]));
   return plan;
 }
 

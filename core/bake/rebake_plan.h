@@ -1,10 +1,11 @@
 #pragma once
 // Which bake stages a change of settings makes stale. The pipeline is a
-// chain (geometry -> form factors -> transport -> compression), so a change
-// re-runs the earliest stage it affects and everything after it; the stages
-// before are taken from the previous bake (Baker::run with a previous
-// result). The studio re-bakes this way when a setting changes; see
+// chain (geometry -> patches -> form factors -> transport -> compression),
+// so a change re-runs the earliest stage it affects and everything after it;
+// the stages before are taken from the previous bake (Baker::run with a
+// previous result). The studio re-bakes this way when a setting changes; see
 // docs/studio.md.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -13,13 +14,26 @@
 
 namespace bounce {
 
-// In pipeline order. Geometry: voxel grid, ray tracer, samples, patches.
-// FormFactors: form factors, their checks (pruning) and the evaluation
-// lights' first-hit light (it needs the patches only). Transport: the
-// multi-bounce matrices. Compress: how they are stored. None: nothing to run.
+// In pipeline order. Geometry: voxel grid, ray tracer, samples and their
+// albedo from textures and vertex colours. Patches: the patches, clustered
+// from those samples (what a mesh's patch density changes). FormFactors: form
+// factors, their checks (pruning) and the evaluation lights' first-hit light
+// (it needs the patches only). Transport: the multi-bounce matrices.
+// Compress: how they are stored. None: nothing to run.
 // A plan never starts at FormFactors: the checks prune patches that see
-// nothing, so new form factors need the unpruned patches, i.e. geometry.
-enum class BakeStage { Geometry = 0, FormFactors = 1, Transport = 2, Compress = 3, None = 4 };
+// nothing, so new form factors need the unpruned patches: settings of the
+// form-factor stage re-run from Patches.
+enum class BakeStage {
+  Geometry = 0,
+  Patches = 1,
+  FormFactors = 2,
+  Transport = 3,
+  Compress = 4,
+  None = 5
+};
+
+// How many stages a bake has (None is not one).
+inline constexpr std::size_t kBakeStageCount = static_cast<std::size_t>(BakeStage::None);
 
 const char* to_string(BakeStage stage);
 
@@ -47,8 +61,8 @@ std::vector<float> patch_densities(const Scene& scene);
 // itself taken to be the previous bake's except for its meshes' patch
 // densities (`previous_densities`, the previous bake's), which a scene.json
 // edit or the studio's mesh list may change without touching the geometry.
-// A changed density re-runs from geometry (the patches and everything after
-// them), one reason per mesh ("patch density of 'floor': 1 -> 4").
+// A changed density re-runs from the patches (the voxels and samples do not
+// depend on it), one reason per mesh ("patch density of 'floor': 1 -> 4").
 RebakePlan plan_rebake(const Scene& scene, const BakeSettings& previous,
                        const std::vector<float>& previous_densities, const BakeSettings& next);
 

@@ -164,7 +164,7 @@ std::vector<SettingRow> make_rows() {
       .label = "Patches per voxel",
       .studio_help = "Patches kept in each voxel after clustering its samples. 3 keeps the three "
                      "walls of a room corner apart; more subdivides flat surfaces",
-      .stage = BakeStage::Geometry,
+      .stage = BakeStage::Patches,
       .get = get_optional_int<&S::patches_per_voxel>,
       .set = set_optional_int<&S::patches_per_voxel>,
   });
@@ -180,7 +180,7 @@ std::vector<SettingRow> make_rows() {
       .label = "Patches",
       .studio_help = "virtual: the samples in each voxel clustered into patches (the method); "
                      "voxel baseline: one patch per voxel, for comparison",
-      .stage = BakeStage::Geometry,
+      .stage = BakeStage::Patches,
       .get = [](const S& s) -> SettingValue { return std::string(name_of(s.patch_mode)); },
       .set = [](S& s, const SettingValue& v) { s.patch_mode = named(kPatchModes, v); },
   });
@@ -198,11 +198,11 @@ std::vector<SettingRow> make_rows() {
       .get = get_optional_int<&S::samples_per_face>,
       .set = set_optional_int<&S::samples_per_face>,
   });
-  // Visibility rays change the form factors, and with them which patches the
-  // checks prune (those that see nothing), so the patch set itself: the
-  // pruned patches of the previous bake cannot be reused. The closure and
-  // the final gather trace rays, which needs the tracer only a run from
-  // geometry builds (see BakeStage).
+  // The form-factor rows below re-run from the patches, not the form
+  // factors: the checks prune the patches that see nothing, so new form
+  // factors need the unpruned patches, i.e. the clustering again (see
+  // BakeStage; that stage also builds the ray tracer the closure and the
+  // final gather trace with).
   rows.push_back({
       .name = "visibility_rays",
       .manifest_key = "visibility_rays",
@@ -212,7 +212,7 @@ std::vector<SettingRow> make_rows() {
       .max = 1024,
       .help_shows_default = true,
       .help = "Shadow rays per patch pair for form-factor visibility",
-      .stage = BakeStage::Geometry,
+      .stage = BakeStage::Patches,
       .get = get_int<&S::visibility_rays>,
       .set = set_int<&S::visibility_rays>,
   });
@@ -228,7 +228,7 @@ std::vector<SettingRow> make_rows() {
       .help = "Rays per patch measuring the share of its light that lands on sampled surface "
               "(its closure, 1 in a closed room); the form factors are then balanced so each "
               "row sums to it and reciprocity is exact. 0: keep the raw quadrature",
-      .stage = BakeStage::Geometry,
+      .stage = BakeStage::Patches,
       .get = get_int<&S::closure_rays>,
       .set = set_int<&S::closure_rays>,
   });
@@ -244,7 +244,7 @@ std::vector<SettingRow> make_rows() {
       .help = "Rays per vertex of the lit mesh: each vertex gathers its indirect light from "
               "the patches it sees through these ray-traced form factors, stored in the bake "
               "(gather_*.npy). 0: no final gather; vertices take the nearest patches' light",
-      .stage = BakeStage::Geometry,
+      .stage = BakeStage::Patches,
       .get = get_int<&S::final_gather_rays>,
       .set = set_int<&S::final_gather_rays>,
   });
@@ -266,7 +266,7 @@ std::vector<SettingRow> make_rows() {
       .studio_help = "Vertices read the light of the surface within this many voxels at their "
                      "own resolution (sunlit ledges, shadow edges next to them); more costs "
                      "shadow rays every frame",
-      .stage = BakeStage::Geometry,
+      .stage = BakeStage::Patches,
       .get = get_real<&S::final_gather_near>,
       .set = set_real<&S::final_gather_near>,
   });

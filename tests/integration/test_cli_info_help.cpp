@@ -28,6 +28,40 @@ TEST(Info, CornellBoxJsonReportsItsTrianglesAndMaterials) {
   EXPECT_EQ(entries(tmp.path()), std::vector<std::string>{}) << "info wrote files";
 }
 
+// What the samples' albedo comes from beyond the flat material colours:
+// textured triangles and per-vertex colours, in the text and the JSON.
+TEST(Info, SaysWhetherTheSceneHasTexturesAndVertexColours) {
+  TempDir tmp;
+  const RunResult plain = run({"info", scene("cornell-box")}, tmp.path());
+  ASSERT_EQ(plain.exit_code, 0) << plain;
+  EXPECT_TRUE(contains(plain.out, "  surface     0 of 32 triangles textured, no vertex colours\n"))
+      << plain.out;
+  const json plain_json = parse_json(run({"info", scene("cornell-box"), "--json"}, tmp.path()).out);
+  EXPECT_EQ(plain_json["vertex_colours"], false) << plain_json.dump(2);
+  EXPECT_EQ(plain_json["textured_triangles"], 0) << plain_json.dump(2);
+
+  // Of its 6 triangles the floor's two carry the checker; the wall's normal
+  // map and the fence's alpha mask are no albedo textures.
+  const json textured =
+      parse_json(run({"info", scene("textured-floor"), "--json"}, tmp.path()).out);
+  EXPECT_EQ(textured["textured_triangles"], 2) << textured.dump(2);
+  EXPECT_EQ(textured["vertex_colours"], false) << textured.dump(2);
+
+  // One triangle with 8-bit PLY colours.
+  const fs::path ply = tmp / "coloured.ply";
+  write_text(ply,
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+             "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+             "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+             "0 0 0 255 0 128\n1 0 0 0 255 64\n0 1 0 128 32 255\n3 0 1 2\n");
+  const RunResult coloured = run({"info", ply.string()}, tmp.path());
+  ASSERT_EQ(coloured.exit_code, 0) << coloured;
+  EXPECT_TRUE(contains(coloured.out, "  surface     0 of 1 triangles textured, vertex colours\n"))
+      << coloured.out;
+  const json coloured_json = parse_json(run({"info", ply.string(), "--json"}, tmp.path()).out);
+  EXPECT_EQ(coloured_json["vertex_colours"], true) << coloured_json.dump(2);
+}
+
 TEST(Info, MissingSceneIsOneError) {
   TempDir tmp;
   const std::string missing = (tmp / "nothing-here").string();

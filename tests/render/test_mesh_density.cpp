@@ -1,8 +1,10 @@
 // The studio's mesh list: it shows each mesh of a bake with the patches the
 // bake gave it (counted here from patches.npy, independently of the
 // manifest's table the list reads), and a density edited in it reaches the
-// re-bake, whose plan re-runs from geometry naming that mesh alone, while
-// unchanged densities reuse the whole bake.
+// re-bake, whose plan re-runs from the patches naming that mesh alone (its
+// manifest lists the voxels and samples as reused), while unchanged
+// densities reuse the whole bake.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -58,7 +60,7 @@ TEST_F(MeshDensity, ListShowsEveryMeshWithItsPatchCount) {
   EXPECT_FALSE(panel.edited());
 }
 
-TEST_F(MeshDensity, EditedDensityReBakesFromGeometryNamingTheMesh) {
+TEST_F(MeshDensity, EditedDensityReBakesFromThePatchesNamingTheMesh) {
   const fs::path dir = work_dir("mesh-density");
   const fs::path scene = fs::path(BOUNCE_RESOURCE_DIR) / "scenes" / "cornell-box";
   // The studio's own settings, on a coarse grid.
@@ -79,7 +81,7 @@ TEST_F(MeshDensity, EditedDensityReBakesFromGeometryNamingTheMesh) {
       studio::run_bake_job(scene, settings, dir / "same", progress, first, panel.densities());
   EXPECT_EQ(same.result->plan.first, BakeStage::None);
 
-  // One mesh four times as dense: geometry on, one reason naming it.
+  // One mesh four times as dense: the patches on, one reason naming it.
   panel.set_density(0, 4.0);
   EXPECT_TRUE(panel.edited());
   std::vector<float> expected(first->scene->meshes.size(), 1.0f);
@@ -88,10 +90,24 @@ TEST_F(MeshDensity, EditedDensityReBakesFromGeometryNamingTheMesh) {
   const std::string name = first->scene->meshes[0].name;
   const studio::BakeJobResult denser =
       studio::run_bake_job(scene, settings, dir / "denser", progress, first, panel.densities());
-  EXPECT_EQ(denser.result->plan.first, BakeStage::Geometry);
+  EXPECT_EQ(denser.result->plan.first, BakeStage::Patches);
   EXPECT_EQ(denser.result->plan.reasons,
             std::vector<std::string>{"patch density of '" + name + "': 1 -> 4 (re-runs from " +
-                                     "geometry)"});
+                                     "patches)"});
+  // The manifest's timings: the voxels and samples taken from the first
+  // bake, the ray tracer built again for the clustering, which ran.
+  std::vector<std::string> stages;
+  for (const auto& st : denser.data->bake.manifest.at("stages"))
+    stages.push_back(st.at("name").get<std::string>());
+  const auto listed = [&stages](const std::string& step) {
+    return std::find(stages.begin(), stages.end(), step) != stages.end();
+  };
+  EXPECT_TRUE(listed("voxelize (reused)")) << testing::PrintToString(stages);
+  EXPECT_TRUE(listed("sample (reused)")) << testing::PrintToString(stages);
+  EXPECT_TRUE(listed("ray tracer (BVH build)")) << testing::PrintToString(stages);
+  EXPECT_TRUE(listed("patches")) << testing::PrintToString(stages);
+  EXPECT_TRUE(listed("form factors")) << testing::PrintToString(stages);
+  EXPECT_FALSE(listed("voxelize")) << testing::PrintToString(stages);
   // The bake used it: its manifest says so, and the mesh's voxels kept more
   // patches (a fixed count per voxel, times the voxel's area-weighted
   // density; at this coarse grid the extra patches of a voxel may go to the
