@@ -29,34 +29,20 @@
 #include "scene/scene_loader.h"
 #include "scene/texture.h"
 #include "scratch_dir.h"
+#include "textured_floor.h"
 #include "voxel/voxelization.h"
+#include "warnings_text.h"
 
 namespace bounce {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kFloorScene = fs::path(BOUNCE_RESOURCE_DIR) / "scenes" / "textured-floor";
-
-// The sRGB transfer function, written out here independently of the loader.
-double decode(int byte) {
-  const double c = byte / 255.0;
-  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
-// checker.png's two colours (sRGB bytes) times the floor's Kd 0.9, linear.
-glm::dvec3 colour_a() { return 0.9 * glm::dvec3(decode(224), decode(96), decode(64)); }
-glm::dvec3 colour_b() { return 0.9 * glm::dvec3(decode(48), decode(128), decode(192)); }
-
-bool near(const glm::dvec3& a, const glm::dvec3& b, double tolerance) {
-  return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::dvec3(tolerance)));
-}
-
-std::string warnings_of(const Diagnostics& d) {
-  std::string text;
-  for (const Diagnostic& w : d.warnings()) text += w.where + ": " + w.message + "\n";
-  return text;
-}
+using test::colour_a;
+using test::colour_b;
+using test::kFloorScene;
+using test::near;
+using test::warnings_of;
 
 std::string file_text(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -184,26 +170,7 @@ TEST_F(EmbeddedGlb, FloorReadsTheEmbeddedCheckerWithoutWarnings) {
 }
 
 TEST_F(EmbeddedGlb, SampleAlbedoIsTheCheckersMean) {
-  const RayTracer tracer(loaded);
-  const Voxelization vox = voxelize(loaded, VoxelGrid(loaded.bounds(), 8));
-  SampleSet set = generate_samples(loaded, tracer, vox, SamplingSettings{});
-  EXPECT_GT(apply_surface_textures(loaded, vox, set), 0u);
-  // The floor's samples tile it: their area-weighted albedo is the whole
-  // floor's mean, the mean of the two colours; small ones carry one square's.
-  glm::dvec3 sum(0.0), lo(1.0), hi(0.0);
-  double area = 0.0;
-  for (const Sample& x : set.samples) {
-    if (loaded.material_of(x.triangle).name != "floor") continue;
-    sum += static_cast<double>(x.area) * glm::dvec3(x.albedo);
-    area += static_cast<double>(x.area);
-    lo = glm::min(lo, glm::dvec3(x.albedo));
-    hi = glm::max(hi, glm::dvec3(x.albedo));
-  }
-  ASSERT_NEAR(area, 4.0, 1e-3);
-  const glm::dvec3 mean = sum / area;
-  EXPECT_TRUE(near(mean, 0.5 * (colour_a() + colour_b()), 3e-3))
-      << mean.x << " " << mean.y << " " << mean.z;
-  EXPECT_GT(hi.r - lo.r, 0.2 * (colour_a().r - colour_b().r));
+  test::expect_floor_samples_carry_the_checker(loaded);
 }
 
 TEST_F(EmbeddedGlb, FenceKeepsItsHoles) {
