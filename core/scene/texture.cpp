@@ -76,7 +76,7 @@ std::string one_line(std::string text) {
 }
 
 // Raw embedded RGBA8 texels as a PNG of them would read: 8-bit, sRGB, alpha
-// last.
+// last; the colour as stored, not multiplied by alpha.
 std::optional<ImagePixels> raw_pixels(const EmbeddedImage& image, std::string& error) {
   const auto texels =
       static_cast<std::size_t>(image.raw_width) * static_cast<std::size_t>(image.raw_height);

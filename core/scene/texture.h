@@ -47,7 +47,8 @@ struct ImagePixels {
 };
 // Reads `source` whole; on failure returns nothing and sets `error` (the
 // reason, without the source's name). Raw embedded texels are 8-bit sRGB
-// RGBA, as a PNG of them would be.
+// RGBA, as a PNG of them would be, their colour as stored (OpenImageIO
+// multiplies a PNG's colour by its alpha).
 std::optional<ImagePixels> read_image_pixels(const ImageSource& source, std::string& error);
 
 // One sRGB-encoded component (in [0, 1]) decoded to linear, as 8- and

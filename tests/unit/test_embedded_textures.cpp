@@ -6,8 +6,11 @@
 // alpha, then loaded back as a scene: the floor's albedo and sample albedo
 // are the checker's mean, its squares the two colours, the fence keeps its
 // holes, and writing it again embeds the same bytes. And the other slots
-// (emissive texture, normal map) from data URIs, and a corrupt embedded
-// image: one warning naming the file and the material, the factor instead.
+// (emissive texture, normal map) from data URIs; a corrupt embedded image
+// or an index the file does not embed: one warning naming the file and the
+// material, the factor instead; raw embedded texels read as the PNG of
+// them would.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -295,6 +298,60 @@ TEST_F(EmbeddedGltf, CorruptDataUriWarnsOnceNamingFileAndMaterialAndFallsBack) {
   EXPECT_EQ(m.texture, nullptr);
   EXPECT_EQ(m.albedo, glm::vec3(0.5f, 0.25f, 0.125f));
   EXPECT_FALSE(s.has_masks()) << "the mask is the image's alpha: the quad stays whole";
+}
+
+// An image named "*7" (here a URI that Assimp passes on as the texture's
+// name) stands for embedded image 7, which the file does not hold.
+TEST_F(EmbeddedGltf, IndexTheFileDoesNotEmbedWarnsOnceNamingFileAndMaterial) {
+  const Scene s = load_gltf_quad("*7", "", "[0.5, 0.25, 0.125, 1]");
+  ASSERT_EQ(diagnostics.warnings().size(), 1u) << warnings_of(diagnostics);
+  const Diagnostic w = diagnostics.warnings()[0];
+  EXPECT_NE(w.where.find("quad.gltf"), std::string::npos) << w.where;
+  EXPECT_NE(w.message.find("'leaf'"), std::string::npos) << w.message;
+  EXPECT_NE(w.message.find("'*7'"), std::string::npos) << w.message;
+  EXPECT_EQ(s.materials.at(0).texture, nullptr);
+  EXPECT_EQ(s.materials.at(0).albedo, glm::vec3(0.5f, 0.25f, 0.125f));
+}
+
+// Some formats embed raw RGBA8 texels instead of an image file: opaque ones
+// read as the same texels written to a PNG file do (sRGB colour), alpha is
+// linear, and colour under partial alpha is taken as stored (OpenImageIO
+// multiplies a PNG's colour by its alpha on reading).
+TEST(EmbeddedImages, RawTexelsReadAsTheirPngDoes) {
+  const std::vector<std::uint8_t> rgba = {255, 0, 0, 255, 10,  128, 250, 0,
+                                          0,   0, 0, 128, 200, 100, 30,  255};
+  const test::ScratchDir dir("bounce-raw-texels");
+  const fs::path png = dir / "texels.png";
+  auto out = OIIO::ImageOutput::create(png.string());
+  ASSERT_TRUE(out);
+  ASSERT_TRUE(out->open(png.string(), OIIO::ImageSpec(2, 2, 4, OIIO::TypeDesc::UINT8)) &&
+              out->write_image(OIIO::TypeDesc::UINT8, rgba.data()) && out->close());
+
+  auto raw = std::make_shared<EmbeddedImage>();
+  raw->name = "model.mdl#texture 0";
+  raw->bytes = rgba;
+  raw->raw_width = raw->raw_height = 2;
+  const ImageSource source(raw);
+  std::string error;
+  const auto from_raw = load_texture(source, error);
+  ASSERT_NE(from_raw, nullptr) << error;
+  const auto from_png = load_texture(png, error);
+  ASSERT_NE(from_png, nullptr) << error;
+  EXPECT_EQ(from_raw->source.name(), "model.mdl#texture 0");
+  for (const std::size_t t : {0u, 3u})
+    for (glm::length_t c = 0; c < 3; ++c)
+      EXPECT_NEAR(from_raw->levels[0].texels[t][c], from_png->levels[0].texels[t][c], 1e-6f)
+          << "texel " << t << " channel " << c;
+  EXPECT_TRUE(near(glm::dvec3(from_raw->levels[0].texels[1]),
+                   glm::dvec3(test::decode(10), test::decode(128), test::decode(250)), 1e-6));
+  const auto mask = load_alpha_mask(source, AlphaSource::AlphaOnly, error);
+  ASSERT_NE(mask, nullptr) << error;
+  EXPECT_EQ(mask->values, (std::vector<float>{1.0f, 0.0f, 128.0f / 255.0f, 1.0f}));
+
+  // Texels that do not fill the stated size: an error, no texture.
+  raw->raw_height = 3;
+  EXPECT_EQ(load_texture(ImageSource(raw), error), nullptr);
+  EXPECT_NE(error.find("2 x 3"), std::string::npos) << error;
 }
 
 }  // namespace
