@@ -3,9 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 #include "base/error.h"
@@ -18,15 +15,15 @@ namespace bounce {
 
 namespace {
 
-namespace fs = std::filesystem;
-
-std::vector<std::uint8_t> file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)),
-                                  std::istreambuf_iterator<char>());
-  if (!in.good() && !in.eof())
-    throw Error(path, "cannot read the image again to embed it in the glTF file");
-  if (bytes.empty()) throw Error(path, "the image is empty: cannot embed it in the glTF file");
+// The image's file bytes, as its file (or the mesh file it is embedded in)
+// stores them; empty for raw embedded texels, which have no file to copy.
+std::vector<std::uint8_t> file_bytes(const ImageSource& source) {
+  if (source.is_embedded() && source.embedded()->raw()) return {};
+  std::string error;
+  std::vector<std::uint8_t> bytes = image_file_bytes(source, error);
+  if (bytes.empty())
+    throw Error(source.name(),
+                "cannot read the image again to embed it in the glTF file: " + error);
   return bytes;
 }
 
@@ -45,10 +42,10 @@ struct Rgb8 {
   std::vector<std::uint8_t> rgb;  // width x height x 3
 };
 
-Rgb8 colour_codes(const std::string& path) {
+Rgb8 colour_codes(const ImageSource& source) {
   std::string error;
-  const std::optional<ImagePixels> image = read_image_pixels(path, error);
-  if (!image) throw Error(path, "cannot read the texture again to embed it: " + error);
+  const std::optional<ImagePixels> image = read_image_pixels(source, error);
+  if (!image) throw Error(source.name(), "cannot read the texture again to embed it: " + error);
   Rgb8 out{image->width, image->height, {}};
   const auto texels =
       static_cast<std::size_t>(image->width) * static_cast<std::size_t>(image->height);
@@ -72,7 +69,7 @@ Rgb8 colour_codes(const std::string& path) {
 GlbImage masked_image(const Material& m, bool textured) {
   Rgb8 colour;
   if (textured) {
-    colour = colour_codes(m.texture->path);
+    colour = colour_codes(m.texture->source);
   } else {
     colour.width = m.alpha_mask->width;
     colour.height = m.alpha_mask->height;
@@ -93,27 +90,28 @@ GlbImage masked_image(const Material& m, bool textured) {
       const float coverage = std::clamp(m.alpha_mask->lookup(uv), 0.0f, 1.0f);
       rgba.push_back(static_cast<std::uint8_t>(std::lround(coverage * 255.0f)));
     }
-  const std::string what = textured ? m.texture->path : m.alpha_mask->path;
+  const std::string what = (textured ? m.texture->source : m.alpha_mask->source).name();
   return {m.name, "image/png", encode_png(w, h, 4, rgba, what)};
 }
 
 GlbImage colour_image(const Material& m) {
-  std::vector<std::uint8_t> bytes = file_bytes(m.texture->path);
+  const ImageSource& source = m.texture->source;
+  std::vector<std::uint8_t> bytes = file_bytes(source);
   if (is_png(bytes)) return {m.name, "image/png", std::move(bytes)};
   if (is_jpeg(bytes)) return {m.name, "image/jpeg", std::move(bytes)};
-  const Rgb8 colour = colour_codes(m.texture->path);
+  const Rgb8 colour = colour_codes(source);
   return {m.name, "image/png",
-          encode_png(colour.width, colour.height, 3, colour.rgb, m.texture->path)};
+          encode_png(colour.width, colour.height, 3, colour.rgb, source.name())};
 }
 
-// Whether the texture file itself carries the mask: the same file, PNG (JPEG
-// has no alpha), with an alpha channel the mask was read from.
+// Whether the texture image itself carries the mask: the same image, PNG
+// (JPEG has no alpha), with an alpha channel the mask was read from.
 std::optional<GlbImage> image_holding_its_mask(const Material& m) {
-  if (!m.texture || m.texture->path != m.alpha_mask->path) return std::nullopt;
-  std::vector<std::uint8_t> bytes = file_bytes(m.texture->path);
+  if (!m.texture || m.texture->source != m.alpha_mask->source) return std::nullopt;
+  std::vector<std::uint8_t> bytes = file_bytes(m.texture->source);
   if (!is_png(bytes)) return std::nullopt;
   std::string error;
-  const std::optional<ImagePixels> image = read_image_pixels(m.texture->path, error);
+  const std::optional<ImagePixels> image = read_image_pixels(m.texture->source, error);
   if (!image || image->alpha_channel < 0) return std::nullopt;
   return GlbImage{m.name, "image/png", std::move(bytes)};
 }

@@ -15,8 +15,9 @@
 // Every other material shares one plain white material, index 0, "baked
 // light": its vertex colours hold the whole light, albedo included.
 //
-// Images are embedded as the original file's bytes when the file is PNG or
-// JPEG and already holds what glTF reads (the colour, and for a mask the
+// Images are embedded as the original image's bytes (its file's, or the
+// bytes a mesh file embedded it as) when they are PNG or JPEG and already
+// hold what glTF reads (the colour, and for a mask the
 // coverage in its alpha channel); otherwise they are encoded as 8-bit PNG:
 // the texture's colour as its file stores it (integer sRGB values kept,
 // linear values encoded to sRGB) and the mask's values, looked up at the

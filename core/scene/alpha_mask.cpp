@@ -64,14 +64,13 @@ float AlphaMask::solid_fraction(const std::array<glm::vec2, 3>& uv, float factor
 
 std::shared_ptr<const AlphaMask> AlphaMask::constant(float value) {
   auto mask = std::make_shared<AlphaMask>();
-  mask->path = "(constant)";
   mask->width = mask->height = 1;
   mask->values = {value};
   return mask;
 }
 
-std::shared_ptr<const AlphaMask> load_alpha_mask(const std::filesystem::path& file,
-                                                 AlphaSource source, std::string& error) {
+std::shared_ptr<const AlphaMask> load_alpha_mask(const ImageSource& file, AlphaSource source,
+                                                 std::string& error) {
   const std::optional<ImagePixels> image = read_image_pixels(file, error);
   if (!image) return nullptr;
   const int w = image->width, h = image->height, channels = image->channels;
@@ -81,7 +80,7 @@ std::shared_ptr<const AlphaMask> load_alpha_mask(const std::filesystem::path& fi
   if (alpha < 0 && (channels == 2 || channels == 4)) alpha = channels - 1;
   const int colours = alpha >= 0 ? std::min(alpha, 3) : std::min(channels, 3);
   auto mask = std::make_shared<AlphaMask>();
-  mask->path = file.string();
+  mask->source = file;
   mask->width = w;
   mask->height = h;
   mask->values.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));

@@ -1,23 +1,25 @@
 #pragma once
 // The coverage of an alpha-masked (cut-out) material: one value per texel,
-// read once per file through OpenImageIO, compared against the material's
-// cutoff where a ray lands. Where the value is below the cutoff the surface
-// is not there: rays pass, and no sample or patch stands on it. Values are
-// taken as stored (alpha is linear in every format we read, and a grey mask
-// is a coverage, not a colour), in [0, 1]. Addressing is the colour
-// texture's: wrapping, v up, image row 0 at v = 1.
+// read once per image (a file, or one embedded in a mesh file) through
+// OpenImageIO, compared against the material's cutoff where a ray lands.
+// Where the value is below the cutoff the surface is not there: rays pass,
+// and no sample or patch stands on it. Values are taken as stored (alpha is
+// linear in every format we read, and a grey mask is a coverage, not a
+// colour), in [0, 1]. Addressing is the colour texture's: wrapping, v up,
+// image row 0 at v = 1.
 #include <array>
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "scene/image_source.h"
+
 namespace bounce {
 
 struct AlphaMask {
-  std::string path;
+  ImageSource source;  // where it was read from; none for a constant
   int width = 0, height = 0;
   std::vector<float> values;  // row-major, row 0 at the top of the image
 
@@ -44,8 +46,8 @@ enum class AlphaSource {
   AlphaOnly,
 };
 
-// Reads `file`; null with `error` set when it cannot.
-std::shared_ptr<const AlphaMask> load_alpha_mask(const std::filesystem::path& file,
-                                                 AlphaSource source, std::string& error);
+// Reads `file` (or the embedded image); null with `error` set when it cannot.
+std::shared_ptr<const AlphaMask> load_alpha_mask(const ImageSource& file, AlphaSource source,
+                                                 std::string& error);
 
 }  // namespace bounce

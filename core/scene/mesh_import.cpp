@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <map>
+#include <memory>
 #include <sstream>
 
 #include <assimp/GltfMaterial.h>
@@ -10,6 +12,7 @@
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/texture.h>
 #include <assimp/Importer.hpp>
 
 #include "scene/mtl_scan.h"
@@ -180,19 +183,11 @@ class FileImporter {
       return;
     mat.texture_name = name.C_Str();
     if (mat.texture_name.empty()) return;
-    if (mat.texture_name.front() == '*') {
-      missing_textures_.emplace_back(out_.materials.size(),
-                                     "material '" + mat.name + "': texture '" + mat.texture_name +
-                                         "' is embedded in the file, which is not supported" +
-                                         kKdInstead);
-      return;
-    }
-    mat.texture = resolve_texture_path(file_.parent_path(), mat.texture_name);
+    std::string missing;
+    mat.texture = locate_image(mat.texture_name, "texture", missing);
     if (!mat.texture)
       missing_textures_.emplace_back(out_.materials.size(),
-                                     "material '" + mat.name + "': texture file '" +
-                                         (file_.parent_path() / mat.texture_name).string() +
-                                         "' not found" + kKdInstead);
+                                     "material '" + mat.name + "': " + missing + kKdInstead);
   }
 
   // OBJ map_d (Assimp's opacity texture), cut at 0.5; glTF alphaMode MASK,
@@ -237,48 +232,86 @@ class FileImporter {
     const std::string file = name.C_Str();
     if (file.empty()) return;
     mat.mask_source = AlphaSource::AlphaOrGrey;
-    if (file.front() == '*') {
-      missing_textures_.emplace_back(out_.materials.size(),
-                                     "material '" + mat.name + "': alpha mask '" + file +
-                                         "' is embedded in the file, which is not supported; "
-                                         "the surface is kept whole");
-      return;
-    }
-    mat.mask = resolve_texture_path(file_.parent_path(), file);
+    std::string missing;
+    mat.mask = locate_image(file, "alpha mask", missing);
     if (!mat.mask) {
-      missing_textures_.emplace_back(out_.materials.size(),
-                                     "material '" + mat.name + "': alpha mask file '" +
-                                         (file_.parent_path() / file).string() +
-                                         "' not found; the surface is kept whole");
+      missing_textures_.emplace_back(
+          out_.materials.size(),
+          "material '" + mat.name + "': " + missing + "; the surface is kept whole");
       return;
     }
     mat.masked = true;
   }
 
-  // The file of texture slot `type`, resolved as the colour texture's;
+  // The image of texture slot `type`, located as the colour texture's;
   // nullopt when the material names none, and with a warning (one per
-  // material in use, ending in `fallback`) when it is embedded or missing.
-  std::optional<std::filesystem::path> find_texture(const aiMaterial& m, aiTextureType type,
-                                                    const ImportedMaterial& mat, const char* what,
-                                                    const char* fallback) {
+  // material in use, ending in `fallback`) when it cannot be found.
+  std::optional<ImageSource> find_texture(const aiMaterial& m, aiTextureType type,
+                                          const ImportedMaterial& mat, const char* what,
+                                          const char* fallback) {
     aiString name;
     if (m.GetTexture(type, 0, &name) != AI_SUCCESS) return std::nullopt;
     const std::string file = name.C_Str();
     if (file.empty()) return std::nullopt;
-    if (file.front() == '*') {
-      missing_textures_.emplace_back(out_.materials.size(),
-                                     "material '" + mat.name + "': " + what + " '" + file +
-                                         "' is embedded in the file, which is not supported; " +
-                                         fallback);
-      return std::nullopt;
-    }
-    std::optional<std::filesystem::path> found = resolve_texture_path(file_.parent_path(), file);
+    std::string missing;
+    std::optional<ImageSource> found = locate_image(file, what, missing);
     if (!found)
       missing_textures_.emplace_back(out_.materials.size(),
-                                     "material '" + mat.name + "': " + what + " file '" +
-                                         (file_.parent_path() / file).string() + "' not found; " +
-                                         fallback);
+                                     "material '" + mat.name + "': " + missing + "; " + fallback);
     return found;
+  }
+
+  // Where the image a material names (`what`: "texture", "normal map", ...)
+  // is: "*N" is the file's embedded image N (glTF's bufferView and data-URI
+  // images); any other name a file beside the mesh file (see
+  // resolve_texture_path), else an image the file embeds under that name
+  // (FBX embeds its media so). nullopt with `missing` saying why when none.
+  std::optional<ImageSource> locate_image(const std::string& name, const std::string& what,
+                                          std::string& missing) {
+    if (name.front() == '*') {
+      const auto [texture, index] = scene_->GetEmbeddedTextureAndIndex(name.c_str());
+      if (texture) return ImageSource(embedded_image(static_cast<unsigned>(index)));
+      missing = what + " '" + name + "' names an image the file does not embed (it embeds " +
+                std::to_string(scene_->mNumTextures) +
+                (scene_->mNumTextures == 1 ? " image)" : " images)");
+      return std::nullopt;
+    }
+    if (std::optional<std::filesystem::path> file = resolve_texture_path(file_.parent_path(), name))
+      return ImageSource(std::move(*file));
+    const auto [texture, index] = scene_->GetEmbeddedTextureAndIndex(name.c_str());
+    if (texture) return ImageSource(embedded_image(static_cast<unsigned>(index)));
+    missing = what + " file '" + (file_.parent_path() / name).string() + "' not found";
+    return std::nullopt;
+  }
+
+  // Embedded image `index`, copied out of Assimp's scene once however many
+  // materials use it (the importer frees the scene when the file is read).
+  std::shared_ptr<const EmbeddedImage> embedded_image(unsigned index) {
+    std::shared_ptr<const EmbeddedImage>& cached = embedded_[index];
+    if (cached) return cached;
+    const aiTexture& t = *scene_->mTextures[index];
+    auto image = std::make_shared<EmbeddedImage>();
+    image->name = where_ + "#texture " + std::to_string(index);
+    if (t.pcData == nullptr) {
+      // Left empty: decoding it fails with a warning, as a corrupt one does.
+    } else if (t.mHeight == 0) {
+      // mWidth bytes of an image file; the hint is its extension.
+      const char* hint = t.achFormatHint;
+      image->format_hint = std::string(hint, std::find(hint, hint + HINTMAXTEXTURELEN, '\0'));
+      const auto* bytes = reinterpret_cast<const std::uint8_t*>(t.pcData);
+      image->bytes.assign(bytes, bytes + t.mWidth);
+    } else {
+      // mWidth x mHeight texels (aiTexel: b, g, r, a), as RGBA.
+      image->raw_width = static_cast<int>(t.mWidth);
+      image->raw_height = static_cast<int>(t.mHeight);
+      const std::size_t texels = static_cast<std::size_t>(t.mWidth) * t.mHeight;
+      image->bytes.reserve(texels * 4);
+      for (std::size_t i = 0; i < texels; ++i)
+        image->bytes.insert(image->bytes.end(),
+                            {t.pcData[i].r, t.pcData[i].g, t.pcData[i].b, t.pcData[i].a});
+    }
+    cached = std::move(image);
+    return cached;
   }
 
   // OBJ map_Ke, glTF emissiveTexture; the factor is the emissive colour read
@@ -452,6 +485,7 @@ class FileImporter {
   ImportedFile out_;
   std::vector<std::string> out_of_range_colours_;  // meshes, with how many vertices
   std::vector<std::pair<std::size_t, std::string>> missing_textures_;  // material, message
+  std::map<unsigned, std::shared_ptr<const EmbeddedImage>> embedded_;  // by index in the file
 };
 
 }  // namespace

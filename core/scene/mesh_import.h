@@ -3,7 +3,8 @@
 // its vertices moved into scene space (node transforms, then the scene.json
 // transform), its triangles (winding kept front-facing under mirroring) and
 // its material's stated diffuse and emissive colours as exact floats (and
-// colour, emissive and normal textures, found but not yet read), texture
+// colour, emissive and normal textures, found but not yet read: files, or
+// images embedded in the file, e.g. a .glb's), texture
 // coordinates and per-vertex colours.
 // Degenerate triangles are kept here; the scene builder counts and skips
 // them once the scene's size is known. Internal to the scene module.
@@ -18,6 +19,7 @@
 
 #include "base/diagnostics.h"
 #include "scene/alpha_mask.h"
+#include "scene/image_source.h"
 
 namespace bounce::scene_internal {
 
@@ -25,28 +27,29 @@ struct ImportedMaterial {
   std::string name;
   std::optional<glm::vec3> albedo;  // nullopt when the file does not state one
   glm::vec3 emission{0.0f};
-  // The colour texture as the file names it, and where it was found
-  // (nullopt: missing, already warned about; the albedo falls back).
+  // The colour texture as the file names it ("*0" for an embedded one), and
+  // where it was found (nullopt: missing, already warned about; the albedo
+  // falls back).
   std::string texture_name;
-  std::optional<std::filesystem::path> texture;
+  std::optional<ImageSource> texture;
   // Alpha-masked: OBJ map_d (its own file, alpha or grey) or glTF alphaMode
   // MASK (the base colour texture's alpha; without a texture the mask is
-  // the constant alpha_factor). mask is where the file was found (nullopt:
+  // the constant alpha_factor). mask is where the image was found (nullopt:
   // none, or missing and already warned about: the surface stays whole).
   bool masked = false;
-  std::optional<std::filesystem::path> mask;
+  std::optional<ImageSource> mask;
   AlphaSource mask_source = AlphaSource::AlphaOrGrey;
   float alpha_factor = 1.0f;  // glTF baseColorFactor's alpha
   float alpha_cutoff = 0.5f;
   // The emissive texture (OBJ map_Ke, glTF emissiveTexture), where it was
   // found (nullopt: none, or missing and already warned about); `emission`
   // above is its factor.
-  std::optional<std::filesystem::path> emission_texture;
+  std::optional<ImageSource> emission_texture;
   // The tangent-space normal map (OBJ norm, or map_bump / bump; glTF
   // normalTexture), where it was found, and its scale (glTF
   // normalTexture.scale, OBJ -bm). An OBJ bump map may be a grey height map
   // instead: the builder reads the image and tells.
-  std::optional<std::filesystem::path> normal_map;
+  std::optional<ImageSource> normal_map;
   float normal_scale = 1.0f;
 };
 

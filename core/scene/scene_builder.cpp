@@ -217,7 +217,8 @@ Material SceneBuilder::resolve_material(const std::string& name, MaterialImages 
     // Emitters are sampled over whole triangles (area lights, the
     // reference's light picking); a holed emitter would shine from its holes.
     diagnostics_.warn(file ? use.file : scene_file_,
-                      "material '" + name + "' is emissive: its alpha mask (" + mask->path +
+                      "material '" + name + "' is emissive: its alpha mask (" +
+                          (mask->is_constant() ? "constant" : mask->source.name()) +
                           ") is ignored and the surface is kept whole");
   } else if (mask) {
     m.alpha_mask = std::move(mask);
@@ -259,14 +260,14 @@ void SceneBuilder::build(Scene& scene) {
       piece_use[e].push_back(material_index(name, entry, entry.material ? nullptr : from_file));
     }
   }
-  // Each texture file is read once per use (colour, emission, normal map),
-  // however many materials use it, and the files in parallel (decoding
-  // dominates).
+  // Each texture image (a file, or one embedded in a mesh file) is read once
+  // per use (colour, emission, normal map), however many materials use it,
+  // and the images in parallel (decoding dominates).
   enum Role { kColour, kEmission, kNormal, kRoles };
   const auto file_of = [](const ImportedMaterial& m, int role) {
     return role == kColour ? m.texture : role == kEmission ? m.emission_texture : m.normal_map;
   };
-  std::vector<std::pair<std::filesystem::path, int>> files;
+  std::vector<std::pair<ImageSource, int>> files;
   std::vector<std::array<std::size_t, kRoles>> use_file(uses_.size());
   for (std::size_t u = 0; u < uses_.size(); ++u)
     for (int role = 0; role < kRoles; ++role) {
@@ -287,10 +288,24 @@ void SceneBuilder::build(Scene& scene) {
         load_texture(files[i].first, errors[i],
                      files[i].second == kNormal ? TexelKind::Direction : TexelKind::Colour);
   }
+  // The materials that use image f, for its warning: an embedded image's
+  // name says only which file holds it.
+  const auto users = [&](std::size_t f) {
+    std::string names;
+    for (std::size_t u = 0; u < uses_.size(); ++u)
+      if (use_file[u][static_cast<std::size_t>(files[f].second)] == f)
+        names += (names.empty() ? "'" : ", '") + uses_[u].name + "'";
+    return names;
+  };
   for (std::size_t f = 0; f < files.size(); ++f) {
-    const std::string where = files[f].first.string();
+    const std::string where = files[f].first.name();
     const int role = files[f].second;
     if (!textures[f]) {
+      // A glTF mask is its colour texture's alpha: the one warning says so.
+      bool masks_too = false;
+      for (std::size_t u = 0; u < uses_.size(); ++u)
+        masks_too |= role == kColour && use_file[u][kColour] == f && uses_[u].from_file &&
+                     uses_[u].from_file->masked && uses_[u].from_file->mask == files[f].first;
       diagnostics_.warn(where, "cannot read this " +
                                    std::string(role == kColour     ? "texture"
                                                : role == kEmission ? "emissive texture"
@@ -299,7 +314,9 @@ void SceneBuilder::build(Scene& scene) {
                                    (role == kColour     ? "its materials use their diffuse colour"
                                     : role == kEmission ? "its materials emit their emissive "
                                                           "colour alone"
-                                                        : "its materials are drawn without it"));
+                                                        : "its materials are drawn without it") +
+                                   (masks_too ? " and their surfaces are kept whole" : "") +
+                                   " (used by " + users(f) + ")");
     } else if (role == kNormal && !holds_normals(*textures[f])) {
       // A height map's normals would come from its slopes, and a colour
       // image has none: neither is read, rather than misread as directions.
@@ -321,7 +338,7 @@ void SceneBuilder::build(Scene& scene) {
   }
   // Alpha masks likewise, once per file and channel rule; a glTF mask
   // without a texture is its constant factor.
-  std::vector<std::pair<std::filesystem::path, AlphaSource>> mask_files;
+  std::vector<std::pair<ImageSource, AlphaSource>> mask_files;
   std::vector<std::size_t> use_mask(uses_.size(), SIZE_MAX);
   for (std::size_t u = 0; u < uses_.size(); ++u) {
     if (!uses_[u].from_file || !uses_[u].from_file->masked || !uses_[u].from_file->mask) continue;
@@ -337,11 +354,18 @@ void SceneBuilder::build(Scene& scene) {
     const auto i = static_cast<std::size_t>(f);
     masks[i] = load_alpha_mask(mask_files[i].first, mask_files[i].second, mask_errors[i]);
   }
-  for (std::size_t f = 0; f < mask_files.size(); ++f)
-    if (!masks[f])
-      diagnostics_.warn(mask_files[f].first.string(),
+  for (std::size_t f = 0; f < mask_files.size(); ++f) {
+    if (masks[f]) continue;
+    // A mask that is an unreadable colour texture's alpha was warned about
+    // with the texture.
+    bool warned = false;
+    for (std::size_t t = 0; t < files.size(); ++t)
+      warned |= !textures[t] && files[t].second == kColour && files[t].first == mask_files[f].first;
+    if (!warned)
+      diagnostics_.warn(mask_files[f].first.name(),
                         "cannot read this alpha mask (" + mask_errors[f] +
                             "); its materials' surfaces are kept whole");
+  }
   std::vector<Material> resolved;
   resolved.reserve(uses_.size());
   for (std::size_t u = 0; u < uses_.size(); ++u) {

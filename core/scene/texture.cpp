@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <initializer_list>
 #include <system_error>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 namespace bounce {
@@ -44,6 +46,54 @@ std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return s;
+}
+
+// The extension naming an embedded image's format: the mesh file's hint,
+// else what the bytes start with (glTF states a MIME type, which Assimp
+// turns into the hint, but other formats may not).
+std::string embedded_extension(const EmbeddedImage& image) {
+  const std::string& hint = image.format_hint;
+  if (!hint.empty() &&
+      std::all_of(hint.begin(), hint.end(), [](unsigned char c) { return std::isalnum(c) != 0; }))
+    return lower(hint);
+  const auto starts = [&](std::initializer_list<std::uint8_t> magic) {
+    return image.bytes.size() >= magic.size() &&
+           std::equal(magic.begin(), magic.end(), image.bytes.begin());
+  };
+  if (starts({0x89, 'P', 'N', 'G'})) return "png";
+  if (starts({0xff, 0xd8, 0xff})) return "jpg";
+  return "png";  // a guess: OpenImageIO tries its other readers when it is wrong
+}
+
+// OpenImageIO's error text on one line: its readers report one line per
+// library layer ("PNG read error: ...\nPNG library error"), and a warning
+// is one line.
+std::string one_line(std::string text) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.pop_back();
+  for (std::size_t at = text.find('\n'); at != std::string::npos; at = text.find('\n', at))
+    text.replace(at, 1, "; ");
+  return text;
+}
+
+// Raw embedded RGBA8 texels as a PNG of them would read: 8-bit, sRGB, alpha
+// last; the colour as stored, not multiplied by alpha.
+std::optional<ImagePixels> raw_pixels(const EmbeddedImage& image, std::string& error) {
+  const auto texels =
+      static_cast<std::size_t>(image.raw_width) * static_cast<std::size_t>(image.raw_height);
+  if (image.raw_height <= 0 || image.bytes.size() != texels * 4) {
+    error = "the embedded image's texels do not fill " + std::to_string(image.raw_width) + " x " +
+            std::to_string(image.raw_height);
+    return std::nullopt;
+  }
+  ImagePixels out;
+  out.width = image.raw_width;
+  out.height = image.raw_height;
+  out.channels = 4;
+  out.alpha_channel = 3;
+  out.srgb = true;
+  out.pixels.reserve(image.bytes.size());
+  for (const std::uint8_t b : image.bytes) out.pixels.push_back(static_cast<float>(b) / 255.0f);
+  return out;
 }
 
 }  // namespace
@@ -96,11 +146,30 @@ glm::vec3 Texture::mean_over_triangle(const std::array<glm::vec2, 3>& uv) const 
   return sum / static_cast<float>(k * k);
 }
 
-std::optional<ImagePixels> read_image_pixels(const fs::path& file, std::string& error) {
-  auto in = OIIO::ImageInput::open(file.string());
+std::optional<ImagePixels> read_image_pixels(const ImageSource& source, std::string& error) {
+  const EmbeddedImage* embedded = source.embedded();
+  if (embedded && embedded->raw()) return raw_pixels(*embedded, error);
+  if (!embedded && !source.is_file()) {
+    error = "the image has no file";
+    return std::nullopt;
+  }
+  // An embedded image is decoded from memory; OpenImageIO picks its reader
+  // by the name's extension first (then tries the others), so the name
+  // carries the format the bytes are in.
+  std::optional<OIIO::Filesystem::IOMemReader> memory;
+  std::string name = source.file().string();
+  if (embedded) {
+    memory.emplace(embedded->bytes.data(), embedded->bytes.size());
+    name = "embedded." + embedded_extension(*embedded);
+  }
+  auto in = OIIO::ImageInput::open(name, nullptr, memory ? &*memory : nullptr);
   if (!in) {
-    error = OIIO::geterror();
-    if (error.empty()) error = "OpenImageIO cannot open it";
+    const std::string why = one_line(OIIO::geterror());
+    if (embedded)
+      error = "OpenImageIO cannot decode the embedded " + embedded_extension(*embedded) + " image" +
+              (why.empty() ? "" : ": " + why);
+    else
+      error = why.empty() ? "OpenImageIO cannot open it" : why;
     return std::nullopt;
   }
   const OIIO::ImageSpec& spec = in->spec();
@@ -117,7 +186,7 @@ std::optional<ImagePixels> read_image_pixels(const fs::path& file, std::string& 
   image.pixels.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) *
                       static_cast<std::size_t>(channels));
   if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, image.pixels.data())) {
-    error = in->geterror();
+    error = one_line(in->geterror());
     if (error.empty()) error = "OpenImageIO cannot read its pixels";
     return std::nullopt;
   }
@@ -131,16 +200,16 @@ std::optional<ImagePixels> read_image_pixels(const fs::path& file, std::string& 
   return image;
 }
 
-std::shared_ptr<const Texture> load_texture(const fs::path& file, std::string& error,
+std::shared_ptr<const Texture> load_texture(const ImageSource& source, std::string& error,
                                             TexelKind kind) {
-  const std::optional<ImagePixels> image = read_image_pixels(file, error);
+  const std::optional<ImagePixels> image = read_image_pixels(source, error);
   if (!image) return nullptr;
   const int w = image->width, h = image->height, channels = image->channels;
   const std::vector<float>& pixels = image->pixels;
   const bool srgb = image->srgb && kind == TexelKind::Colour;
 
   auto texture = std::make_shared<Texture>();
-  texture->path = file.string();
+  texture->source = source;
   Texture::Level base;
   base.width = w;
   base.height = h;

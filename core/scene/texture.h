@@ -1,6 +1,7 @@
 #pragma once
-// A colour texture in linear RGB with its MIP pyramid, read once per file
-// through OpenImageIO. 8- and 16-bit images (JPEG, PNG, ...) are sRGB-encoded
+// A colour texture in linear RGB with its MIP pyramid, read once per image
+// (a file, or one embedded in a mesh file: scene/image_source.h) through
+// OpenImageIO. 8- and 16-bit images (JPEG, PNG, ...) are sRGB-encoded
 // unless the file says it is linear, so they are decoded to linear on load:
 // averaging must happen on light, not on encoded values. Addressing wraps
 // (the default of OBJ and glTF), and texture space has v up with image row 0
@@ -15,10 +16,12 @@
 
 #include <glm/glm.hpp>
 
+#include "scene/image_source.h"
+
 namespace bounce {
 
 struct Texture {
-  std::string path;
+  ImageSource source;  // where it was read from
   struct Level {
     int width = 0, height = 0;
     std::vector<glm::vec3> texels;  // row-major, row 0 at the top of the image
@@ -34,8 +37,7 @@ struct Texture {
   glm::vec3 mean_over_triangle(const std::array<glm::vec2, 3>& uv) const;
 };
 
-// Reads and decodes `file`; null with `error` set when it cannot.
-// An image file's pixels as float, channels interleaved, as OpenImageIO
+// An image's pixels as float, channels interleaved, as OpenImageIO
 // reads them (not decoded from sRGB), and what the file says of them.
 struct ImagePixels {
   int width = 0, height = 0, channels = 0;
@@ -43,9 +45,11 @@ struct ImagePixels {
   bool srgb = false;       // integer pixels not marked linear
   std::vector<float> pixels;
 };
-// Reads `file` whole; on failure returns nothing and sets `error` (the
-// reason, without the file's name).
-std::optional<ImagePixels> read_image_pixels(const std::filesystem::path& file, std::string& error);
+// Reads `source` whole; on failure returns nothing and sets `error` (the
+// reason, without the source's name). Raw embedded texels are 8-bit sRGB
+// RGBA, as a PNG of them would be, their colour as stored (OpenImageIO
+// multiplies a PNG's colour by its alpha).
+std::optional<ImagePixels> read_image_pixels(const ImageSource& source, std::string& error);
 
 // One sRGB-encoded component (in [0, 1]) decoded to linear, as 8- and
 // 16-bit images are on load; also for per-vertex colours stored as display
@@ -57,7 +61,8 @@ float srgb_to_linear(float c);
 // as stored whatever the file says: decoding would bend them.
 enum class TexelKind { Colour, Direction };
 
-std::shared_ptr<const Texture> load_texture(const std::filesystem::path& file, std::string& error,
+// Reads and decodes `source`; null with `error` set when it cannot.
+std::shared_ptr<const Texture> load_texture(const ImageSource& source, std::string& error,
                                             TexelKind kind = TexelKind::Colour);
 
 // `name` as written in a material, relative to `folder` unless absolute.

@@ -37,7 +37,6 @@ const fs::path kFloorScene = fs::path(BOUNCE_RESOURCE_DIR) / "scenes" / "texture
 // n x n texels, squares of one texel, solid (1) where x + y is even.
 std::shared_ptr<const AlphaMask> checker_mask(int n) {
   auto m = std::make_shared<AlphaMask>();
-  m->path = "checker";
   m->width = m->height = n;
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) m->values.push_back((x + y) % 2 == 0 ? 1.0f : 0.0f);

@@ -61,7 +61,6 @@ Fixture make_fixture(const std::filesystem::path& tiff) {
   const auto texture = load_texture(tiff, error);
   EXPECT_NE(texture, nullptr) << error;
   auto mask = std::make_shared<AlphaMask>();
-  mask->path = "in memory";
   mask->width = 2;
   mask->height = 1;
   mask->values = {0.0f, 1.0f};

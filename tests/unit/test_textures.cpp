@@ -22,35 +22,22 @@
 #include "scene/scene_loader.h"
 #include "scene/texture.h"
 #include "test_scenes.h"
+#include "textured_floor.h"
 #include "voxel/voxelization.h"
+#include "warnings_text.h"
 
 namespace bounce {
 namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kFloorScene = fs::path(BOUNCE_RESOURCE_DIR) / "scenes" / "textured-floor";
 const fs::path kSponza = fs::path(BOUNCE_SHARED_DATA_DIR) / "dabrovic-sponza" / "sun.json";
 
-// The sRGB transfer function, written out here independently of the loader.
-double decode(int byte) {
-  const double c = byte / 255.0;
-  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
-}
-
-// checker.png's two colours (sRGB bytes) times the floor's Kd 0.9, linear.
-glm::dvec3 colour_a() { return 0.9 * glm::dvec3(decode(224), decode(96), decode(64)); }
-glm::dvec3 colour_b() { return 0.9 * glm::dvec3(decode(48), decode(128), decode(192)); }
-
-bool near(const glm::dvec3& a, const glm::dvec3& b, double tolerance) {
-  return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::dvec3(tolerance)));
-}
-
-std::string warnings_of(const Diagnostics& d) {
-  std::string text;
-  for (const Diagnostic& w : d.warnings()) text += w.where + ": " + w.message + "\n";
-  return text;
-}
+using test::colour_a;
+using test::colour_b;
+using test::kFloorScene;
+using test::near;
+using test::warnings_of;
 
 const Material& floor_material(const Scene& s) {
   for (const Material& m : s.materials)
@@ -90,32 +77,7 @@ TEST(Textures, FloorSceneLoadsItsCheckerDecodedToLinear) {
 TEST(Textures, SampleAlbedoIsTheTexturesMeanOverWhatEachSampleCarries) {
   Diagnostics d;
   const Scene s = SceneLoader(d).load(kFloorScene);
-  const RayTracer tracer(s);
-  const Voxelization vox = voxelize(s, VoxelGrid(s.bounds(), 8));
-  SampleSet set = generate_samples(s, tracer, vox, SamplingSettings{});
-  EXPECT_GT(apply_surface_textures(s, vox, set), 0u);
-  // The floor's samples tile it: their area-weighted albedo is the whole
-  // floor's mean, which is the mean of the two colours.
-  glm::dvec3 sum(0.0), lo(1.0), hi(0.0);
-  double area = 0.0;
-  for (const Sample& x : set.samples) {
-    if (s.material_of(x.triangle).name != "floor") {
-      EXPECT_EQ(x.albedo, s.material_of(x.triangle).albedo);  // untextured: unchanged
-      continue;
-    }
-    sum += static_cast<double>(x.area) * glm::dvec3(x.albedo);
-    area += static_cast<double>(x.area);
-    lo = glm::min(lo, glm::dvec3(x.albedo));
-    hi = glm::max(hi, glm::dvec3(x.albedo));
-  }
-  ASSERT_NEAR(area, 4.0, 1e-3);
-  const glm::dvec3 mean = sum / area;
-  EXPECT_TRUE(near(mean, 0.5 * (colour_a() + colour_b()), 3e-3))
-      << mean.x << " " << mean.y << " " << mean.z;
-  // Samples follow the texture: small ones on one square carry its colour.
-  EXPECT_GT(hi.r - lo.r, 0.2 * (colour_a().r - colour_b().r));
-  EXPECT_TRUE(glm::all(glm::greaterThanEqual(lo, glm::min(colour_a(), colour_b()) - 1e-3)));
-  EXPECT_TRUE(glm::all(glm::lessThanEqual(hi, glm::max(colour_a(), colour_b()) + 1e-3)));
+  test::expect_floor_samples_carry_the_checker(s);
 }
 
 // The camera straight above sees the floor fill the 64 x 64 picture, one
