@@ -226,17 +226,20 @@ void make_clusters(const std::vector<Patch>& patches, const VoxelGrid& grid, int
   }
 }
 
-// A near source's identity: the sample whose surface the rays landed on and
-// the cell of the near-source lattice they landed in.
+// A near source's identity: the sample whose surface the rays landed on,
+// the triangle they landed on (so that its mean landing point lies on that
+// triangle and its normal is that triangle's) and the cell of the
+// near-source lattice they landed in.
 struct NearKey {
   std::int32_t sample, x, y, z;
+  std::uint32_t triangle;
   bool operator==(const NearKey&) const = default;
 };
 
 struct NearKeyHash {
   std::size_t operator()(const NearKey& k) const {
     std::uint64_t h = static_cast<std::uint32_t>(k.sample) * 0x9E3779B97F4A7C15ull;
-    for (const std::int32_t v : {k.x, k.y, k.z})
+    for (const std::int32_t v : {k.x, k.y, k.z, static_cast<std::int32_t>(k.triangle)})
       h = (h ^ static_cast<std::uint32_t>(v)) * 0xBF58476D1CE4E5B9ull;
     return static_cast<std::size_t>(h ^ (h >> 31));
   }
@@ -350,8 +353,9 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
             ++landed_rays;
             if (near_sources && glm::distance(x, lifted) < near_distance) {
               const glm::ivec3 cell(glm::floor(x / near_cell));
-              const auto [it, added] = near_index.try_emplace(
-                  NearKey{s, cell.x, cell.y, cell.z}, static_cast<std::uint32_t>(cn.keys.size()));
+              const auto [it, added] =
+                  near_index.try_emplace(NearKey{s, cell.x, cell.y, cell.z, h.triangle},
+                                         static_cast<std::uint32_t>(cn.keys.size()));
               const std::uint32_t id = it->second;
               if (added) {
                 cn.keys.push_back(it->first);
