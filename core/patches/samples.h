@@ -26,7 +26,9 @@
 // lookups), its polygon unchanged; a piece wholly cut away is carried by
 // nobody and gets no sample of its own. So a partly cut triangle's samples
 // stand for just its solid area, though their polygons (used to place
-// light over the surface) still span the holes within them.
+// light over the surface) still span the holes within them; their albedo is
+// the texture's mean over the solid part of those polygons only
+// (Scene::mean_albedo), so what the holes' texels hold counts nowhere.
 #include <cstdint>
 #include <vector>
 

@@ -69,6 +69,21 @@ std::shared_ptr<const AlphaMask> AlphaMask::constant(float value) {
   return mask;
 }
 
+std::shared_ptr<const WeightedTexture> solid_part(const Texture& colour, const AlphaMask& mask,
+                                                  float factor, float cutoff) {
+  const Texture::Level& base = colour.levels.front();
+  std::vector<float> solid;
+  solid.reserve(base.texels.size());
+  for (int y = 0; y < base.height; ++y)
+    for (int x = 0; x < base.width; ++x) {
+      // Texel centres at half-integers, row 0 at v = 1 (Texture::lookup).
+      const glm::vec2 uv((static_cast<float>(x) + 0.5f) / static_cast<float>(base.width),
+                         1.0f - (static_cast<float>(y) + 0.5f) / static_cast<float>(base.height));
+      solid.push_back(mask.lookup(uv) * factor >= cutoff ? 1.0f : 0.0f);
+    }
+  return weighted_texture(colour, solid);
+}
+
 std::shared_ptr<const AlphaMask> load_alpha_mask(const ImageSource& file, AlphaSource source,
                                                  std::string& error) {
   const std::optional<ImagePixels> image = read_image_pixels(file, error);

@@ -37,6 +37,18 @@ struct AlphaMask {
   bool is_constant() const { return width == 1 && height == 1; }
 };
 
+struct Texture;
+struct WeightedTexture;
+
+// `colour` over the part of it `mask` keeps: each texel weighted 1 where
+// mask x factor >= cutoff at its centre (the mask looked up in the colour
+// texture's addressing, whatever its own size), else 0. A masked material's
+// albedo is the mean over this: the surface that exists is the solid part,
+// and the colour its holes hold (black, or whatever the painter left) is
+// not on any surface.
+std::shared_ptr<const WeightedTexture> solid_part(const Texture& colour, const AlphaMask& mask,
+                                                  float factor, float cutoff);
+
 // Which channel holds the coverage.
 enum class AlphaSource {
   // OBJ map_d: the alpha channel when the image has one, else the grey

@@ -75,21 +75,48 @@ glm::vec3 centroid(const FanTriangle& f) {
   return (f.corner[0] + f.corner[1] + f.corner[2]) / 3.0f;
 }
 
+// The texel at uv, over the solid part when `solid` is given (the weighted
+// texels about uv over their weight; the plain texel where none of them is
+// solid).
+glm::vec3 texel_at(const Texture& texture, const WeightedTexture* solid, glm::vec2 uv) {
+  if (solid) {
+    const WeightedTexture::Parts at = solid->lookup(uv);
+    if (at.weight > 0.0) return glm::vec3(at.weighted / at.weight);
+  }
+  return texture.lookup(uv);
+}
+
 // The mean of `texture` over a planar polygon lying on triangle tri, each
 // fan triangle's mean weighted by the vertex colour at its centroid when
 // `coloured` (exact for a constant colour, and to second order in the
 // triangle's size otherwise); the looked-up value at the first corner when
-// the polygon has no area.
+// the polygon has no area. With `solid` (a masked texture's solid part) the
+// mean over the solid part: each fan triangle's weighted texels and weights
+// from one lattice, summed over the fan before the division; the plain mean
+// where the polygon holds no solid texel (a polygon the mask cuts away
+// whole carries no area, but has a colour all the same).
 glm::vec3 polygon_mean(const Scene& scene, std::size_t tri, const Texture& texture,
-                       const glm::vec3* polygon, std::size_t count, bool coloured) {
+                       const WeightedTexture* solid, const glm::vec3* polygon, std::size_t count,
+                       bool coloured) {
+  const auto colour = [&](const FanTriangle& f) {
+    return coloured ? glm::dvec3(scene.colour_at(tri, centroid(f))) : glm::dvec3(1.0);
+  };
+  if (solid) {
+    glm::dvec3 sum(0.0);
+    double weight = 0.0;
+    walk_fan(scene, tri, polygon, count, [&](const FanTriangle& f) {
+      const WeightedTexture::Parts mean = solid->mean_over_triangle(f.uv);
+      sum += f.area * colour(f) * mean.weighted;
+      weight += f.area * mean.weight;
+    });
+    if (weight > 0.0) return glm::vec3(sum / weight);
+  }
   glm::dvec3 sum(0.0);
   const double total = walk_fan(scene, tri, polygon, count, [&](const FanTriangle& f) {
-    glm::dvec3 mean(texture.mean_over_triangle(f.uv));
-    if (coloured) mean *= glm::dvec3(scene.colour_at(tri, centroid(f)));
-    sum += f.area * mean;
+    sum += f.area * colour(f) * glm::dvec3(texture.mean_over_triangle(f.uv));
   });
   if (!(total > 0.0)) {
-    const glm::vec3 at = texture.lookup(uv_at(scene, tri, polygon[0]));
+    const glm::vec3 at = texel_at(texture, solid, uv_at(scene, tri, polygon[0]));
     return coloured ? at * scene.colour_at(tri, polygon[0]) : at;
   }
   return glm::vec3(sum / total);
@@ -134,7 +161,8 @@ glm::vec3 Scene::flat_albedo_at(std::size_t tri, const glm::vec3& p) const {
 glm::vec3 Scene::albedo_at(std::size_t tri, const glm::vec3& p) const {
   const Material& m = material_of(tri);
   if (!textured(tri)) return flat_albedo_at(tri, p);
-  const glm::vec3 a = textured_albedo(m, m.texture->lookup(uv_at(*this, tri, p)));
+  const glm::vec3 a =
+      textured_albedo(m, texel_at(*m.texture, m.solid_texture.get(), uv_at(*this, tri, p)));
   return has_vertex_colours() ? a * colour_at(tri, p) : a;
 }
 
@@ -145,7 +173,8 @@ glm::vec3 Scene::mean_albedo(std::size_t tri, const glm::vec3* polygon, std::siz
   if (textured(tri)) {
     // The factor (and the clamp) after the mean, as for a whole texture:
     // the vertex colour, at most 1, goes inside it.
-    return textured_albedo(m, polygon_mean(*this, tri, *m.texture, polygon, count, coloured));
+    return textured_albedo(
+        m, polygon_mean(*this, tri, *m.texture, m.solid_texture.get(), polygon, count, coloured));
   }
   return coloured ? m.albedo * colour_mean(*this, tri, polygon, count) : m.albedo;
 }
@@ -159,7 +188,8 @@ glm::vec3 Scene::emission_at(std::size_t tri, const glm::vec3& p) const {
 glm::vec3 Scene::mean_emission(std::size_t tri, const glm::vec3* polygon, std::size_t count) const {
   const Material& m = material_of(tri);
   if (!emission_textured(tri) || count < 3) return m.emission;
-  return m.emission_factor * polygon_mean(*this, tri, *m.emission_texture, polygon, count, false);
+  return m.emission_factor *
+         polygon_mean(*this, tri, *m.emission_texture, nullptr, polygon, count, false);
 }
 
 bool Scene::has_masks() const {

@@ -15,6 +15,7 @@
 namespace bounce {
 
 struct Texture;
+struct WeightedTexture;
 struct AlphaMask;
 
 // Albedo 1 in a closed scene makes sum_h (rho F)^h diverge; keep it below.
@@ -26,8 +27,8 @@ inline constexpr float kMaxAlbedo = 0.9999f;
 struct Material {
   std::string name;
   // Diffuse reflectance per channel, in [0, kMaxAlbedo]. With a texture it is
-  // the surface's mean (texture_factor x the texture's mean), for whatever
-  // cannot look the texture up.
+  // the surface's mean (texture_factor x the texture's mean, over its solid
+  // texels when masked), for whatever cannot look the texture up.
   glm::vec3 albedo{0.8f};
   // Textured: the albedo at a point is texture_factor x the texel there
   // (OBJ Kd x map_Kd, glTF baseColorFactor x baseColorTexture), clamped.
@@ -40,6 +41,11 @@ struct Material {
   std::shared_ptr<const AlphaMask> alpha_mask;
   float alpha_factor = 1.0f;
   float alpha_cutoff = 0.5f;
+  // Textured and masked: the texture over its solid part (solid_part in
+  // scene/alpha_mask.h), which albedo, albedo_at and mean_albedo average
+  // instead, so that the colour in the holes counts nowhere. Null
+  // otherwise (also for a constant mask: the surface is whole or gone).
+  std::shared_ptr<const WeightedTexture> solid_texture;
   // Emitted radiosity (W/m^2 per channel); > 0 makes an area light. With an
   // emissive texture it is the surface's mean (emission_factor x the
   // texture's mean), for whatever cannot look the texture up.

@@ -224,6 +224,12 @@ Material SceneBuilder::resolve_material(const std::string& name, MaterialImages 
     m.alpha_mask = std::move(mask);
     m.alpha_factor = file->alpha_factor;
     m.alpha_cutoff = file->alpha_cutoff;
+    if (m.texture && !m.alpha_mask->is_constant()) {
+      // The surface is the solid part: its mean is the flat albedo.
+      m.solid_texture = solid_part(*m.texture, *m.alpha_mask, m.alpha_factor, m.alpha_cutoff);
+      m.albedo = glm::clamp(m.texture_factor * m.solid_texture->mean, glm::vec3(0.f),
+                            glm::vec3(kMaxAlbedo));
+    }
   }
   return m;
 }

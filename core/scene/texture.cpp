@@ -96,6 +96,29 @@ std::optional<ImagePixels> raw_pixels(const EmbeddedImage& image, std::string& e
   return out;
 }
 
+// Whether OpenImageIO's reader for this format hands over colour multiplied
+// by alpha unless it says otherwise (oiio:UnassociatedAlpha): OpenEXR
+// stores it so, and a TIFF or TGA file may; the readers that honour the
+// hint say so when they do. Other readers (BMP, DDS, ...) never multiply.
+bool stores_associated_alpha(const char* format) {
+  const std::string f = format;
+  return f == "openexr" || f == "tiff" || f == "targa" || f == "png" || f == "psd" ||
+         f == "jpeg2000" || f == "webp";
+}
+
+// Divides the colour channels by alpha where it is above 0 (where it is 0
+// the colour is lost, and stays 0).
+void unassociate(ImagePixels& image) {
+  const auto channels = static_cast<std::size_t>(image.channels);
+  const auto alpha = static_cast<std::size_t>(image.alpha_channel);
+  for (std::size_t p = 0; p < image.pixels.size(); p += channels) {
+    const float a = image.pixels[p + alpha];
+    if (!(a > 0.0f) || a >= 1.0f) continue;
+    for (std::size_t c = 0; c < std::min<std::size_t>(channels, 3); ++c)
+      if (c != alpha) image.pixels[p + c] /= a;
+  }
+}
+
 }  // namespace
 
 float srgb_to_linear(float c) {
@@ -146,6 +169,46 @@ glm::vec3 Texture::mean_over_triangle(const std::array<glm::vec2, 3>& uv) const 
   return sum / static_cast<float>(k * k);
 }
 
+WeightedTexture::Parts WeightedTexture::lookup(glm::vec2 uv) const {
+  return {glm::dvec3(weighted.lookup(uv)), static_cast<double>(weight.lookup(uv).x)};
+}
+
+WeightedTexture::Parts WeightedTexture::mean_over_triangle(
+    const std::array<glm::vec2, 3>& uv) const {
+  return {glm::dvec3(weighted.mean_over_triangle(uv)),
+          static_cast<double>(weight.mean_over_triangle(uv).x)};
+}
+
+std::shared_ptr<const WeightedTexture> weighted_texture(const Texture& colour,
+                                                        const std::vector<float>& weights) {
+  auto out = std::make_shared<WeightedTexture>();
+  const Texture::Level& base = colour.levels.front();
+  Texture::Level weighted{base.width, base.height, {}}, weight{base.width, base.height, {}};
+  weighted.texels.reserve(base.texels.size());
+  weight.texels.reserve(base.texels.size());
+  glm::dvec3 sum(0.0);
+  double total = 0.0;
+  for (std::size_t p = 0; p < base.texels.size(); ++p) {
+    const float w = p < weights.size() && weights[p] > 0.0f ? weights[p] : 0.0f;
+    weighted.texels.push_back(w * base.texels[p]);
+    weight.texels.emplace_back(w);
+    sum += glm::dvec3(weighted.texels.back());
+    total += static_cast<double>(w);
+  }
+  out->mean = total > 0.0 ? glm::vec3(sum / total) : colour.mean;
+  const auto texels = static_cast<double>(base.texels.size());
+  const auto pyramid = [&](Texture& texture, Texture::Level level, const glm::dvec3& level_sum) {
+    texture.source = colour.source;
+    texture.mean = glm::vec3(level_sum / texels);
+    texture.levels.push_back(std::move(level));
+    while (texture.levels.back().width > 1 || texture.levels.back().height > 1)
+      texture.levels.push_back(half(texture.levels.back()));
+  };
+  pyramid(out->weighted, std::move(weighted), sum);
+  pyramid(out->weight, std::move(weight), glm::dvec3(total));
+  return out;
+}
+
 std::optional<ImagePixels> read_image_pixels(const ImageSource& source, std::string& error) {
   const EmbeddedImage* embedded = source.embedded();
   if (embedded && embedded->raw()) return raw_pixels(*embedded, error);
@@ -162,7 +225,17 @@ std::optional<ImagePixels> read_image_pixels(const ImageSource& source, std::str
     memory.emplace(embedded->bytes.data(), embedded->bytes.size());
     name = "embedded." + embedded_extension(*embedded);
   }
-  auto in = OIIO::ImageInput::open(name, nullptr, memory ? &*memory : nullptr);
+  // The colour as stored: OpenImageIO otherwise multiplies it by alpha
+  // (PNG, TIFF, TGA, ...), which would blacken a cut-out's colour in and
+  // next to its holes; a mask cuts where alpha says, and what remains is
+  // the stored colour.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  // With a config, OpenImageIO 2.4's readers take the proxy from it (the
+  // argument alone leaves them opening `name` as a file).
+  OIIO::Filesystem::IOProxy* proxy = memory ? &*memory : nullptr;
+  if (proxy) config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  auto in = OIIO::ImageInput::open(name, &config, proxy);
   if (!in) {
     const std::string why = one_line(OIIO::geterror());
     if (embedded)
@@ -191,6 +264,10 @@ std::optional<ImagePixels> read_image_pixels(const ImageSource& source, std::str
     return std::nullopt;
   }
   image.alpha_channel = spec.alpha_channel;
+  if (image.alpha_channel >= 0 && image.alpha_channel < channels &&
+      spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0 &&
+      stores_associated_alpha(in->format_name()))
+    unassociate(image);
   // Integer images are sRGB unless the file says linear; float images are linear.
   const bool is_float = spec.format.basetype == OIIO::TypeDesc::FLOAT ||
                         spec.format.basetype == OIIO::TypeDesc::HALF ||

@@ -37,8 +37,40 @@ struct Texture {
   glm::vec3 mean_over_triangle(const std::array<glm::vec2, 3>& uv) const;
 };
 
+// A colour texture weighted texel by texel: a masked material's colour over
+// its solid part (weight 1 where the mask keeps a texel, 0 where it cuts it
+// away; scene/alpha_mask.h). Holds the pyramids of texel x weight and of the
+// weight, so that any mean over a footprint, at any level, is the mean of
+// the weighted texels over the mean of the weights: the colour averaged over
+// the weighted texels only, whatever colour the others hold.
+struct WeightedTexture {
+  Texture weighted;  // texel x weight
+  Texture weight;    // the weight, in every channel
+  // The weighted mean of the whole image; the plain mean where every weight
+  // is 0.
+  glm::vec3 mean{0.0f};
+
+  // The numerator and denominator of the weighted mean at a point (bilinear)
+  // or over a triangle of texture space (the lattice of
+  // Texture::mean_over_triangle, the same for both): sums over several
+  // triangles add up before the one division.
+  struct Parts {
+    glm::dvec3 weighted{0.0};
+    double weight = 0.0;
+  };
+  Parts lookup(glm::vec2 uv) const;
+  Parts mean_over_triangle(const std::array<glm::vec2, 3>& uv) const;
+};
+
+// `colour` weighted by `weights` (one per texel of its first level, row 0 at
+// the top; negative ones count as 0).
+std::shared_ptr<const WeightedTexture> weighted_texture(const Texture& colour,
+                                                        const std::vector<float>& weights);
+
 // An image's pixels as float, channels interleaved, as OpenImageIO
-// reads them (not decoded from sRGB), and what the file says of them.
+// reads them (not decoded from sRGB), and what the file says of them. Colour
+// is unassociated (as stored, not multiplied by alpha): the colour of what
+// is there, which a mask then cuts; alpha is as stored.
 struct ImagePixels {
   int width = 0, height = 0, channels = 0;
   int alpha_channel = -1;  // the channel the file names alpha, -1 if none
@@ -47,8 +79,7 @@ struct ImagePixels {
 };
 // Reads `source` whole; on failure returns nothing and sets `error` (the
 // reason, without the source's name). Raw embedded texels are 8-bit sRGB
-// RGBA, as a PNG of them would be, their colour as stored (OpenImageIO
-// multiplies a PNG's colour by its alpha).
+// RGBA, as a PNG of them would be.
 std::optional<ImagePixels> read_image_pixels(const ImageSource& source, std::string& error);
 
 // One sRGB-encoded component (in [0, 1]) decoded to linear, as 8- and

@@ -5,10 +5,14 @@
 // are known by construction: a bilinear lookup of a checker crosses 0.5
 // exactly on the squares' edges, so a square's centre is solid or cut
 // according to its parity alone, and exactly half of the checker is solid.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -24,7 +28,9 @@
 #include "runtime/camera_image.h"
 #include "scene/alpha_mask.h"
 #include "scene/scene_loader.h"
+#include "scratch_dir.h"
 #include "test_scenes.h"
+#include "textured_floor.h"
 #include "voxel/voxelization.h"
 
 namespace bounce {
@@ -312,6 +318,131 @@ TEST(AlphaMaskFiles, FloorScenesFenceIsHalfCutAway) {
                 (x / 2 + y / 2) % 2 == 0 ? 1.0f : 0.0f);
   for (std::size_t t = 0; t < s.triangle_count(); ++t)
     EXPECT_EQ(s.masked(t), &s.material_of(t) == fence);
+}
+
+// The textured-floor scene copied to a scratch folder with its fence
+// textured by an image that also holds its mask as alpha (map_Kd and map_d
+// the same file: what a glTF MASK material is). The fence (Kd 0.5) is mapped
+// once onto the image; the image's alpha is fence-mask.png's checker
+// (make_fence_mask.py: 8 x 8, solid where x / 2 + y / 2 is even).
+class TexturedFence : public ::testing::Test {
+ protected:
+  test::ScratchDir dir{"bounce-textured-fence"};
+  Diagnostics diagnostics;
+
+  static bool solid_texel(int x, int y) { return (x / 2 + y / 2) % 2 == 0; }
+
+  // The scene with the fence's material lines "map_Kd image" and "map_d image".
+  Scene load_with_fence_image(const std::string& image) {
+    for (const auto& entry : fs::directory_iterator(kFloorScene))
+      fs::copy_file(entry.path(), dir / entry.path().filename().string());
+    std::ifstream in(kFloorScene / "textured-floor.mtl");
+    std::string mtl((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string mask_line = "map_d fence-mask.png";
+    const std::size_t at = mtl.find(mask_line);
+    EXPECT_NE(at, std::string::npos);
+    mtl.replace(at, mask_line.size(), "map_Kd " + image + "\nmap_d " + image);
+    std::ofstream(dir / "textured-floor.mtl") << mtl;
+    return SceneLoader(diagnostics).load(dir.path());
+  }
+
+  // An 8 x 8 RGBA PNG with the mask's alpha, sRGB colour `solid` where the
+  // mask keeps the texel and `hole` (at alpha 0) where it cuts it away.
+  void write_fence_image(const std::string& name, const glm::ivec3& solid, const glm::ivec3& hole) {
+    std::vector<std::uint8_t> rgba;
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) {
+        const glm::ivec3 c = solid_texel(x, y) ? solid : hole;
+        for (int k = 0; k < 3; ++k) rgba.push_back(static_cast<std::uint8_t>(c[k]));
+        rgba.push_back(solid_texel(x, y) ? 255 : 0);
+      }
+    const std::string file = (dir / name).string();
+    auto out = OIIO::ImageOutput::create(file);
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(8, 8, 4, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // stored as given
+    ASSERT_TRUE(out->open(file, spec) && out->write_image(OIIO::TypeDesc::UINT8, rgba.data()) &&
+                out->close());
+  }
+
+  // The mean of the image's linear colour over its solid texels, from its
+  // construction, times the fence's Kd 0.5.
+  static glm::dvec3 solid_mean(const glm::ivec3& solid) {
+    glm::dvec3 sum(0.0);
+    int count = 0;
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x)
+        if (solid_texel(x, y)) {
+          sum += glm::dvec3(test::decode(solid.r), test::decode(solid.g), test::decode(solid.b));
+          ++count;
+        }
+    return 0.5 * sum / static_cast<double>(count);
+  }
+
+  // The fence's flat albedo, every fence sample's albedo, and the albedo
+  // where rays land on the fence (only ever on its solid part) are
+  // `expected`. Every solid texel holds the same colour, so any lattice
+  // that averages solid texels only gives that colour: the tolerance is
+  // float rounding.
+  static void expect_fence_albedo(const Scene& s, const glm::dvec3& expected) {
+    const Material* fence = nullptr;
+    for (const Material& m : s.materials)
+      if (m.name == "fence") fence = &m;
+    ASSERT_NE(fence, nullptr);
+    ASSERT_NE(fence->texture, nullptr);
+    ASSERT_NE(fence->alpha_mask, nullptr);
+    constexpr double kTolerance = 1e-5;
+    EXPECT_TRUE(test::near(glm::dvec3(fence->albedo), expected, kTolerance))
+        << fence->albedo.r << " " << fence->albedo.g << " " << fence->albedo.b;
+
+    double area = 0.0;
+    for (const Sample& x : test::textured_samples(s).samples) {
+      if (&s.material_of(x.triangle) != fence) continue;
+      area += x.area;
+      EXPECT_TRUE(test::near(glm::dvec3(x.albedo), expected, kTolerance))
+          << x.albedo.r << " " << x.albedo.g << " " << x.albedo.b << " at " << x.position.x << " "
+          << x.position.y;
+    }
+    EXPECT_NEAR(area, 1.0, 0.02);  // half of the 2 x 1 fence
+
+    const RayTracer tracer(s);
+    // Rays from behind the fence (z = 2) towards the wall, on a lattice of
+    // 8 points per texel, so that many land next to a hole.
+    int landed = 0;
+    for (int i = 0; i < 64; ++i)
+      for (int j = 0; j < 32; ++j) {
+        const glm::vec3 from(-1.0f + (static_cast<float>(i) + 0.5f) / 32.0f,
+                             (static_cast<float>(j) + 0.5f) / 32.0f, 2.0f);
+        const Hit hit = tracer.intersect(from, {0.0f, 0.0f, -1.0f});
+        if (!hit.hit || &s.material_of(hit.triangle) != fence) continue;
+        ++landed;
+        const glm::vec3 p(from.x, from.y, 1.0f);
+        const glm::dvec3 albedo(s.albedo_at(hit.triangle, p));
+        EXPECT_TRUE(test::near(albedo, expected, kTolerance))
+            << albedo.r << " " << albedo.g << " " << albedo.b << " at " << p.x << " " << p.y;
+      }
+    EXPECT_NEAR(landed, 64 * 32 / 2, 64);
+  }
+};
+
+// The shipped mask image as the fence's colour too: white by construction,
+// so the fence's albedo is its Kd, as the OBJ's untextured fence has it;
+// neither the holes nor their edges darken it.
+TEST_F(TexturedFence, ShippedMaskAsItsColourLeavesTheKd) {
+  const Scene s = load_with_fence_image("fence-mask.png");
+  EXPECT_TRUE(diagnostics.warnings().empty()) << warnings_of(diagnostics);
+  expect_fence_albedo(s, solid_mean({255, 255, 255}));
+}
+
+// The holes hold another colour than the solid squares (as painters leave
+// them): it counts nowhere, not in the flat albedo, not in any sample's
+// mean, not where a ray lands next to a hole.
+TEST_F(TexturedFence, ColourInTheHolesCountsNowhere) {
+  const glm::ivec3 solid(200, 150, 60), hole(30, 90, 240);
+  write_fence_image("fence-colour.png", solid, hole);
+  const Scene s = load_with_fence_image("fence-colour.png");
+  EXPECT_TRUE(diagnostics.warnings().empty()) << warnings_of(diagnostics);
+  expect_fence_albedo(s, solid_mean(solid));
 }
 
 class AlphaMaskFile : public test::QuadFiles {

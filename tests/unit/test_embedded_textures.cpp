@@ -207,6 +207,27 @@ TEST_F(EmbeddedGlb, FenceKeepsItsHoles) {
   EXPECT_NEAR(solid / fence_area, 0.5, 0.01);
 }
 
+// The fence is written as a white image holding the mask as alpha, with the
+// OBJ's Kd as its factor; loaded back, its albedo (flat and every sample's)
+// is the OBJ's: the white of the solid texels times the factor, the holes
+// counting nowhere.
+TEST_F(EmbeddedGlb, FenceAlbedoIsTheObjs) {
+  const Material& obj = material_named(files, "fence");
+  const Material& glb = material_named(loaded, "fence");
+  ASSERT_EQ(obj.texture, nullptr);
+  ASSERT_NE(glb.texture, nullptr);
+  EXPECT_TRUE(near(glm::dvec3(glb.albedo), glm::dvec3(obj.albedo), 1e-6))
+      << glb.albedo.x << " " << glb.albedo.y << " " << glb.albedo.z;
+  int fence_samples = 0;
+  for (const Sample& x : test::textured_samples(loaded).samples) {
+    if (&loaded.material_of(x.triangle) != &glb) continue;
+    ++fence_samples;
+    EXPECT_TRUE(near(glm::dvec3(x.albedo), glm::dvec3(obj.albedo), 1e-5))
+        << x.albedo.x << " " << x.albedo.y << " " << x.albedo.z;
+  }
+  EXPECT_GT(fence_samples, 0);
+}
+
 TEST_F(EmbeddedGlb, WritingItAgainEmbedsTheSameBytes) {
   const GlbMaterials again =
       glb_materials(loaded, std::vector<bool>(loaded.materials.size(), true));
@@ -313,10 +334,9 @@ TEST_F(EmbeddedGltf, IndexTheFileDoesNotEmbedWarnsOnceNamingFileAndMaterial) {
   EXPECT_EQ(s.materials.at(0).albedo, glm::vec3(0.5f, 0.25f, 0.125f));
 }
 
-// Some formats embed raw RGBA8 texels instead of an image file: opaque ones
-// read as the same texels written to a PNG file do (sRGB colour), alpha is
-// linear, and colour under partial alpha is taken as stored (OpenImageIO
-// multiplies a PNG's colour by its alpha on reading).
+// Some formats embed raw RGBA8 texels instead of an image file: they read
+// as the same texels written to a PNG file do (sRGB colour, as stored
+// whatever the alpha), alpha is linear.
 TEST(EmbeddedImages, RawTexelsReadAsTheirPngDoes) {
   const std::vector<std::uint8_t> rgba = {255, 0, 0, 255, 10,  128, 250, 0,
                                           0,   0, 0, 128, 200, 100, 30,  255};
@@ -324,7 +344,9 @@ TEST(EmbeddedImages, RawTexelsReadAsTheirPngDoes) {
   const fs::path png = dir / "texels.png";
   auto out = OIIO::ImageOutput::create(png.string());
   ASSERT_TRUE(out);
-  ASSERT_TRUE(out->open(png.string(), OIIO::ImageSpec(2, 2, 4, OIIO::TypeDesc::UINT8)) &&
+  OIIO::ImageSpec spec(2, 2, 4, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:UnassociatedAlpha", 1);  // the bytes as given, not divided by alpha
+  ASSERT_TRUE(out->open(png.string(), spec) &&
               out->write_image(OIIO::TypeDesc::UINT8, rgba.data()) && out->close());
 
   auto raw = std::make_shared<EmbeddedImage>();
@@ -338,7 +360,7 @@ TEST(EmbeddedImages, RawTexelsReadAsTheirPngDoes) {
   const auto from_png = load_texture(png, error);
   ASSERT_NE(from_png, nullptr) << error;
   EXPECT_EQ(from_raw->source.name(), "model.mdl#texture 0");
-  for (const std::size_t t : {0u, 3u})
+  for (std::size_t t = 0; t < 4; ++t)
     for (glm::length_t c = 0; c < 3; ++c)
       EXPECT_NEAR(from_raw->levels[0].texels[t][c], from_png->levels[0].texels[t][c], 1e-6f)
           << "texel " << t << " channel " << c;

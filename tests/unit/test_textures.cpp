@@ -4,12 +4,15 @@
 // reference path tracer and camera pictures that look the texel up where a
 // ray lands. The shipped textured-floor scene is an 8 x 8 checker of two
 // sRGB colours, so every expectation here is known by construction.
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,8 +22,10 @@
 #include "raytrace/ray_tracer.h"
 #include "reference/path_tracer.h"
 #include "runtime/camera_image.h"
+#include "scene/alpha_mask.h"
 #include "scene/scene_loader.h"
 #include "scene/texture.h"
+#include "scratch_dir.h"
 #include "test_scenes.h"
 #include "textured_floor.h"
 #include "voxel/voxelization.h"
@@ -161,6 +166,79 @@ TEST(Textures, ReferenceBouncesOffTheTexel) {
   const glm::vec3 e = pt.estimate_points({above_red}).indirect_irradiance[0];
   EXPECT_NEAR(e.r, 0.8f, 0.05f);
   EXPECT_NEAR(e.b, 0.1f, 0.02f);
+}
+
+// Writes `pixels` (width x 1, RGBA, channels interleaved) to `file` as
+// given: the writer is told they are unassociated, so it stores them without
+// dividing colour by alpha.
+template <class T>
+void write_rgba(const fs::path& file, int width, OIIO::TypeDesc type,
+                const std::vector<T>& pixels) {
+  auto out = OIIO::ImageOutput::create(file.string());
+  ASSERT_TRUE(out) << OIIO::geterror();
+  OIIO::ImageSpec spec(width, 1, 4, type);
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  ASSERT_TRUE(out->open(file.string(), spec) && out->write_image(type, pixels.data()) &&
+              out->close())
+      << out->geterror();
+}
+
+// A PNG's colour under partial and zero alpha is read as stored, not
+// multiplied by alpha (OpenImageIO's default), and its alpha is unchanged:
+// a cut-out's edges and holes keep their colour.
+TEST(TextureAlpha, PngColourUnderPartialAlphaIsReadAsStored) {
+  const test::ScratchDir dir("bounce-texture-alpha");
+  const fs::path png = dir / "partial.png";
+  const std::vector<std::uint8_t> rgba = {200, 100, 50, 128, 40, 80, 160, 0, 10, 20, 30, 255};
+  write_rgba(png, 3, OIIO::TypeDesc::UINT8, rgba);
+  std::string error;
+  const std::optional<ImagePixels> pixels = read_image_pixels(png, error);
+  ASSERT_TRUE(pixels) << error;
+  ASSERT_EQ(pixels->channels, 4);
+  EXPECT_EQ(pixels->alpha_channel, 3);
+  for (std::size_t i = 0; i < rgba.size(); ++i)
+    EXPECT_NEAR(pixels->pixels[i], rgba[i] / 255.0f, 1e-6f) << "value " << i;
+  const auto texture = load_texture(png, error);
+  ASSERT_NE(texture, nullptr) << error;
+  for (std::size_t t = 0; t < 3; ++t)
+    EXPECT_TRUE(near(glm::dvec3(texture->levels[0].texels[t]),
+                     glm::dvec3(test::decode(rgba[4 * t]), test::decode(rgba[4 * t + 1]),
+                                test::decode(rgba[4 * t + 2])),
+                     1e-6))
+        << "texel " << t;
+  const auto mask = load_alpha_mask(png, AlphaSource::AlphaOnly, error);
+  ASSERT_NE(mask, nullptr) << error;
+  EXPECT_EQ(mask->values, (std::vector<float>{128.0f / 255.0f, 0.0f, 1.0f}));
+
+  // The same file embedded in a mesh file (decoded from memory) reads the same.
+  auto embedded = std::make_shared<EmbeddedImage>();
+  embedded->name = "model.glb#texture 0";
+  embedded->format_hint = "png";
+  embedded->bytes = image_file_bytes(png, error);
+  const std::optional<ImagePixels> from_memory = read_image_pixels(ImageSource(embedded), error);
+  ASSERT_TRUE(from_memory) << error;
+  EXPECT_EQ(from_memory->pixels, pixels->pixels);
+}
+
+// OpenEXR stores colour multiplied by alpha: it is divided back where alpha
+// is above 0, so that every format gives the colour of what is there.
+TEST(TextureAlpha, ExrColourIsDividedByItsAlpha) {
+  const test::ScratchDir dir("bounce-texture-alpha");
+  const fs::path exr = dir / "associated.exr";
+  // (0.8, 0.4, 0.2) at alpha 0.5 and 0.25, stored multiplied; opaque (0.1, 0.2, 0.3).
+  const std::vector<float> rgba = {0.4f,  0.2f,  0.1f, 0.5f, 0.2f, 0.1f,
+                                   0.05f, 0.25f, 0.1f, 0.2f, 0.3f, 1.0f};
+  write_rgba(exr, 3, OIIO::TypeDesc::FLOAT, rgba);
+  std::string error;
+  const auto texture = load_texture(exr, error);
+  ASSERT_NE(texture, nullptr) << error;
+  const std::vector<glm::dvec3> expected = {{0.8, 0.4, 0.2}, {0.8, 0.4, 0.2}, {0.1, 0.2, 0.3}};
+  for (std::size_t t = 0; t < 3; ++t)
+    EXPECT_TRUE(near(glm::dvec3(texture->levels[0].texels[t]), expected[t], 1e-6))
+        << "texel " << t << ": " << texture->levels[0].texels[t].r;
+  const auto mask = load_alpha_mask(exr, AlphaSource::AlphaOnly, error);
+  ASSERT_NE(mask, nullptr) << error;
+  EXPECT_EQ(mask->values, (std::vector<float>{0.5f, 0.25f, 1.0f}));
 }
 
 class TextureFiles : public test::QuadFiles {

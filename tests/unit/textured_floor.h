@@ -35,6 +35,16 @@ inline bool near(const glm::dvec3& a, const glm::dvec3& b, double tolerance) {
   return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::dvec3(tolerance)));
 }
 
+// The bake's samples of `s` (on the scene's grid of 8 voxels across) with
+// the texture albedo of the surface each carries.
+inline SampleSet textured_samples(const Scene& s) {
+  const RayTracer tracer(s);
+  const Voxelization vox = voxelize(s, VoxelGrid(s.bounds(), 8));
+  SampleSet set = generate_samples(s, tracer, vox, SamplingSettings{});
+  apply_surface_textures(s, vox, set);
+  return set;
+}
+
 // The bake's samples on a scene holding the textured floor: the floor's
 // tile it, and their area-weighted albedo is the whole floor's mean, the
 // mean of the two colours; small ones on one square carry its colour.
