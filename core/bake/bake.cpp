@@ -55,35 +55,29 @@ std::span<const BakeStep> steps_of(BakeStage stage) {
   return {};
 }
 
-// Whether a step of a stage the plan runs is timed under `name`: the ray
-// tracer, which a run from the patches builds again, is not reused.
-bool timed_again(const RebakePlan& plan, const std::string& name) {
-  for (int s = static_cast<int>(plan.first); s < static_cast<int>(BakeStage::None); ++s)
-    for (const BakeStep& step : steps_of(static_cast<BakeStage>(s)))
-      if (step.timing && name == step.timing) return true;
-  return false;
-}
-
-// A stage a re-bake does not run: its steps' timings as they were measured
-// when they ran, and the diagnostics it raised then.
-void reuse_stage(BakeStage stage, const RebakePlan& plan, const BakeResult& previous, BakeResult& r,
-                 Diagnostics& diagnostics) {
+// The timings of the steps a re-bake does not run, as they were measured
+// when they ran (a re-bake of a re-bake lists what it reused in turn, under
+// the same name). The ray tracer's step belongs to two stages: a run from the
+// patches builds it again, so it is reused only when no stage that runs
+// times it.
+void reuse_timings(const RebakePlan& plan, const BakeResult& previous, BakeResult& r) {
   static constexpr std::string_view kReused = " (reused)";
+  std::set<std::string_view> reused, timed_again;
+  for (std::size_t s = 0; s < kBakeStageCount; ++s)
+    for (const BakeStep& step : steps_of(static_cast<BakeStage>(s)))
+      if (step.timing)
+        (plan.runs(static_cast<BakeStage>(s)) ? timed_again : reused).insert(step.timing);
   for (const StageStats& st : previous.stages) {
-    // A re-bake of a re-bake lists what it reused in turn under the same name.
     std::string_view name = st.name;
     if (name.ends_with(kReused)) name.remove_suffix(kReused.size());
-    const std::string reused = std::string(name) + std::string(kReused);
-    for (const BakeStep& step : steps_of(stage)) {
-      // Skipped: a step timed afresh in this run, and one already taken (the
-      // tracer's step is in two stages).
-      if (!step.timing || name != step.timing || timed_again(plan, step.timing) ||
-          std::ranges::any_of(r.stages, [&](const StageStats& s) { return s.name == reused; }))
-        continue;
-      r.stages.push_back(st);
-      r.stages.back().name = reused;
-    }
+    if (!reused.contains(name) || timed_again.contains(name)) continue;
+    r.stages.push_back(st);
+    r.stages.back().name = std::string(name) + std::string(kReused);
   }
+}
+
+// The diagnostics a stage the re-bake does not run raised when it ran.
+void reuse_diagnostics(BakeStage stage, const BakeResult& previous, Diagnostics& diagnostics) {
   for (const Diagnostic& d : previous.stage_diagnostics[static_cast<std::size_t>(stage)]) {
     if (d.kind == Diagnostic::Kind::Warning)
       diagnostics.warn(d.where, d.message, d.detail);
@@ -171,9 +165,10 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
     plan = plan_rebake(scene_, previous->settings, previous->patch_density, settings_);
     if (plan.first != BakeStage::Geometry) {
       take_reused(plan.first, *previous, r);
+      reuse_timings(plan, *previous, r);
       for (std::size_t s = 0; s < kBakeStageCount; ++s)
         if (!plan.runs(static_cast<BakeStage>(s)))
-          reuse_stage(static_cast<BakeStage>(s), plan, *previous, r, diagnostics_);
+          reuse_diagnostics(static_cast<BakeStage>(s), *previous, diagnostics_);
     }
   }
   const std::optional<int> resolved_resolution =

@@ -34,6 +34,33 @@ BakeResult bake_of(const Scene& scene, int voxel) {
   return Baker(scene, s, d).run(progress);
 }
 
+// A bake's first-hit light under the scene's lights: b per patch and each
+// sample's direct irradiance, as a frame computes them.
+struct FirstHit {
+  std::vector<glm::vec3> b, sample_irradiance;
+};
+FirstHit first_hit_of(const RayTracer& tracer, const BakeResult& bake, const Scene& scene) {
+  std::vector<glm::vec3> irradiance(bake.patches.size());
+  FirstHit f;
+  f.sample_irradiance.resize(bake.samples.samples.size());
+  direct_irradiance(tracer, bake.samples, bake.patches, scene.lights, {}, 4, irradiance,
+                    f.sample_irradiance);
+  f.b = first_bounce(bake.patches, irradiance);
+  return f;
+}
+
+// What gather `g` gives its points from the first bounce alone (no T b):
+// patches and clusters from b, samples and near sources from their own.
+std::vector<glm::vec3> gathered_first_bounce(const FinalGather& g, const FirstHit& f,
+                                             const BakeResult& bake, const RayTracer& tracer,
+                                             const Scene& scene) {
+  const std::vector<glm::vec3> no_indirect(f.b.size(), glm::vec3(0.0f));
+  std::vector<glm::vec3> e;
+  g.irradiance(f.b, sample_exitance(bake.samples, bake.patches, f.sample_irradiance, no_indirect),
+               near_exitance(g.near, &tracer, scene.lights, {}, no_indirect), e);
+  return e;
+}
+
 // A floor (y = 0) and a wall (z = 0) meeting at a right angle, the wall lit
 // evenly by a directional light grazing the floor.
 Scene corner_lit_along_the_floor() {
@@ -109,12 +136,7 @@ TEST(FinalGather, NearSourcesFollowAShadowEdgeUnderThePoint) {
   const BakeResult bake = bake_of(scene, 8);
   const RayTracer tracer(scene);
   const SurfacePatchLookup lookup(bake.voxels, bake.samples, bake.patch_of_sample);
-  std::vector<glm::vec3> irradiance(bake.patches.size()),
-      sample_irradiance(bake.samples.samples.size());
-  direct_irradiance(tracer, bake.samples, bake.patches, scene.lights, {}, 4, irradiance,
-                    sample_irradiance);
-  const std::vector<glm::vec3> b = first_bounce(bake.patches, irradiance);
-  const std::vector<glm::vec3> no_indirect(b.size(), glm::vec3(0.0f));
+  const FirstHit first_hit = first_hit_of(tracer, bake, scene);
   const double h = 0.05, albedo = 0.5;
   const std::vector<double> offsets = {-0.06, -0.03, 0.0, 0.03, 0.06};
   std::vector<glm::vec3> points, normals;
@@ -132,10 +154,7 @@ TEST(FinalGather, NearSourcesFollowAShadowEdgeUnderThePoint) {
     const FinalGather g = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
                                              points, normals, fs);
     g.validate("shadow edge");
-    std::vector<glm::vec3> e;
-    g.irradiance(b, sample_exitance(bake.samples, bake.patches, sample_irradiance, no_indirect),
-                 near_exitance(g.near, &tracer, scene.lights, {}, no_indirect), e);
-    return std::make_pair(e, g.near.size());
+    return std::make_pair(gathered_first_bounce(g, first_hit, bake, tracer, scene), g.near.size());
   };
   const auto [near_e, near_count] = gathered(with_near);
   const auto [far_e, far_count] = gathered(without_near);
@@ -216,15 +235,8 @@ TEST(FinalGather, NearSourcesLieOnTheFaceTheirRaysLandedOn) {
   }
   EXPECT_EQ(off_surface, 0u) << "of " << g.near.size() << " near sources";
   // The light: the first bounce only, against every ray's own hit point.
-  std::vector<glm::vec3> irradiance(bake.patches.size()),
-      sample_irradiance(bake.samples.samples.size());
-  direct_irradiance(tracer, bake.samples, bake.patches, scene.lights, {}, 4, irradiance,
-                    sample_irradiance);
-  const std::vector<glm::vec3> b = first_bounce(bake.patches, irradiance);
-  const std::vector<glm::vec3> no_indirect(b.size(), glm::vec3(0.0f));
-  std::vector<glm::vec3> e;
-  g.irradiance(b, sample_exitance(bake.samples, bake.patches, sample_irradiance, no_indirect),
-               near_exitance(g.near, &tracer, scene.lights, {}, no_indirect), e);
+  const std::vector<glm::vec3> e =
+      gathered_first_bounce(g, first_hit_of(tracer, bake, scene), bake, tracer, scene);
   const float eps = fs.offset_epsilons * tracer.epsilon();
   const int rays = 8192;
   double gathered = 0.0, brute = 0.0;
@@ -269,11 +281,8 @@ TEST(FinalGather, ConcaveCornerGetsItsLightFromTheWallBesideIt) {
   const glm::vec3 x(0.5f, 0.0f, 0.02f), n(0.0f, 1.0f, 0.0f);
 
   // Patch light after at least one reflection: b + T b; the samples' own.
-  std::vector<glm::vec3> irradiance(bake.patches.size()),
-      sample_irradiance(bake.samples.samples.size());
-  direct_irradiance(tracer, bake.samples, bake.patches, scene.lights, {}, 4, irradiance,
-                    sample_irradiance);
-  const std::vector<glm::vec3> b = first_bounce(bake.patches, irradiance);
+  const FirstHit first_hit = first_hit_of(tracer, bake, scene);
+  const std::vector<glm::vec3>& b = first_hit.b;
   const std::size_t np = bake.patches.size();
   const auto& t = bake.transport.channels[0].t;
   std::vector<glm::vec3> reflected(np), indirect(np);
@@ -289,7 +298,8 @@ TEST(FinalGather, ConcaveCornerGetsItsLightFromTheWallBesideIt) {
   const FinalGather g =
       build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid, {x}, {n}, fs);
   std::vector<glm::vec3> e;
-  g.irradiance(reflected, sample_exitance(bake.samples, bake.patches, sample_irradiance, indirect),
+  g.irradiance(reflected,
+               sample_exitance(bake.samples, bake.patches, first_hit.sample_irradiance, indirect),
                near_exitance(g.near, &tracer, scene.lights, {}, indirect), e);
   const double gathered = e[0].r;
 
