@@ -51,8 +51,12 @@ void print_transport_report(std::FILE* out, const json& m) {
     std::fprintf(out, "  - %s: %s\n", d["what"].get<std::string>().c_str(),
                  d["why"].get<std::string>().c_str());
   if (!c.contains("errors")) return;
-  std::fprintf(out, "  parts        kept %.2f MiB, blocks %.2f MiB, permutation %.2f MiB\n",
-               mib(sz["sparse_bytes"]), mib(sz["block_bytes"]), mib(sz["permutation_bytes"]));
+  std::fprintf(out,
+               "  parts        kept %.2f MiB (%g of the entries, %s), blocks %.2f MiB, permutation "
+               "%.2f MiB\n",
+               mib(sz["sparse_bytes"]), c.value("kept_fraction", 0.0),
+               c.value("kept_storage", "float32").c_str(), mib(sz["block_bytes"]),
+               mib(sz["permutation_bytes"]));
   const json& e = c["errors"];
   std::fprintf(out, "  |error|      mean %.3e  max %.3e  sum %.4g  (relative Frobenius %.3e)\n",
                e["mean_abs"].get<double>(), e["max_abs"].get<double>(), e["sum_abs"].get<double>(),

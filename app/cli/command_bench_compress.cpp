@@ -138,7 +138,8 @@ struct BenchResult {
   std::size_t paper_index = 0;  // the reference's index in `grid` otherwise
   Row ours_largest;             // ours keeping the largest entries, weighing by value only
   Row ours_one_pass;            // ours keeping the largest light-weighted entries, one pass
-  Row ours_default;        // ours as bakes use it: light-weighted, kept by a first pass's error
+  Row ours_float32;  // ours light-weighted, kept by a first pass's error, kept entries float32
+  Row ours_default;  // the same as bakes store it: float16 kept entries, as many as fit the bytes
   std::vector<Row> extra;  // other block formats (BC4 per channel)
   const Row& reference() const { return paper ? *paper : grid[paper_index]; }
 };
@@ -189,6 +190,7 @@ void print_table(const ExactTransport& exact, double kept, const BenchResult& b,
   if (b.paper) print_row(*b.paper, ref, " *");
   print_row(b.ours_largest, ref, "");
   print_row(b.ours_one_pass, ref, "");
+  print_row(b.ours_float32, ref, "");
   print_row(b.ours_default, ref, "");
   for (const Row& r : b.extra) print_row(r, ref, "");
 
@@ -277,6 +279,7 @@ nlohmann::json result_json(const ExactTransport& exact, double kept, const Bench
           {"paper", row_json(ref, ref)},
           {"ours_largest_kept", row_json(b.ours_largest, ref)},
           {"ours_light_weighted_one_pass", row_json(b.ours_one_pass, ref)},
+          {"ours_light_weighted_float32_kept", row_json(b.ours_float32, ref)},
           {"ours_default", row_json(b.ours_default, ref)},
           {"other_formats", extra}};
 }
@@ -294,7 +297,7 @@ BenchResult run_one(const ExactTransport& exact, double kept,
   const bool paper_in_grid = kept == kPaperKeptFraction &&
                              has_encoder(Bc1Encoder::kSquishClusterFit) &&
                              has_ordering(OrderingMethod::Paper2);
-  const std::size_t steps = encoders.size() * orderings.size() + (paper_in_grid ? 3 : 4) +
+  const std::size_t steps = encoders.size() * orderings.size() + (paper_in_grid ? 4 : 5) +
                             (exact.channels.size() > 1 ? 3 : 0);
   RowRunner runner(exact, progress, verbose, steps);
   OrderingCache cache;
@@ -330,15 +333,18 @@ BenchResult run_one(const ExactTransport& exact, double kept,
                          kept == kPaperKeptFraction ? &cache : nullptr);
   }
 
-  // Our codec at the same kept fraction, twice: keeping the largest entries
-  // (as it did before it knew the light), and as bakes use it, keeping and
-  // weighing entries by the light their columns carry over the evaluation
-  // lights. Its quantiser gives other codes than the paper's, and the holes
-  // differ between the two, so each ordering is computed anew.
+  // Our codec at the same kept fraction and the same bytes (kept entries in
+  // float32, as the paper stores them), three times: keeping the largest
+  // entries (as it did before it knew the light), keeping and weighing entries
+  // by the light their columns carry over the evaluation lights (one pass),
+  // and with a second pass keeping what the first decoded worst. Its
+  // quantiser gives other codes than the paper's, and the holes differ
+  // between the two, so each ordering is computed anew.
   CodecSettings s;
   s.kind = CodecKind::Ours;
   s.kept_fraction = kept;
   s.ordering = OrderingMethod::Ours;
+  s.kept_storage = KeptStorage::kFloat32;
   b.ours_largest = runner.run("ours, largest entries kept", s, nullptr);
   const EntryImportance importance =
       light_importance(exact.matrices(), exact.n, exact.probe.first_hit, exact.probe.channel_of_rgb,
@@ -348,7 +354,15 @@ BenchResult run_one(const ExactTransport& exact, double kept,
   weighted.kept_passes = 1;
   b.ours_one_pass = runner.run("ours, light-weighted, one pass", weighted, nullptr);
   weighted.kept_passes = CodecSettings{}.kept_passes;
-  b.ours_default = runner.run("ours, light-weighted (default codec)", weighted, nullptr, true);
+  b.ours_float32 = runner.run("ours, light-weighted, float32 kept", weighted, nullptr, true);
+  // As bakes store it: kept entries in half precision with 16-bit columns,
+  // as many more as fit in the bytes the float32 entries took.
+  weighted.kept_storage = KeptStorage::kFloat16;
+  weighted.kept_fraction =
+      std::min(1.0, kept * static_cast<double>(kept_entry_bytes(KeptStorage::kFloat32, exact.n)) /
+                        static_cast<double>(kept_entry_bytes(KeptStorage::kFloat16, exact.n)));
+  b.ours_default =
+      runner.run("ours, light-weighted, float16 kept (default codec)", weighted, nullptr, true);
 
   // The other block format that might win: BC4 per channel, 8 bytes
   // per block and channel where BC1 spends 8 on all three. Once at the same

@@ -236,19 +236,31 @@ std::vector<T> read_vector(const fs::path& file, NpyArray<T> (*read)(const fs::p
   return std::move(a.data);
 }
 
-// The exactly kept entries of stored channel `ch` (CSR: row starts,
-// columns, values). The arrays' lengths are checked against each other and
-// against n, and every row start and column index against its range, so
-// that the runtime can index with them unchecked.
-CsrMatrix read_kept(const fs::path& dir, int ch, std::size_t n) {
+// The kept entries of stored channel `ch` (CSR: row starts, columns,
+// values), in `storage`'s types. The arrays' lengths are checked against
+// each other and against n, every row start and column index against its
+// range, and every value for being finite, so that the runtime can index
+// with them unchecked.
+CsrMatrix read_kept(const fs::path& dir, int ch, std::size_t n, KeptStorage storage) {
   const fs::path rp = dir / bake_file::kept(ch, bake_file::KeptPart::kRowPtr),
                  cp = dir / bake_file::kept(ch, bake_file::KeptPart::kCol),
                  vp = dir / bake_file::kept(ch, bake_file::KeptPart::kValue);
   CsrMatrix k;
   k.n = n;
   k.row_ptr = read_vector(rp, read_npy_u32, n + 1);
-  k.col = read_vector(cp, read_npy_u32, std::nullopt);
-  k.value = read_vector(vp, read_npy_f32, k.col.size());
+  if (kept_columns_are_short(storage, n)) {
+    const std::vector<std::uint16_t> col = read_vector(cp, read_npy_u16, std::nullopt);
+    k.col.assign(col.begin(), col.end());
+  } else {
+    k.col = read_vector(cp, read_npy_u32, std::nullopt);
+  }
+  if (storage == KeptStorage::kFloat16) {
+    const std::vector<std::uint16_t> bits = read_vector(vp, read_npy_half_bits, k.col.size());
+    k.value.resize(bits.size());
+    from_half_bits(bits, k.value);
+  } else {
+    k.value = read_vector(vp, read_npy_f32, k.col.size());
+  }
   if (k.row_ptr.front() != 0)
     throw ReadError(rp.string(),
                     "row 0 starts at " + std::to_string(k.row_ptr.front()) + ", not 0");
@@ -263,6 +275,9 @@ CsrMatrix read_kept(const fs::path& dir, int ch, std::size_t n) {
     if (k.col[e] >= n)
       throw ReadError(cp.string(), "entry " + std::to_string(e) + " has column " +
                                        std::to_string(k.col[e]) + " of " + std::to_string(n));
+  for (std::size_t e = 0; e < k.value.size(); ++e)
+    if (!std::isfinite(k.value[e]))
+      throw ReadError(vp.string(), "entry " + std::to_string(e) + " is not finite");
   return k;
 }
 
@@ -283,6 +298,14 @@ CompressedMatrix read_compressed(const fs::path& dir, const json& c, std::size_t
   m.encoder = c.value("encoder", "");
   m.ordering = c.value("ordering", "");
   m.kept_fraction = c.value("kept_fraction", 0.0);
+  // Bakes from before half-precision kept entries have no kept_storage.
+  const json storage = c.value("kept_storage", json("float32"));
+  const std::optional<KeptStorage> kept_storage =
+      storage.is_string() ? parse_kept_storage(storage.get<std::string>()) : std::nullopt;
+  if (!kept_storage)
+    throw ReadError(manifest, "compression.kept_storage is " + storage.dump() +
+                                  " (\"float32\" or \"float16\" expected)");
+  m.kept_storage = *kept_storage;
   const DdsImage dds = read_dds(dir / bake_file::kCompressedTransport);
   if (dds.width != m.padded || dds.height != m.padded)
     throw ReadError((dir / bake_file::kCompressedTransport).string(),
@@ -306,7 +329,7 @@ CompressedMatrix read_compressed(const fs::path& dir, const json& c, std::size_t
                                     std::to_string(lq.range) + " (finite, range > 0 expected)");
     m.quantizers.push_back(lq);
   }
-  for (int ch = 0; ch < m.channels; ++ch) m.kept.push_back(read_kept(dir, ch, n));
+  for (int ch = 0; ch < m.channels; ++ch) m.kept.push_back(read_kept(dir, ch, n, m.kept_storage));
   if (m.quantizers.size() != static_cast<std::size_t>(m.channels))
     throw ReadError(manifest, "compression.quantizers has " + std::to_string(m.quantizers.size()) +
                                   " entries for " + std::to_string(m.channels) +

@@ -162,6 +162,7 @@ json storage_json(const MatrixStorage& s, std::size_t probe_lights_total) {
   m["encoder"] = c.encoder;
   m["ordering"] = c.ordering;
   m["kept_fraction"] = c.kept_fraction;
+  m["kept_storage"] = kept_storage_name(c.kept_storage);
   m["light_weighted"] = c.light_weighted;
   m["kept_passes"] = c.kept_passes;
   m["lights_rebalanced"] = c.lights_rebalanced;
@@ -588,13 +589,25 @@ json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const Bake
                         value = bake_file::kept(channel, bake_file::KeptPart::kValue);
       write_npy(dir.path() / row_ptr, k.row_ptr, {k.row_ptr.size()});
       record(row_ptr,
-             "uint32 [patches + 1]: CSR row starts of the exactly kept "
-             "entries of stored channel " +
+             "uint32 [patches + 1]: CSR row starts of the kept entries of stored channel " +
                  std::to_string(ch));
-      write_npy(dir.path() / col, k.col, {k.col.size()});
-      record(col, "uint32 [kept]: CSR column (patch order)");
-      write_npy(dir.path() / value, k.value, {k.value.size()});
-      record(value, "float32 [kept]: CSR values, exact");
+      if (kept_columns_are_short(c.kept_storage, n)) {
+        const std::vector<std::uint16_t> short_col(k.col.begin(), k.col.end());
+        write_npy(dir.path() / col, short_col, {short_col.size()});
+        record(col, "uint16 [kept]: CSR column (patch order)");
+      } else {
+        write_npy(dir.path() / col, k.col, {k.col.size()});
+        record(col, "uint32 [kept]: CSR column (patch order)");
+      }
+      if (c.kept_storage == KeptStorage::kFloat16) {
+        std::vector<std::uint16_t> bits(k.value.size());
+        to_half_bits(k.value, bits);
+        write_npy_half(dir.path() / value, bits, {bits.size()});
+        record(value, "float16 [kept]: CSR values, rounded to half precision");
+      } else {
+        write_npy(dir.path() / value, k.value, {k.value.size()});
+        record(value, "float32 [kept]: CSR values, exact");
+      }
     }
   }
   if (r.settings.pictures)

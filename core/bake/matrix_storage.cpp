@@ -30,10 +30,18 @@ Trial search_kept_fraction(const std::vector<const float*>& exact, std::size_t n
       static_cast<std::size_t>(std::floor(limit * static_cast<double>(s.dense_rgb_bytes)));
   const int channels = static_cast<int>(exact.size());
   constexpr int kRungs = static_cast<int>(std::size(kKeptFractionLadder));
-  // The rungs that fit: the size of a rung is known before compressing.
+  // The kept entries' storage, fixed for every trial so that a rung's size is
+  // known before compressing: half precision unless some entry of T is
+  // beyond a half's range (then every trial would fall back to float32).
+  if (!codec.kept_storage) {
+    bool fits = true;
+    for (const float* a : exact) fits = fits && fits_half(std::span(a, n * n));
+    codec.kept_storage = fits ? KeptStorage::kFloat16 : KeptStorage::kFloat32;
+  }
+  // The rungs that fit.
   int top = -1;
-  while (top + 1 < kRungs &&
-         predicted_total_bytes(n, channels, kKeptFractionLadder[top + 1]) <= s.size_limit_bytes)
+  while (top + 1 < kRungs && predicted_total_bytes(n, channels, kKeptFractionLadder[top + 1],
+                                                   *codec.kept_storage) <= s.size_limit_bytes)
     ++top;
   const bool nothing_fits = top < 0;
   if (nothing_fits) top = 0;

@@ -47,16 +47,18 @@ constexpr double kOursRangeQuantile = 0.001;
 
 std::size_t CompressedMatrix::sparse_bytes() const {
   std::size_t b = 0;
-  for (const CsrMatrix& k : kept) b += k.bytes();
+  for (const CsrMatrix& k : kept)
+    b +=
+        k.row_ptr.size() * sizeof(std::uint32_t) + k.col.size() * kept_entry_bytes(kept_storage, n);
   return b;
 }
 
-std::size_t predicted_total_bytes(std::size_t n, int channels, double kept_fraction) {
+std::size_t predicted_total_bytes(std::size_t n, int channels, double kept_fraction,
+                                  KeptStorage storage) {
   const std::size_t padded = (n + 3) / 4 * 4;
   const auto kept = static_cast<std::size_t>(
       std::llround(kept_fraction * static_cast<double>(n) * static_cast<double>(n)));
-  const std::size_t csr =
-      (n + 1) * sizeof(std::uint32_t) + kept * (sizeof(std::uint32_t) + sizeof(float));
+  const std::size_t csr = (n + 1) * sizeof(std::uint32_t) + kept * kept_entry_bytes(storage, n);
   return static_cast<std::size_t>(channels) * csr + padded / 4 * (padded / 4) * 8 +
          n * sizeof(std::uint32_t);
 }
@@ -196,6 +198,18 @@ CompressedMatrix compress_once(const std::vector<const float*>& matrices, std::s
       }
     }
     if (progress) progress->advance();
+  }
+  // Half precision when every kept value fits one (else the exact floats):
+  // rounded here, so that what is measured is what the bake folder holds.
+  m.kept_storage =
+      settings.kept_storage.value_or(paper ? KeptStorage::kFloat32 : KeptStorage::kFloat16);
+  if (m.kept_storage == KeptStorage::kFloat16) {
+    bool fits = true;
+    for (const CsrMatrix& k : m.kept) fits = fits && fits_half(k.value);
+    if (fits)
+      for (CsrMatrix& k : m.kept) round_to_half(k.value);
+    else
+      m.kept_storage = KeptStorage::kFloat32;
   }
   m.seconds_split = since(t);
   if (progress) progress->end_stage();

@@ -1,9 +1,9 @@
 #pragma once
 // The compressed multi-bounce matrix (the published pipeline, and ours):
-// largest entries kept exactly (CSR, float32), the rest log-quantised to
-// 8-bit codes, rows and columns reordered by one permutation, block-encoded.
+// largest entries kept (CSR), the rest log-quantised to 8-bit codes, rows
+// and columns reordered by one permutation, block-encoded.
 //
-//   paper: 4% kept per channel, codes of T_R, T_G, T_B in R, G, B, the
+//   paper: 4% kept per channel exactly (float32), codes of T_R, T_G, T_B in R, G, B, the
 //          paper's greedy L1 tour (2 passes), BC1 by libsquish cluster fit.
 //          Kept forever as the baseline.
 //   ours:  the same kept split, then our ordering (sketch + tour + 4-row
@@ -15,7 +15,9 @@
 //          EntryImportance (how much each entry's error shows in the
 //          indirect light), ours keeps the entries whose error would show
 //          most instead of the largest ones, and the encoder weighs every
-//          texel by it too: the bytes go where the light goes.
+//          texel by it too: the bytes go where the light goes. Ours stores
+//          the kept entries in half precision with 16-bit columns
+//          (compress/kept_storage.h): twice the entries in the same bytes.
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -27,6 +29,7 @@
 #include "compress/block_bc4.h"
 #include "compress/dds.h"
 #include "compress/entry_importance.h"
+#include "compress/kept_storage.h"
 #include "compress/log_quantizer.h"
 #include "compress/ordering_permutation.h"
 #include "compress/sparse_split.h"
@@ -50,6 +53,9 @@ struct CodecSettings {
   // bounce bench compress. Not a bake format: the DDS holds one image.
   bool bc4_per_channel = false;
   std::optional<OrderingMethod> ordering;
+  // How the kept entries are stored; unset: float16 for ours, float32 for
+  // the paper.
+  std::optional<KeptStorage> kept_storage;
   // Ours only: which entries matter to the light (not owned; must outlive
   // compress_matrix). Null: the largest entries are kept and the encoder
   // weighs only by value.
@@ -78,6 +84,8 @@ struct CompressedMatrix {
   Permutation permutation;               // stored row/column k holds patch permutation[k]
   std::vector<LogQuantizer> quantizers;  // per stored channel
   std::vector<CsrMatrix> kept;           // per stored channel, patch order
+  // How the bake folder stores `kept`; float16: its values are halves.
+  KeptStorage kept_storage = KeptStorage::kFloat32;
   // padded/4 x padded/4 blocks of 8 bytes (BC4 per channel: one such image
   // per stored channel, one after another).
   std::vector<std::uint8_t> blocks;
@@ -146,10 +154,12 @@ class CompressionExecutor {
 };
 
 // What compress_matrix will spend on `channels` stored channels of n x n at
-// `kept_fraction` with one block image: kept CSR (at most that share of
-// every channel; fewer when a channel has fewer positive entries) + blocks +
-// permutation. An upper bound, exact unless entries tie at the threshold.
-std::size_t predicted_total_bytes(std::size_t n, int channels, double kept_fraction);
+// `kept_fraction` with one block image: kept CSR in `storage` (at most that
+// share of every channel; fewer when a channel has fewer positive entries) +
+// blocks + permutation. An upper bound, exact unless entries tie at the
+// threshold.
+std::size_t predicted_total_bytes(std::size_t n, int channels, double kept_fraction,
+                                  KeptStorage storage);
 
 // `matrices`: 1 or 3 row-major n x n float32 matrices (T_R, T_G, T_B, or the
 // one matrix of a grey scene).

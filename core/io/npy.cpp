@@ -180,12 +180,27 @@ void write_npy(const fs::path& path, std::span<const std::int32_t> data,
   write_raw(path, "<i4", {{data.data(), data.size_bytes()}}, data.size(), shape);
 }
 
+void write_npy(const fs::path& path, std::span<const std::uint16_t> data,
+               std::vector<std::size_t> shape) {
+  write_raw(path, "<u2", {{data.data(), data.size_bytes()}}, data.size(), shape);
+}
+void write_npy_half(const fs::path& path, std::span<const std::uint16_t> bits,
+                    std::vector<std::size_t> shape) {
+  write_raw(path, "<f2", {{bits.data(), bits.size_bytes()}}, bits.size(), shape);
+}
+
 NpyArray<float> read_npy_f32(const fs::path& path) { return read_typed<float>(path, "<f4"); }
 NpyArray<std::uint32_t> read_npy_u32(const fs::path& path) {
   return read_typed<std::uint32_t>(path, "<u4");
 }
 NpyArray<std::int32_t> read_npy_i32(const fs::path& path) {
   return read_typed<std::int32_t>(path, "<i4");
+}
+NpyArray<std::uint16_t> read_npy_u16(const fs::path& path) {
+  return read_typed<std::uint16_t>(path, "<u2");
+}
+NpyArray<std::uint16_t> read_npy_half_bits(const fs::path& path) {
+  return read_typed<std::uint16_t>(path, "<f2");
 }
 
 }  // namespace bounce

@@ -27,6 +27,11 @@ void write_npy(const std::filesystem::path& path, std::span<const std::uint32_t>
                std::vector<std::size_t> shape);
 void write_npy(const std::filesystem::path& path, std::span<const std::int32_t> data,
                std::vector<std::size_t> shape);
+void write_npy(const std::filesystem::path& path, std::span<const std::uint16_t> data,
+               std::vector<std::size_t> shape);
+// IEEE half floats ('<f2'), given as their bits (compress/kept_storage.h).
+void write_npy_half(const std::filesystem::path& path, std::span<const std::uint16_t> bits,
+                    std::vector<std::size_t> shape);
 
 template <typename T>
 struct NpyArray {
@@ -35,9 +40,13 @@ struct NpyArray {
 };
 
 // Reads a file written as above; throws NpyError naming the file when the
-// dtype (must be '<f4', '<u4' or '<i4' to match T), order or size is wrong.
+// dtype (must be '<f4', '<u4', '<i4', '<u2' or '<f2' to match the function),
+// order or size is wrong.
 NpyArray<float> read_npy_f32(const std::filesystem::path& path);
 NpyArray<std::uint32_t> read_npy_u32(const std::filesystem::path& path);
 NpyArray<std::int32_t> read_npy_i32(const std::filesystem::path& path);
+NpyArray<std::uint16_t> read_npy_u16(const std::filesystem::path& path);
+// IEEE half floats ('<f2'), as their bits.
+NpyArray<std::uint16_t> read_npy_half_bits(const std::filesystem::path& path);
 
 }  // namespace bounce

@@ -120,6 +120,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       (void)bounce::read_npy_i32(file);
     } catch (const bounce::Error&) {
     }
+    try {
+      (void)bounce::read_npy_u16(file);
+    } catch (const bounce::Error&) {
+    }
+    try {
+      (void)bounce::read_npy_half_bits(file);
+    } catch (const bounce::Error&) {
+    }
   } else if constexpr (kTarget == "dds") {
     const auto file = bounce::fuzz::work_dir().write("input.dds", data, size);
     try {

@@ -5,6 +5,7 @@
 #include <squish.h>
 
 #include <cmath>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -12,10 +13,47 @@
 
 namespace bounce::itest {
 
+// An IEEE half's value from its bits, written out (1 sign, 5 exponent, 10
+// fraction bits; exponent 0: subnormal; 31: infinity or NaN).
+inline float half_value(std::uint16_t h) {
+  const int sign = h >> 15, exponent = (h >> 10) & 31, fraction = h & 1023;
+  double v = exponent == 0    ? std::ldexp(fraction, -24)
+             : exponent == 31 ? (fraction ? std::nan("") : INFINITY)
+                              : std::ldexp(1024 + fraction, exponent - 25);
+  return static_cast<float>(sign ? -v : v);
+}
+
 struct Decoded {
   std::size_t n = 0;
   std::vector<std::vector<float>> channels;  // dense n x n per stored channel, patch order
 };
+
+// The kept entries of stored channel c as the files hold them: CSR row
+// starts, columns and values (float16: half values, and uint16 columns below
+// 65537 patches).
+struct KeptFiles {
+  std::vector<std::uint32_t> row_ptr, col;
+  std::vector<float> value;
+};
+inline KeptFiles read_kept_files(const fs::path& bake, const json& compression, int c,
+                                 std::size_t n) {
+  const std::string base = "T_kept_" + std::to_string(c);
+  KeptFiles k;
+  k.row_ptr = read_npy_u32(bake / (base + "_row_ptr.npy")).data;
+  const bool half = compression.value("kept_storage", "float32") == "float16";
+  if (half && n <= 65536) {
+    for (std::uint16_t c16 : read_npy_u16(bake / (base + "_col.npy")).data) k.col.push_back(c16);
+  } else {
+    k.col = read_npy_u32(bake / (base + "_col.npy")).data;
+  }
+  if (half) {
+    for (std::uint16_t h : read_npy_half_bits(bake / (base + "_value.npy")).data)
+      k.value.push_back(half_value(h));
+  } else {
+    k.value = read_npy_f32(bake / (base + "_value.npy")).data;
+  }
+  return k;
+}
 
 // Rebuilds T~ from T.dds, permutation.npy, T_kept_*.npy and the manifest's
 // quantiser parameters.
@@ -48,13 +86,11 @@ inline Decoded decode_bake(const fs::path& bake, const json& compression) {
         t[perm.data[i] * d.n + perm.data[j]] = static_cast<float>(v);
       }
     const std::string base = "T_kept_" + std::to_string(c);
-    const auto row_ptr = read_npy_u32(bake / (base + "_row_ptr.npy"));
-    const auto col = read_npy_u32(bake / (base + "_col.npy"));
-    const auto value = read_npy_f32(bake / (base + "_value.npy"));
-    EXPECT_EQ(row_ptr.data.size(), d.n + 1);
+    const KeptFiles kept = read_kept_files(bake, compression, c, d.n);
+    EXPECT_EQ(kept.row_ptr.size(), d.n + 1);
     for (std::size_t i = 0; i < d.n; ++i)
-      for (std::uint32_t k = row_ptr.data[i]; k < row_ptr.data[i + 1]; ++k)
-        t[i * d.n + col.data[k]] = value.data[k];
+      for (std::uint32_t k = kept.row_ptr[i]; k < kept.row_ptr[i + 1]; ++k)
+        t[i * d.n + kept.col[k]] = kept.value[k];
     d.channels.push_back(std::move(t));
   }
   return d;

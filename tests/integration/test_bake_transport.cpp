@@ -62,36 +62,40 @@ TEST_P(CompressedBake, ManifestErrorsMatchAnIndependentDecodeOfTheFiles) {
 
 // The paper keeps the largest entries. Ours keeps, per channel, as many
 // entries (zeros included) as the kept fraction says, chosen in a second pass
-// by the error the first pass's blocks had there: exact values, the count
-// right.
+// by the error the first pass's blocks had there: exact values (the paper's)
+// or their nearest halves (ours), the count right.
 TEST_P(CompressedBake, KeptEntriesAreExactAndThePapersAreTheLargest) {
   const auto n = manifest["counts"]["patches"].get<std::size_t>();
   const int stored = compression["stored_channels"].get<int>();
   const bool paper = GetParam() == "paper";
+  EXPECT_EQ(compression["kept_storage"], paper ? "float32" : "float16");
   EXPECT_EQ(compression["light_weighted"].get<bool>(), !paper);
   EXPECT_EQ(compression["kept_passes"].get<int>(), paper ? 1 : 2);
   for (int c = 0; c < stored; ++c) {
     const std::string base = "T_kept_" + std::to_string(c);
-    const auto row_ptr = read_npy_u32(out / (base + "_row_ptr.npy"));
-    const auto col = read_npy_u32(out / (base + "_col.npy"));
-    const auto value = read_npy_f32(out / (base + "_value.npy"));
+    const KeptFiles kf = read_kept_files(out, compression, c, n);
     const float* t = exact.data.data() + static_cast<std::size_t>(c) * n * n;
     std::vector<bool> kept(n * n, false);
     float smallest_kept = std::numeric_limits<float>::infinity();
     for (std::size_t i = 0; i < n; ++i)
-      for (std::uint32_t k = row_ptr.data[i]; k < row_ptr.data[i + 1]; ++k) {
-        ASSERT_LT(col.data[k], n);
-        ASSERT_EQ(value.data[k], t[i * n + col.data[k]]) << "kept entry not exact";
-        ASSERT_FALSE(kept[i * n + col.data[k]]) << "entry kept twice";
-        kept[i * n + col.data[k]] = true;
-        smallest_kept = std::min(smallest_kept, value.data[k]);
+      for (std::uint32_t k = kf.row_ptr[i]; k < kf.row_ptr[i + 1]; ++k) {
+        ASSERT_LT(kf.col[k], n);
+        const float v = t[i * n + kf.col[k]];
+        if (paper)
+          ASSERT_EQ(kf.value[k], v) << "kept entry not exact";
+        else  // the nearest half: within 2^-11 of the value, or 2^-25 below the normals
+          ASSERT_LE(std::abs(kf.value[k] - v), std::max(std::ldexp(v, -11), std::ldexp(1.0f, -25)))
+              << "kept entry not the half of its value";
+        ASSERT_FALSE(kept[i * n + kf.col[k]]) << "entry kept twice";
+        kept[i * n + kf.col[k]] = true;
+        smallest_kept = std::min(smallest_kept, kf.value[k]);
       }
     if (paper)
       for (std::size_t k = 0; k < n * n; ++k) {
         if (kept[k]) continue;
         ASSERT_LT(t[k], smallest_kept) << "a larger entry was not kept";
       }
-    const double fraction = static_cast<double>(value.data.size()) / static_cast<double>(n * n);
+    const double fraction = static_cast<double>(kf.value.size()) / static_cast<double>(n * n);
     EXPECT_NEAR(fraction, compression["kept_fraction"].get<double>(), 0.01);
   }
 }
@@ -148,6 +152,13 @@ TEST_P(CompressedBake, SizesAddUpAndCompressionPays) {
                                                       s["block_bytes"].get<std::size_t>() +
                                                       s["permutation_bytes"].get<std::size_t>());
   EXPECT_EQ(s["block_bytes"].get<std::size_t>(), fs::file_size(out / "T.dds") - 128);
+  // Kept entries: 8 bytes each in float32 (uint32 column, float value), 4 in
+  // float16 (uint16 column, half value), plus each channel's row starts.
+  std::size_t sparse = 0;
+  for (int c = 0; c < compression["stored_channels"].get<int>(); ++c)
+    sparse += (n + 1) * 4 +
+              read_kept_files(out, compression, c, n).col.size() * (GetParam() == "paper" ? 8 : 4);
+  EXPECT_EQ(s["sparse_bytes"].get<std::size_t>(), sparse);
   EXPECT_GT(s["ratio_to_dense_rgb"].get<double>(), 4.0);
   for (const char* picture : {"T.png", "T_reordered.png", "T_error.png", "T_error_blocks.png"})
     EXPECT_TRUE(fs::exists(out / picture)) << picture;

@@ -134,10 +134,37 @@ std::vector<HostileFile> hostile_files() {
        "T_kept_0_col.npy",
        {"entry 0 has column"},
        [](const fs::path& b, std::size_t n) {
-         NpyArray<std::uint32_t> cols = read_npy_u32(b / "T_kept_0_col.npy");
+         // Ours stores columns as uint16 below 65537 patches.
+         NpyArray<std::uint16_t> cols = read_npy_u16(b / "T_kept_0_col.npy");
          ASSERT_FALSE(cols.data.empty());
-         cols.data[0] = static_cast<std::uint32_t>(n);
+         cols.data[0] = static_cast<std::uint16_t>(n);
          write_npy(b / "T_kept_0_col.npy", cols.data, cols.shape);
+       },
+       {}},
+      {"kept_value_not_a_number",
+       "T_kept_0_value.npy",
+       {"entry 0 is not finite"},
+       [](const fs::path& b, std::size_t) {
+         NpyArray<std::uint16_t> bits = read_npy_half_bits(b / "T_kept_0_value.npy");
+         ASSERT_FALSE(bits.data.empty());
+         bits.data[0] = 0x7e00;  // a half NaN
+         write_npy_half(b / "T_kept_0_value.npy", bits.data, bits.shape);
+       },
+       {}},
+      {"kept_values_in_float32_where_the_manifest_says_float16",
+       "T_kept_0_value.npy",
+       {"wrong dtype, expected <f2"},
+       [](const fs::path& b, std::size_t) {
+         const NpyArray<std::uint16_t> bits = read_npy_half_bits(b / "T_kept_0_value.npy");
+         const std::vector<float> wide(bits.data.size(), 0.5f);
+         write_npy(b / "T_kept_0_value.npy", wide, bits.shape);
+       },
+       {}},
+      {"kept_storage_unknown",
+       "manifest.json",
+       {"compression.kept_storage"},
+       [](const fs::path& b, std::size_t) {
+         edit_manifest(b, [](json& m) { m["compression"]["kept_storage"] = "float8"; });
        },
        {}},
       {"sample_patch_not_a_number",

@@ -68,6 +68,8 @@ TEST_P(RowErrorContributionsOf, SourcesAddUpToTheDecodedMatrixsErrorTermByTerm) 
       tampered_row = i;
   ASSERT_LT(k0.row_ptr[tampered_row], k0.row_ptr[tampered_row + 1]) << "the row keeps entries";
   const std::uint32_t tampered = k0.row_ptr[tampered_row];
+  // Ours keeps halves, the paper exact floats: what was kept, before tampering.
+  const double kept_before = k0.value[tampered];
   k0.value[tampered] *= 1.5f;
 
   const std::array<int, 3> channel_of_rgb =
@@ -145,7 +147,8 @@ TEST_P(RowErrorContributionsOf, SourcesAddUpToTheDecodedMatrixsErrorTermByTerm) 
     for (std::size_t k = 1; k < r.sources.size(); ++k)
       EXPECT_GE(r.sources[k - 1].share, r.sources[k].share);
     if (p == tampered_row) {
-      // The tampered entry's kept source: 0.5 T_pj b_j in the colours of channel 0.
+      // The tampered entry's kept source: (1.5 kept - T_pj) b_j in the colours
+      // of channel 0 (0.5 T_pj b_j when the kept value was exact).
       const std::size_t j = k0.col[tampered];
       const auto it = std::find_if(r.sources.begin(), r.sources.end(), [&](const auto& src) {
         return src.kind == RowErrorSource::Kind::Kept && src.entries[0].column == j;
@@ -154,7 +157,10 @@ TEST_P(RowErrorContributionsOf, SourcesAddUpToTheDecodedMatrixsErrorTermByTerm) 
       for (int colour = 0; colour < 3; ++colour) {
         if (channel_of_rgb[static_cast<std::size_t>(colour)] == 0) {
           EXPECT_NEAR(it->contribution[colour],
-                      0.5 * static_cast<double>(t[0][p * n + j]) * b[j][colour], 1e-6 * scale);
+                      (static_cast<double>(1.5f * static_cast<float>(kept_before)) -
+                       static_cast<double>(t[0][p * n + j])) *
+                          b[j][colour],
+                      1e-6 * scale);
         }
       }
     }
