@@ -170,7 +170,9 @@ std::pair<ReportData, fs::path> report_one(const ReportOptions& opt, const std::
     s << "# Error against run time: " << scene.name << "\n\n";
     s << "Reference: diffuse path tracer (docs/reference.md), " << ref.samples_per_pixel
       << " paths per pixel at " << ref.width << "x" << ref.height << ", " << ref.samples_per_vertex
-      << " per vertex on " << ref.vertices << " evaluation vertices"
+      << " per vertex on " << ref.vertices
+      << " evaluation vertices (each measured 5% of the way into a face that uses it, where "
+         "the final gather gathers for it: on the vertex itself it lies in its neighbours' planes)"
       << (ref.images_from_cache && ref.vertices_from_cache ? " (from the cache)" : "")
       << ". Its own noise, as a relative RMSE: full " << fixed(ref.noise_floor_full, 4)
       << ", indirect " << fixed(ref.noise_floor_indirect, 4)

@@ -149,10 +149,17 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
   LitMesh eval_mesh =
       build_transfer_mesh(scene, TransferGrid::from(VoxelGrid(scene.bounds(), opt.eval_grid)),
                           TransferSettings{}, &progress);
+  // Each vertex is measured where the final gather gathers for it, a hair
+  // (5% of the way to its face's centre) inside a face that uses it, not on
+  // the vertex itself: a vertex lies on the edges where its face meets its
+  // neighbours, and a path that starts exactly in a neighbouring wall's plane
+  // can slip through that wall and bring back light from behind it. Inside the face
+  // the light is that of the face, which is what the lit mesh shows there.
+  const std::vector<glm::vec3> measured_at =
+      gather_points_of_vertices(eval_mesh.positions, eval_mesh.triangles);
   std::vector<ReferencePoint> points;
   for (std::size_t v = 0; v < eval_mesh.positions.size(); ++v)
-    points.push_back(
-        {eval_mesh.positions[v], eval_mesh.normals[v], glm::vec3(0.0f), glm::vec3(0.0f)});
+    points.push_back({measured_at[v], eval_mesh.normals[v], glm::vec3(0.0f), glm::vec3(0.0f)});
   // Albedo per vertex from a face that uses it.
   const std::vector<std::uint32_t> vertex_triangle = vertex_source_triangles(eval_mesh);
   for (std::size_t v = 0; v < points.size(); ++v)
@@ -199,7 +206,7 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
       hit_positions.push_back(h.position);
       hit_normals.push_back(h.normal);
     }
-    vertex_points = gather_points_of_vertices(eval_mesh.positions, eval_mesh.triangles);
+    vertex_points = measured_at;
     for (const ReferencePoint& p : points) vertex_albedo.push_back(p.albedo);
   }
   const auto mean_ratio = [](const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b,
@@ -298,22 +305,21 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
       if (log) log(mode + " patches, target " + std::to_string(target) + ": exact patch values");
       const ExactPatchLight exact =
           exact_patch_indirect(pt, bake.samples, bake.patches, cache, &progress);
-      // Exact values are known per patch: each sample source reads its
-      // patch's, so the layout error stays that of exact patch values.
-      std::vector<glm::vec3> exact_sample_light(bake.samples.samples.size(), glm::vec3(0.0f));
-      for (std::size_t si = 0; si < exact_sample_light.size(); ++si)
-        if (bake.patch_of_sample[si] >= 0)
-          exact_sample_light[si] =
-              exact.reflected[static_cast<std::size_t>(bake.patch_of_sample[si])];
-      // And each near source its patch's.
-      const auto exact_near_light = [&](const FinalGather& g) {
-        std::vector<glm::vec3> out(g.near.size());
-        for (std::size_t k = 0; k < out.size(); ++k) out[k] = exact.reflected[g.near.patch[k]];
-        return out;
-      };
+      // The same gather with exact patch values: patch sources read their
+      // patch's exact b + T b; sample and near sources, as in every row, their
+      // own first-hit light (the same for every row, lit once here) plus
+      // their patch's exact T b. So the two errors differ only by T b.
+      const PatchLighting direct_once =
+          light_patches(tracer, bake.samples, bake.patches, scene.lights, area,
+                        [](const std::vector<glm::vec3>& b, std::vector<glm::vec3>& tb) {
+                          tb.assign(b.size(), glm::vec3(0.0f));
+                        });
       const Measured layout =
-          measure(exact.indirect, exact.reflected, exact_sample_light,
-                  exact_near_light(pixel_gather), exact_near_light(vertex_gather));
+          measure(exact.indirect, exact.reflected,
+                  sample_exitance(bake.samples, bake.patches, direct_once.sample_irradiance,
+                                  exact.indirect),
+                  near_exitance(pixel_gather.near, &tracer, scene.lights, area, exact.indirect),
+                  near_exitance(vertex_gather.near, &tracer, scene.lights, area, exact.indirect));
       std::vector<glm::vec3> albedo;
       for (const Patch& p : bake.patches.patches) albedo.push_back(p.albedo);
       for (std::size_t bi = 0; bi < bounces.size(); ++bi) {
