@@ -104,7 +104,7 @@ fuzz() {
     # The targets write each input to a file under TMPDIR; libFuzzer exits
     # without running destructors, so keep that folder in the build tree.
     rm -rf "$root/build/fuzz/tmp" && mkdir -p "$root/build/fuzz/tmp"
-    if ! TMPDIR="$root/build/fuzz/tmp" \
+    if ! TMPDIR="$root/build/fuzz/tmp" ASAN_OPTIONS="intercept_tls_get_addr=0" \
       LSAN_OPTIONS="suppressions=$root/tests/sanitizers/lsan.supp:print_suppressions=0" \
       "$root/build/fuzz/tests/fuzz/$target" "${budget[@]}" -timeout=10 \
       -rss_limit_mb=2048 -seed="${BOUNCE_FUZZ_SEED:-1}" -print_final_stats=1 \
@@ -150,6 +150,14 @@ case "$cmd" in
     exec ctest --output-on-failure -j"$(nproc)" "$@"
     ;;
   sanitize)
+    # The preset's ASAN_OPTIONS include intercept_tls_get_addr=0: the sanitizer
+    # runtimes of GCC 12 and clang 14 (Debian 12) take a dynamic TLS block whose
+    # address happens to sit 16 bytes into a page for a glibc 2.19 block header,
+    # read a bogus range from before it, and LeakSanitizer's tracer dies with
+    # signal 11 at exit after the test has passed (seen with PoCL's threads,
+    # depending only on where malloc puts the block). Without the interceptor,
+    # leaks are still found; only pointers held solely in the dynamic TLS of
+    # dlopen'ed libraries stop counting as reachable, and none of ours are.
     build_preset asan
     exec ctest --preset asan -j"$(nproc)" "$@"
     ;;
