@@ -103,6 +103,7 @@ fuzz() {
     fi
     # The targets write each input to a file under TMPDIR; libFuzzer exits
     # without running destructors, so keep that folder in the build tree.
+    # intercept_tls_get_addr=0 for the same reason as in `sanitize` below.
     rm -rf "$root/build/fuzz/tmp" && mkdir -p "$root/build/fuzz/tmp"
     if ! TMPDIR="$root/build/fuzz/tmp" ASAN_OPTIONS="intercept_tls_get_addr=0" \
       LSAN_OPTIONS="suppressions=$root/tests/sanitizers/lsan.supp:print_suppressions=0" \
