@@ -189,11 +189,16 @@ RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 
                                        " patches, the matrix for " + std::to_string(m.n));
     bench.gather_points = gather->points();
     bench.gather_entries = gather->weight.size();
-    // Per frame it reads the rows (offset, source, weight), the patches'
-    // and clusters' light, and writes a colour per vertex.
+    // Per frame it reads the rows (offset, and a compact entry or a
+    // source and a weight), the patches' and clusters' light (padded to 16
+    // bytes a source), and writes a colour per vertex.
+    const std::size_t entry_bytes = gather->compact.size() == gather->source.size()
+                                        ? sizeof(std::uint32_t)
+                                        : sizeof(std::uint32_t) + sizeof(float);
+    bench.gather_compact = entry_bytes == sizeof(std::uint32_t);
     bench.gather.bytes = gather->first.size() * sizeof(std::uint64_t) +
-                         bench.gather_entries * (sizeof(std::uint32_t) + sizeof(float)) +
-                         (gather->patches + gather->clusters) * sizeof(glm::vec3) +
+                         bench.gather_entries * entry_bytes +
+                         (gather->patches + gather->clusters) * 4 * sizeof(float) +
                          bench.gather_points * sizeof(glm::vec3);
     // Sample and near sources read a light of their own each frame (the
     // near sources' direct light, a shadow ray each, is not part of this
@@ -201,7 +206,7 @@ RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 
     std::vector<glm::vec3> sample_light(gather->samples), near_light(gather->near.size());
     for (glm::vec3& v : sample_light) v = glm::vec3(u(rng), u(rng), u(rng));
     for (glm::vec3& v : near_light) v = glm::vec3(u(rng), u(rng), u(rng));
-    bench.gather.bytes += (gather->samples + gather->near.size()) * sizeof(glm::vec3);
+    bench.gather.bytes += (gather->samples + gather->near.size()) * 4 * sizeof(float);
     time_product(
         [gather, &sample_light, &near_light](const auto& x, auto& y) {
           gather->irradiance(x, sample_light, near_light, y);
@@ -245,11 +250,13 @@ std::string runtime_bench_table(const RuntimeBench& bench) {
   if (bench.gather.available) {
     const RuntimeBenchEntry& g = bench.gather;
     const double of_memory = bench.stream_gb_per_s > 0.0 ? g.gb_per_s / bench.stream_gb_per_s : 0.0;
-    s += text_format("final gather, %zu vertices, %zu entries (%.1f per vertex)\n",
+    s += text_format("final gather, %zu vertices, %zu entries (%.1f per vertex, %s)\n",
                      bench.gather_points, bench.gather_entries,
                      bench.gather_points ? static_cast<double>(bench.gather_entries) /
                                                static_cast<double>(bench.gather_points)
-                                         : 0.0);
+                                         : 0.0,
+                     bench.gather_compact ? "4 bytes each: source and ray count"
+                                          : "8 bytes each: source and float weight");
     s += text_format("  %-*s %10.3f %10.3f %10.1f %8.1f %6.0f%%         - %9.2e\n", w,
                      g.what.c_str(), g.best_ms, g.median_ms,
                      static_cast<double>(g.bytes) / (1024.0 * 1024.0), g.gb_per_s,

@@ -45,6 +45,7 @@ struct RuntimeBench {
   // rel diff is against a double-precision sum of the same rows.
   RuntimeBenchEntry gather;
   std::size_t gather_points = 0, gather_entries = 0;
+  bool gather_compact = false;  // the rows in 4-byte entries (FinalGather::compact)
 };
 
 // Each path: one warm-up, then `repeats` timed products of the same random

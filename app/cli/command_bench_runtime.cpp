@@ -71,6 +71,7 @@ void run(const RuntimeBenchOptions& opt) {
     if (bench.gather.available)
       final_gather = {{"vertices", bench.gather_points},
                       {"entries", bench.gather_entries},
+                      {"entry_bytes", bench.gather_compact ? 4 : 8},
                       {"best_ms", bench.gather.best_ms},
                       {"median_ms", bench.gather.median_ms},
                       {"bytes", bench.gather.bytes},

@@ -60,6 +60,10 @@ struct BakeSettings {
   // Within this many voxels of a vertex its gather rays read near sources,
   // lit at their own position each frame (runtime/final_gather.h); 0: none.
   double final_gather_near = 0.25;
+  // Near sources fewer of the gather's rays landed in go back to the sample
+  // or patch the vertices read for that surface (runtime/final_gather.h):
+  // each near source costs a shadow ray per light every frame.
+  int final_gather_near_min_rays = 1;
   std::uint64_t seed = 1;
   bool dump_matrices = false;
 

@@ -290,6 +290,7 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                    {"closure_rays", s.closure_rays},
                    {"final_gather_rays", s.final_gather_rays},
                    {"final_gather_near", s.final_gather_near},
+                   {"final_gather_near_min_rays", s.final_gather_near_min_rays},
                    {"seed", s.seed},
                    {"dump_matrices", s.dump_matrices},
                    {"out_of_core", to_string(s.out_of_core)}};
@@ -424,6 +425,7 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                                        })},
         {"near_distance_voxels", r.settings.final_gather_near},
         {"near_resolution_per_voxel", FinalGatherSettings{}.near_resolution},
+        {"near_min_rays", r.settings.final_gather_near_min_rays},
         {"clusters", fg.clusters},
         {"rays",
          {{"landed", fg.rays_landed},

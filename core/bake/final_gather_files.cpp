@@ -90,6 +90,7 @@ std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t pa
                   "the near sources' files differ in length");
   }
   g.validate((dir / "gather_*.npy").string());
+  g.compact_rows();
   return g;
 }
 

@@ -271,6 +271,28 @@ std::vector<SettingRow> make_rows() {
       .set = set_real<&S::final_gather_near>,
   });
   rows.push_back({
+      .name = "final_gather_near_min_rays",
+      .manifest_key = "final_gather_near_min_rays",
+      .flag = "--final-gather-near-min-rays",
+      .type = SettingType::Int,
+      .min = 1,
+      .max = 65536,
+      .range_note = "1: keep every near source",
+      .help_shows_default = true,
+      .help = "Near sources that fewer than this many gather rays landed in (over all "
+              "vertices) go back to the sample or patch the vertices read for that surface. "
+              "Each near source costs one shadow ray per light every frame; on Sponza (4096 "
+              "patches) 2 keeps 67% of them and 3 keeps 53%, for 0.4% and 1% more vertex error. "
+              "Vertices far apart (on large faces) share few near sources: theirs hold a ray or "
+              "two each and are the ones that go. 1: keep all",
+      .label = "Near sources: least rays",
+      .studio_help = "Fewer near sources make every light move faster (one shadow ray each) "
+                     "at a little accuracy next to sunlit ledges",
+      .stage = BakeStage::Patches,
+      .get = get_int<&S::final_gather_near_min_rays>,
+      .set = set_int<&S::final_gather_near_min_rays>,
+  });
+  rows.push_back({
       .name = "seed",
       .manifest_key = "seed",
       .flag = "--seed",

@@ -40,25 +40,10 @@ bool sees_light(const RayTracer& tracer, const glm::vec3& origin, const Light& l
 // Irradiance at point p (normal n) from one light, visibility included.
 glm::vec3 from_light(const RayTracer& tracer, const glm::vec3& p, const glm::vec3& n,
                      const Light& light, float eps) {
-  const glm::vec3 origin = p + eps * n;
-  if (light.type == Light::Type::Directional) {
-    const glm::vec3 to_light = -glm::normalize(light.direction);
-    const float cos_n = glm::dot(n, to_light);
-    if (cos_n <= 0.0f) return glm::vec3(0.0f);
-    if (tracer.occluded(origin, to_light, 0.0f, std::numeric_limits<float>::infinity()))
-      return glm::vec3(0.0f);
-    return light.color * light.intensity * cos_n;
-  }
-  const glm::vec3 d = light.position - origin;
-  const float r2 = glm::dot(d, d);
-  if (!(r2 > 0.0f)) return glm::vec3(0.0f);
-  const glm::vec3 dir = d / std::sqrt(r2);
-  const float cos_n = glm::dot(n, dir);
-  if (cos_n <= 0.0f) return glm::vec3(0.0f);
-  const float spot = light.type == Light::Type::Spot ? SpotCone(light).factor(-dir) : 1.0f;
-  if (spot <= 0.0f) return glm::vec3(0.0f);
-  if (!sees_light(tracer, origin, light)) return glm::vec3(0.0f);
-  return light.color * light.intensity * spot * cos_n / r2;
+  const UnshadowedLight u = LightReach(light).at(p, n, eps);
+  if (!u.reaches || tracer.occluded(u.ray.origin, u.ray.direction, u.ray.t_near, u.ray.t_far))
+    return glm::vec3(0.0f);
+  return u.value;
 }
 
 // Whether any light is one that direct light integrates over the carried
@@ -227,6 +212,19 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
       area += s.area;
     }
     e[p] = area > 0.0f ? power / area : glm::vec3(0.0f);
+  }
+}
+
+LightReach::LightReach(const Light& light)
+    : directional_(light.type == Light::Type::Directional),
+      spot_(light.type == Light::Type::Spot),
+      position_(light.position),
+      power_(light.color * light.intensity) {
+  if (directional_) to_light_ = -glm::normalize(light.direction);
+  if (spot_) {
+    axis_ = glm::normalize(light.direction);
+    cos_inner_ = std::cos(glm::radians(light.spot_inner_deg));
+    cos_outer_ = std::cos(glm::radians(light.spot_outer_deg));
   }
 }
 

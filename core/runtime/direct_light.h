@@ -6,6 +6,9 @@
 // solid angle they subtend), not evaluated at the sample's point.
 // b_c = albedo_c * E_c is the light leaving each patch after the first hit,
 // the vector the multi-bounce matrix multiplies.
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <span>
 #include <utility>
 #include <vector>
@@ -53,6 +56,60 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
 glm::vec3 irradiance_at(const RayTracer& tracer, const glm::vec3& p, const glm::vec3& n,
                         const std::vector<Light>& lights, const std::vector<AreaLight>& area = {},
                         int area_strata = 4, std::uint64_t seed = 0);
+
+// The light one point, spot or directional light sends to a surface point if
+// nothing is in the way, and the shadow ray that decides whether something
+// is. Made once per light, so that the per-point part (at()) is a few
+// multiply-adds: callers that light many points batch the rays.
+struct UnshadowedLight {
+  glm::vec3 value{0.0f};
+  ShadowRay ray;
+  bool reaches = false;  // false: p faces away or lies outside a spot's cone
+};
+
+class LightReach {
+ public:
+  explicit LightReach(const Light& light);
+  // For point p with unit normal n (the side that receives); `eps` lifts the
+  // ray's origin off the surface along n.
+  UnshadowedLight at(const glm::vec3& p, const glm::vec3& n, float eps) const {
+    UnshadowedLight u;
+    const glm::vec3 origin = p + eps * n;
+    if (directional_) {
+      const float cos_n = glm::dot(n, to_light_);
+      if (!(cos_n > 0.0f)) return u;
+      u.ray = ShadowRay{origin, to_light_, 0.0f, std::numeric_limits<float>::infinity()};
+      u.value = power_ * cos_n;
+      u.reaches = true;
+      return u;
+    }
+    const glm::vec3 d = position_ - origin;
+    const float r2 = glm::dot(d, d);
+    if (!(r2 > 0.0f)) return u;
+    const glm::vec3 dir = d / std::sqrt(r2);
+    const float cos_n = glm::dot(n, dir);
+    if (!(cos_n > 0.0f)) return u;
+    float spot = 1.0f;
+    if (spot_) {
+      // Smoothstep between the outer and the inner cone.
+      const float c = glm::dot(-dir, axis_);
+      const float t =
+          std::clamp((c - cos_outer_) / std::max(1e-6f, cos_inner_ - cos_outer_), 0.0f, 1.0f);
+      spot = t * t * (3.0f - 2.0f * t);
+      if (!(spot > 0.0f)) return u;
+    }
+    // The segment to the light, stopping just short of it.
+    u.ray = ShadowRay{origin, d, 0.0f, 1.0f - 1e-4f};
+    u.value = power_ * spot * cos_n / r2;
+    u.reaches = true;
+    return u;
+  }
+
+ private:
+  bool directional_ = false, spot_ = false;
+  glm::vec3 to_light_{0.0f}, position_{0.0f}, axis_{0.0f}, power_{0.0f};
+  float cos_inner_ = 1.0f, cos_outer_ = 1.0f;
+};
 
 // b = albedo * E per patch and channel.
 std::vector<glm::vec3> first_bounce(const PatchSet& patches,

@@ -93,6 +93,9 @@ struct FinalGatherSettings {
   // voxel across on the surface they hit.
   float near_cells = 0.25f;
   int near_resolution = 24;
+  // Near sources fewer rays than this landed in, over all points, go back to
+  // the sample (or patch, or cluster) the points read for that surface.
+  int near_min_rays = 1;
   // Cluster blocks are this many voxels along each axis.
   int cluster_voxels = 4;
   std::uint64_t seed = 1;
@@ -134,6 +137,19 @@ struct FinalGather {
   // Of the landed rays, those that went to near sources.
   std::size_t rays_near = 0;
 
+  // The rows again, four bytes an entry: a ray count in the low
+  // `compact_count_bits` bits, the source above them (weight = count /
+  // compact_rays, exactly the float weight). Every weight is a whole number
+  // of the point's rays, so this loses nothing, and the product, which
+  // streams the rows every frame, reads half the bytes. Empty when the rows
+  // do not fit (weights not whole ray counts, or too many sources for the
+  // bits left); the product then reads `source` and `weight`.
+  std::vector<std::uint32_t> compact;
+  int compact_count_bits = 0, compact_rays = 0;
+  // Fills `compact` from the rows (after building or reading them, or after
+  // any change to them).
+  void compact_rows();
+
   std::size_t points() const { return first.empty() ? 0 : first.size() - 1; }
   // E at every point from the light leaving each patch (size `patches`).
   // Throws bounce::Error when sizes differ, or when the rows read samples.
@@ -159,6 +175,10 @@ struct FinalGather {
 std::vector<glm::vec3> sample_exitance(const SampleSet& samples, const PatchSet& patches,
                                        const std::vector<glm::vec3>& sample_irradiance,
                                        const std::vector<glm::vec3>& patch_indirect);
+// The same into `out`, whose memory a caller lighting frame after frame keeps.
+void sample_exitance(const SampleSet& samples, const PatchSet& patches,
+                     const std::vector<glm::vec3>& sample_irradiance,
+                     const std::vector<glm::vec3>& patch_indirect, std::vector<glm::vec3>& out);
 
 // The light near sources carry: albedo x their direct irradiance (shadow
 // rays from `tracer` to `lights` and `area`; no tracer: none, for callers
@@ -167,6 +187,10 @@ std::vector<glm::vec3> near_exitance(const NearSources& near, const RayTracer* t
                                      const std::vector<Light>& lights,
                                      const std::vector<AreaLight>& area,
                                      const std::vector<glm::vec3>& patch_indirect);
+// The same into `out`.
+void near_exitance(const NearSources& near, const RayTracer* tracer,
+                   const std::vector<Light>& lights, const std::vector<AreaLight>& area,
+                   const std::vector<glm::vec3>& patch_indirect, std::vector<glm::vec3>& out);
 
 // Where the vertices of a lit mesh gather from: each moved 5% of the way to
 // the centroid of a face using it. A vertex on the line where two walls meet

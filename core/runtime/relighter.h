@@ -47,7 +47,8 @@ class Relighter {
   void reflected(std::vector<glm::vec3>& out) const;
   // The irradiance at the gather's points from the last frame's reflected
   // light (before any albedo); its sample sources read each sample's own b
-  // plus its patch's T b.
+  // plus its patch's T b. One gather at a time: it works in buffers the
+  // Relighter keeps from frame to frame.
   void gather(const FinalGather& gather, std::vector<glm::vec3>& irradiance) const;
 
   const RuntimeFrame& frame() const { return frame_; }
@@ -72,6 +73,8 @@ class Relighter {
   std::vector<Light> lights_;
   std::vector<AreaLight> area_;
   mutable double near_seconds_ = 0.0;
+  // gather()'s buffers, kept so that a frame does not allocate them again.
+  mutable std::vector<glm::vec3> first_hit_, indirect_, reflected_, sample_light_, near_light_;
   RuntimeFrame frame_;
 };
 

@@ -1,6 +1,8 @@
 // Final gather (runtime/final_gather.h): point-to-patch form factors by rays,
 // held against the exact point-to-polygon form factor and against the
-// path-traced reference in a concave corner.
+// path-traced reference in a concave corner; and its per-frame work: the
+// compact rows give the product of the float rows, and near sources lit in
+// batches get the light irradiance_at() gives each alone.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -59,6 +61,18 @@ std::vector<glm::vec3> gathered_first_bounce(const FinalGather& g, const FirstHi
   g.irradiance(f.b, sample_exitance(bake.samples, bake.patches, f.sample_irradiance, no_indirect),
                near_exitance(g.near, &tracer, scene.lights, {}, no_indirect), e);
   return e;
+}
+
+// A floor (y = 0, x and z in [-1, 1]) with a board at y = 0.5 over its
+// half x < 0, and a wall at the floor's far edge (x = 1), so that patches see
+// each other and stand where rays from above the floor would leave past it.
+Scene floor_under_a_board() {
+  Scene scene;
+  test_scenes::add_quad(scene, "floor", {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1});
+  test_scenes::add_quad(scene, "board", {-1.5f, 0.5f, -1.5f}, {-1.5f, 0.5f, 1.5f}, {0, 0.5f, 1.5f},
+                        {0, 0.5f, -1.5f});
+  test_scenes::add_quad(scene, "wall", {1, 0, -1}, {1, 0, 1}, {1, 0.5f, 1}, {1, 0.5f, -1});
+  return scene;
 }
 
 // A floor (y = 0) and a wall (z = 0) meeting at a right angle, the wall lit
@@ -123,14 +137,7 @@ TEST(FinalGather, NearSourcesFollowAShadowEdgeUnderThePoint) {
   // board's underside is a one-sided back face), so its indirect irradiance
   // is albedo x sun x F (a wall at the far edge gets no sun). A sample stands for ~9 cm of floor
   // and is lit at its centre: every point across the edge would read the same few samples.
-  Scene scene;
-  test_scenes::add_quad(scene, "floor", {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1});
-  test_scenes::add_quad(scene, "board", {-1.5f, 0.5f, -1.5f}, {-1.5f, 0.5f, 1.5f}, {0, 0.5f, 1.5f},
-                        {0, 0.5f, -1.5f});
-  // A wall at the floor's far edge, so that patches see each other: the sun
-  // grazes it (no first-hit light), and it stands where the points' rays
-  // would leave past the floor.
-  test_scenes::add_quad(scene, "wall", {1, 0, -1}, {1, 0, 1}, {1, 0.5f, 1}, {1, 0.5f, -1});
+  Scene scene = floor_under_a_board();
   scene.lights.push_back({Light::Type::Directional, "sun", glm::vec3(0.0f),
                           glm::vec3(0.0f, -1.0f, 0.0f), glm::vec3(1.0f), 1.0f});
   const BakeResult bake = bake_of(scene, 8);
@@ -381,6 +388,187 @@ TEST(FinalGather, SampleSourcesSplitThePatchesRaysAndKeepTheirLight) {
     EXPECT_NEAR(ta, tb, 1e-5) << i;
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(ea[i][c], eb[i][c], 1e-5 * (1.0 + ea[i][c])) << i;
   }
+}
+
+// A floor half shaded by a board, a wall at its far edge, lit by a sun, a
+// point light and a spot: near sources on either side of the shadow's edge,
+// some facing each light and some not.
+Scene shaded_floor() {
+  Scene scene = floor_under_a_board();
+  scene.lights.push_back({Light::Type::Directional, "sun", glm::vec3(0.0f),
+                          glm::vec3(0.3f, -1.0f, 0.1f), glm::vec3(1.0f, 0.9f, 0.8f), 1.0f});
+  Light point{Light::Type::Point,          "lamp", glm::vec3(0.5f, 0.3f, 0.2f), glm::vec3(0.0f),
+              glm::vec3(0.2f, 0.4f, 1.0f), 2.0f};
+  scene.lights.push_back(point);
+  Light spot{Light::Type::Spot, "spot", glm::vec3(-0.5f, 0.4f, 0.0f), glm::vec3(0.2f, -1.0f, 0.0f),
+             glm::vec3(1.0f),   3.0f};
+  spot.spot_inner_deg = 20.0f;
+  spot.spot_outer_deg = 35.0f;
+  scene.lights.push_back(spot);
+  return scene;
+}
+
+// A gather for points a few centimetres above the floor, facing it, across
+// the shadow, every ray within a voxel reading near sources.
+FinalGather gather_over_the_floor(const RayTracer& tracer, const BakeResult& bake,
+                                  FinalGatherSettings fs) {
+  const SurfacePatchLookup lookup(bake.voxels, bake.samples, bake.patch_of_sample);
+  std::vector<glm::vec3> points, normals;
+  for (int i = 0; i < 40; ++i) {
+    const float t = static_cast<float>(i) / 39.0f;
+    points.emplace_back(-0.9f + 1.8f * t, 0.03f + 0.1f * t, 0.5f - t);
+    normals.emplace_back(0.0f, -1.0f, 0.0f);
+  }
+  fs.near_cells = 1.0f;
+  return build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid, points, normals,
+                            fs);
+}
+FinalGather gather_over_the_floor(const RayTracer& tracer, const BakeResult& bake, int rays) {
+  FinalGatherSettings fs;
+  fs.rays = rays;
+  return gather_over_the_floor(tracer, bake, fs);
+}
+
+// The product summed in double from the float rows: the independent
+// expectation both row forms are held against.
+std::vector<glm::dvec3> product_in_double(const FinalGather& g, const std::vector<glm::vec3>& patch,
+                                          const std::vector<glm::vec3>& sample,
+                                          const std::vector<glm::vec3>& near) {
+  std::vector<glm::dvec3> light;
+  for (const glm::vec3& v : patch) light.emplace_back(v);
+  std::vector<glm::dvec3> cluster(g.clusters, glm::dvec3(0.0));
+  for (std::size_t p = 0; p < g.patches; ++p)
+    cluster[g.cluster_of_patch[p]] +=
+        static_cast<double>(g.cluster_share[p]) * glm::dvec3(patch[p]);
+  light.insert(light.end(), cluster.begin(), cluster.end());
+  for (const glm::vec3& v : sample) light.emplace_back(v);
+  for (const glm::vec3& v : near) light.emplace_back(v);
+  std::vector<glm::dvec3> out(g.points(), glm::dvec3(0.0));
+  for (std::size_t i = 0; i < g.points(); ++i)
+    for (std::uint64_t k = g.first[i]; k < g.first[i + 1]; ++k)
+      out[i] += static_cast<double>(g.weight[k]) * light[g.source[k]];
+  return out;
+}
+
+TEST(FinalGather, CompactRowsHoldTheFloatRowsExactly) {
+  const Scene scene = shaded_floor();
+  const BakeResult bake = bake_of(scene, 8);
+  const RayTracer tracer(scene);
+  for (const int rays : {256, 300}) {
+    FinalGather g = gather_over_the_floor(tracer, bake, rays);
+    g.validate("floor");
+    ASSERT_GT(g.near.size(), 0u);
+    ASSERT_EQ(g.compact.size(), g.source.size()) << rays;
+    EXPECT_EQ(g.compact_rays, rays);
+    // Each entry decodes to its source and to a ray count whose share is
+    // the float weight to the last bit.
+    const std::uint32_t mask = (1u << g.compact_count_bits) - 1u;
+    for (std::size_t k = 0; k < g.source.size(); ++k) {
+      EXPECT_EQ(g.compact[k] >> g.compact_count_bits, g.source[k]);
+      EXPECT_EQ(static_cast<float>(static_cast<double>(g.compact[k] & mask) / rays), g.weight[k]);
+    }
+    // Rows read from a bake carry no ray count: the smallest weight gives it.
+    FinalGather read = g;
+    read.rays = 0;
+    read.compact_rows();
+    EXPECT_EQ(read.compact, g.compact);
+    EXPECT_EQ(read.compact_rays, rays);
+  }
+}
+
+TEST(FinalGather, CompactAndFloatRowsGiveTheSameProduct) {
+  const Scene scene = shaded_floor();
+  const BakeResult bake = bake_of(scene, 8);
+  const RayTracer tracer(scene);
+  FinalGather g = gather_over_the_floor(tracer, bake, 256);
+  ASSERT_FALSE(g.compact.empty());
+  // Light that differs from source to source, so a misread entry shows.
+  std::vector<glm::vec3> patch(g.patches), sample(g.samples), near(g.near.size());
+  for (std::size_t i = 0; i < patch.size(); ++i)
+    patch[i] = glm::vec3(1.0f + 0.01f * static_cast<float>(i), 0.5f, 2.0f);
+  for (std::size_t i = 0; i < sample.size(); ++i)
+    sample[i] = glm::vec3(0.3f, 1.0f + 0.002f * static_cast<float>(i), 0.7f);
+  for (std::size_t i = 0; i < near.size(); ++i)
+    near[i] = glm::vec3(2.0f, 0.1f, 0.5f + 0.001f * static_cast<float>(i));
+  const std::vector<glm::dvec3> expected = product_in_double(g, patch, sample, near);
+  std::vector<glm::vec3> compact, plain;
+  g.irradiance(patch, sample, near, compact);
+  // Rows that do not fit the compact form (a weight that is no whole number
+  // of rays) fall back to the float rows.
+  FinalGather uneven = g;
+  uneven.weight[0] *= 0.999f;
+  uneven.compact_rows();
+  EXPECT_TRUE(uneven.compact.empty());
+  g.compact.clear();
+  g.irradiance(patch, sample, near, plain);
+  // Float sums of up to a few hundred terms: a few float roundings each.
+  for (std::size_t i = 0; i < expected.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double tolerance = 1e-5 * std::abs(expected[i][c]) + 1e-7;
+      EXPECT_NEAR(compact[i][c], expected[i][c], tolerance) << i;
+      EXPECT_NEAR(plain[i][c], expected[i][c], tolerance) << i;
+    }
+}
+
+TEST(FinalGather, NearSourcesLitInBatchesGetEachPointsOwnLight) {
+  const Scene scene = shaded_floor();
+  const BakeResult bake = bake_of(scene, 8);
+  const RayTracer tracer(scene);
+  const FinalGather g = gather_over_the_floor(tracer, bake, 256);
+  ASSERT_GT(g.near.size(), 300u);  // more than one batch
+  std::vector<glm::vec3> indirect(bake.patches.size());
+  for (std::size_t p = 0; p < indirect.size(); ++p)
+    indirect[p] = glm::vec3(0.01f * static_cast<float>(p), 0.02f, 0.03f);
+  const std::vector<glm::vec3> batched = near_exitance(g.near, &tracer, scene.lights, {}, indirect);
+  const float eps = 10.0f * tracer.epsilon();
+  std::size_t lit = 0, dark = 0;
+  for (std::size_t i = 0; i < g.near.size(); ++i) {
+    const glm::vec3 e = irradiance_at(tracer, g.near.position[i] + eps * g.near.normal[i],
+                                      g.near.normal[i], scene.lights, {}, 4, i);
+    const glm::vec3 alone = g.near.albedo[i] * e + indirect[g.near.patch[i]];
+    EXPECT_EQ(batched[i], alone) << i;
+    const glm::vec3 sun = irradiance_at(tracer, g.near.position[i] + eps * g.near.normal[i],
+                                        g.near.normal[i], {scene.lights[0]}, {}, 4, i);
+    (glm::dot(sun, glm::vec3(1.0f)) > 0.0f ? lit : dark)++;
+  }
+  // Both sides of the sun shadow's edge are there.
+  EXPECT_GT(lit, 0u);
+  EXPECT_GT(dark, 0u);
+}
+
+TEST(FinalGather, NearSourcesWithFewRaysGoBackToTheirSurface) {
+  // The same rays with every near source kept and with those under three
+  // rays folded back: each point keeps its rays (its total), every kept
+  // near source holds at least three, and fewer are left to light.
+  const Scene scene = shaded_floor();
+  const BakeResult bake = bake_of(scene, 8);
+  const RayTracer tracer(scene);
+  FinalGatherSettings all, folded;
+  all.near_min_rays = 1;
+  folded.near_min_rays = 3;
+  const FinalGather a = gather_over_the_floor(tracer, bake, all);
+  const FinalGather b = gather_over_the_floor(tracer, bake, folded);
+  b.validate("folded");
+  EXPECT_LT(b.near.size(), a.near.size());
+  EXPECT_GT(b.near.size(), 0u);
+  EXPECT_LT(b.rays_near, a.rays_near);
+  EXPECT_EQ(b.rays_landed, a.rays_landed);
+  const std::size_t near_base = b.patches + b.clusters + b.samples;
+  std::vector<long> near_rays(b.near.size(), 0);
+  for (std::size_t i = 0; i < b.points(); ++i) {
+    long ta = 0, tb = 0;
+    for (std::uint64_t k = a.first[i]; k < a.first[i + 1]; ++k)
+      ta += std::lround(a.weight[k] * a.rays);
+    for (std::uint64_t k = b.first[i]; k < b.first[i + 1]; ++k) {
+      const long hits = std::lround(b.weight[k] * b.rays);
+      tb += hits;
+      if (b.source[k] >= near_base) near_rays[b.source[k] - near_base] += hits;
+    }
+    EXPECT_EQ(ta, tb) << i;
+  }
+  for (std::size_t j = 0; j < near_rays.size(); ++j) EXPECT_GE(near_rays[j], 3) << j;
+  // The folded rows still fit the compact form.
+  EXPECT_EQ(b.compact.size(), b.source.size());
 }
 
 }  // namespace

@@ -31,6 +31,7 @@ const std::map<std::string, Expected>& expected() {
       {"closure_rays", {"--closure-rays", BakeStage::Patches}},
       {"final_gather_rays", {"--final-gather-rays", BakeStage::Patches}},
       {"final_gather_near", {"--final-gather-near", BakeStage::Patches}},
+      {"final_gather_near_min_rays", {"--final-gather-near-min-rays", BakeStage::Patches}},
       {"seed", {"--seed", BakeStage::Geometry}},
       {"bounces", {"--bounces", BakeStage::Transport}},
       {"gemm", {"--gemm", BakeStage::Transport}},
@@ -138,7 +139,7 @@ TEST(SettingsTable, OutOfRangeValuesNameTheSetting) {
       expect_rejected(s, row.name);
     }
   }
-  EXPECT_EQ(rows_with_range, 12);
+  EXPECT_EQ(rows_with_range, 13);
   // Spot checks against the documented ranges.
   BakeSettings s;
   s.error_budget = 1.0;
