@@ -12,26 +12,6 @@ namespace bounce {
 
 namespace {
 
-// A spot light's cones, for the smoothstep between them (1 for other lights).
-struct SpotCone {
-  explicit SpotCone(const Light& light)
-      : spot(light.type == Light::Type::Spot),
-        axis(glm::normalize(light.direction)),
-        cos_inner(std::cos(glm::radians(light.spot_inner_deg))),
-        cos_outer(std::cos(glm::radians(light.spot_outer_deg))) {}
-  // For the unit direction from the light towards the receiver.
-  float factor(const glm::vec3& from_light_dir) const {
-    if (!spot) return 1.0f;
-    const float c = glm::dot(from_light_dir, axis);
-    const float t =
-        std::clamp((c - cos_outer) / std::max(1e-6f, cos_inner - cos_outer), 0.0f, 1.0f);
-    return t * t * (3.0f - 2.0f * t);
-  }
-  bool spot;
-  glm::vec3 axis;
-  float cos_inner, cos_outer;
-};
-
 // Whether the segment from `origin` to a point or spot light is free.
 bool sees_light(const RayTracer& tracer, const glm::vec3& origin, const Light& light) {
   return !tracer.occluded(origin, light.position - origin, 0.0f, 1.0f - 1e-4f);
@@ -217,15 +197,10 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
 
 LightReach::LightReach(const Light& light)
     : directional_(light.type == Light::Type::Directional),
-      spot_(light.type == Light::Type::Spot),
       position_(light.position),
-      power_(light.color * light.intensity) {
+      power_(light.color * light.intensity),
+      cone_(light) {
   if (directional_) to_light_ = -glm::normalize(light.direction);
-  if (spot_) {
-    axis_ = glm::normalize(light.direction);
-    cos_inner_ = std::cos(glm::radians(light.spot_inner_deg));
-    cos_outer_ = std::cos(glm::radians(light.spot_outer_deg));
-  }
 }
 
 glm::vec3 irradiance_at(const RayTracer& tracer, const glm::vec3& p, const glm::vec3& n,

@@ -67,6 +67,26 @@ struct UnshadowedLight {
   bool reaches = false;  // false: p faces away or lies outside a spot's cone
 };
 
+// A spot light's cones, for the smoothstep between them (1 for other lights).
+struct SpotCone {
+  explicit SpotCone(const Light& light)
+      : spot(light.type == Light::Type::Spot),
+        axis(glm::normalize(light.direction)),
+        cos_inner(std::cos(glm::radians(light.spot_inner_deg))),
+        cos_outer(std::cos(glm::radians(light.spot_outer_deg))) {}
+  // For the unit direction from the light towards the receiver.
+  float factor(const glm::vec3& from_light_dir) const {
+    if (!spot) return 1.0f;
+    const float c = glm::dot(from_light_dir, axis);
+    const float t =
+        std::clamp((c - cos_outer) / std::max(1e-6f, cos_inner - cos_outer), 0.0f, 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+  }
+  bool spot;
+  glm::vec3 axis;
+  float cos_inner, cos_outer;
+};
+
 class LightReach {
  public:
   explicit LightReach(const Light& light);
@@ -89,15 +109,8 @@ class LightReach {
     const glm::vec3 dir = d / std::sqrt(r2);
     const float cos_n = glm::dot(n, dir);
     if (!(cos_n > 0.0f)) return u;
-    float spot = 1.0f;
-    if (spot_) {
-      // Smoothstep between the outer and the inner cone.
-      const float c = glm::dot(-dir, axis_);
-      const float t =
-          std::clamp((c - cos_outer_) / std::max(1e-6f, cos_inner_ - cos_outer_), 0.0f, 1.0f);
-      spot = t * t * (3.0f - 2.0f * t);
-      if (!(spot > 0.0f)) return u;
-    }
+    const float spot = cone_.factor(-dir);
+    if (!(spot > 0.0f)) return u;
     // The segment to the light, stopping just short of it.
     u.ray = ShadowRay{origin, d, 0.0f, 1.0f - 1e-4f};
     u.value = power_ * spot * cos_n / r2;
@@ -106,9 +119,9 @@ class LightReach {
   }
 
  private:
-  bool directional_ = false, spot_ = false;
-  glm::vec3 to_light_{0.0f}, position_{0.0f}, axis_{0.0f}, power_{0.0f};
-  float cos_inner_ = 1.0f, cos_outer_ = 1.0f;
+  bool directional_ = false;
+  glm::vec3 to_light_{0.0f}, position_{0.0f}, power_{0.0f};
+  SpotCone cone_;
 };
 
 // b = albedo * E per patch and channel.

@@ -558,9 +558,9 @@ TEST(FinalGather, NearSourcesWithFewRaysGoBackToTheirSurface) {
   for (std::size_t i = 0; i < b.points(); ++i) {
     long ta = 0, tb = 0;
     for (std::uint64_t k = a.first[i]; k < a.first[i + 1]; ++k)
-      ta += std::lround(a.weight[k] * a.rays);
+      ta += std::lround(static_cast<double>(a.weight[k]) * a.rays);
     for (std::uint64_t k = b.first[i]; k < b.first[i + 1]; ++k) {
-      const long hits = std::lround(b.weight[k] * b.rays);
+      const long hits = std::lround(static_cast<double>(b.weight[k]) * b.rays);
       tb += hits;
       if (b.source[k] >= near_base) near_rays[b.source[k] - near_base] += hits;
     }

@@ -1,0 +1,281 @@
+// The final gather's work per frame: the light of its sample and near
+// sources, and the sparse product from every source's light to the points
+// (building the rows is final_gather.cpp).
+#include "runtime/final_gather.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "base/error.h"
+#include "runtime/direct_light.h"
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+namespace bounce {
+
+namespace {
+
+// A source's light, padded to 16 bytes.
+struct alignas(16) PaddedLight {
+  float c[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+};
+
+// sum_k term(k) over one row's entries [begin, end), times `scale`, where
+// term(k) is entry k's weight times its source's padded light.
+#if defined(__SSE2__)
+template <typename Term>
+glm::vec3 sum_row(Term term, std::uint64_t begin, std::uint64_t end, float scale) {
+  // Two sums, so that consecutive entries do not wait on each other's add.
+  __m128 e0 = _mm_setzero_ps(), e1 = _mm_setzero_ps();
+  std::uint64_t k = begin;
+  for (; k + 2 <= end; k += 2) {
+    e0 = _mm_add_ps(e0, _mm_mul_ps(_mm_set1_ps(term.weight(k)), _mm_load_ps(term.light(k))));
+    e1 =
+        _mm_add_ps(e1, _mm_mul_ps(_mm_set1_ps(term.weight(k + 1)), _mm_load_ps(term.light(k + 1))));
+  }
+  if (k < end)
+    e0 = _mm_add_ps(e0, _mm_mul_ps(_mm_set1_ps(term.weight(k)), _mm_load_ps(term.light(k))));
+  alignas(16) float e[4];
+  _mm_store_ps(e, _mm_mul_ps(_mm_set1_ps(scale), _mm_add_ps(e0, e1)));
+  return glm::vec3(e[0], e[1], e[2]);
+}
+#else
+template <typename Term>
+glm::vec3 sum_row(Term term, std::uint64_t begin, std::uint64_t end, float scale) {
+  glm::vec3 e(0.0f);
+  for (std::uint64_t k = begin; k < end; ++k) {
+    const float* l = term.light(k);
+    e += term.weight(k) * glm::vec3(l[0], l[1], l[2]);
+  }
+  return scale * e;
+}
+#endif
+
+// Float rows: a source index and a weight per entry.
+struct FloatEntries {
+  const PaddedLight* light_of;
+  const std::uint32_t* source;
+  const float* weights;
+  float weight(std::uint64_t k) const { return weights[k]; }
+  const float* light(std::uint64_t k) const { return light_of[source[k]].c; }
+};
+
+// Compact rows: the ray count in the low bits, the source above them; the
+// row's sum is scaled by 1 / rays once at the end.
+struct CompactEntries {
+  const PaddedLight* light_of;
+  const std::uint32_t* entry;
+  int count_bits;
+  std::uint32_t count_mask;
+  float weight(std::uint64_t k) const { return static_cast<float>(entry[k] & count_mask); }
+  const float* light(std::uint64_t k) const { return light_of[entry[k] >> count_bits].c; }
+};
+
+}  // namespace
+
+void FinalGather::compact_rows() {
+  compact.clear();
+  compact_count_bits = 0;
+  compact_rays = 0;
+  if (source.empty() || source.size() != weight.size()) return;
+  // The rays per point: the build's `rays`, or (rows read from a bake) the
+  // one a smallest weight of one ray gives.
+  int r = rays;
+  if (r <= 0) {
+    float smallest = 1.0f;
+    for (const float x : weight)
+      if (x > 0.0f) smallest = std::min(smallest, x);
+    const double guess = std::round(1.0 / static_cast<double>(smallest));
+    if (!(guess >= 1.0 && guess <= 65536.0)) return;
+    r = static_cast<int>(guess);
+  }
+  const int bits = std::bit_width(static_cast<unsigned>(r));
+  if (bits >= 32) return;
+  const std::uint64_t max_source = (std::uint64_t{1} << (32 - bits)) - 1;
+  const double per_ray = 1.0 / static_cast<double>(r);
+  std::vector<std::uint32_t> c(source.size());
+  for (std::size_t k = 0; k < source.size(); ++k) {
+    const double count = std::round(static_cast<double>(weight[k]) * r);
+    // The weight must be exactly what the build stores for that count.
+    if (!(count >= 0.0 && count <= r) || source[k] > max_source ||
+        static_cast<float>(per_ray * count) != weight[k])
+      return;
+    c[k] = source[k] << bits | static_cast<std::uint32_t>(count);
+  }
+  compact = std::move(c);
+  compact_count_bits = bits;
+  compact_rays = r;
+}
+
+void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
+                             std::vector<glm::vec3>& out) const {
+  if (samples > 0)
+    throw Error("final gather", "the gather reads samples: their light is needed too");
+  irradiance(patch_exitance, {}, out);
+}
+
+void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
+                             const std::vector<glm::vec3>& sample_exitance,
+                             std::vector<glm::vec3>& out) const {
+  if (near.size() > 0)
+    throw Error("final gather", "the gather reads near sources: their light is needed too");
+  irradiance(patch_exitance, sample_exitance, {}, out);
+}
+
+void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
+                             const std::vector<glm::vec3>& sample_exitance,
+                             const std::vector<glm::vec3>& near_exitance,
+                             std::vector<glm::vec3>& out) const {
+  if (near_exitance.size() != near.size())
+    throw Error("final gather", "light for " + std::to_string(near_exitance.size()) +
+                                    " near sources, the gather has " + std::to_string(near.size()));
+  if (patch_exitance.size() != patches)
+    throw Error("final gather", "light for " + std::to_string(patch_exitance.size()) +
+                                    " patches, the gather was made for " + std::to_string(patches));
+  if (samples > 0 && sample_exitance.size() != samples)
+    throw Error("final gather", "light for " + std::to_string(sample_exitance.size()) +
+                                    " samples, the gather was made for " + std::to_string(samples));
+  // The patches' light, then each cluster's area-weighted mean, then the
+  // samples', then the near sources', each padded to four floats: one
+  // 16-byte load then fetches a source's colour, and an entry costs one
+  // four-lane multiply-add. (Three separate floats made the compiler shuffle
+  // lanes for every entry: the product took three times as long as its
+  // memory traffic.) The buffer stays with the thread, so a frame does not
+  // page in megabytes of fresh memory.
+  const std::size_t sources = patches + clusters + samples + near.size();
+  thread_local std::vector<PaddedLight> light;
+  light.resize(sources);
+  const auto copy_padded = [](const std::vector<glm::vec3>& from, PaddedLight* to) {
+#pragma omp parallel for schedule(static, 4096)
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(from.size()); ++i) {
+      const glm::vec3& v = from[static_cast<std::size_t>(i)];
+      to[i] = PaddedLight{{v.x, v.y, v.z, 0.0f}};
+    }
+  };
+  copy_padded(patch_exitance, light.data());
+  std::fill(light.begin() + static_cast<std::ptrdiff_t>(patches),
+            light.begin() + static_cast<std::ptrdiff_t>(patches + clusters), PaddedLight{});
+  for (std::size_t p = 0; p < patches; ++p) {
+    PaddedLight& cl = light[patches + cluster_of_patch[p]];
+    for (int c = 0; c < 3; ++c) cl.c[c] += cluster_share[p] * patch_exitance[p][c];
+  }
+  if (samples > 0) copy_padded(sample_exitance, light.data() + patches + clusters);
+  copy_padded(near_exitance, light.data() + patches + clusters + samples);
+  const std::size_t n = points();
+  out.resize(n);
+  const auto sum_rows = [&](const auto& entries, float scale) {
+#pragma omp parallel for schedule(static, 1024)
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
+      const auto row = static_cast<std::size_t>(i);
+      out[row] = sum_row(entries, first[row], first[row + 1], scale);
+    }
+  };
+  if (compact.size() == source.size() && !compact.empty())
+    sum_rows(CompactEntries{light.data(), compact.data(), compact_count_bits,
+                            (1u << compact_count_bits) - 1u},
+             static_cast<float>(1.0 / compact_rays));
+  else
+    sum_rows(FloatEntries{light.data(), source.data(), weight.data()}, 1.0f);
+}
+
+std::vector<glm::vec3> sample_exitance(const SampleSet& samples, const PatchSet& patches,
+                                       const std::vector<glm::vec3>& sample_irradiance,
+                                       const std::vector<glm::vec3>& patch_indirect) {
+  std::vector<glm::vec3> out;
+  sample_exitance(samples, patches, sample_irradiance, patch_indirect, out);
+  return out;
+}
+
+void sample_exitance(const SampleSet& samples, const PatchSet& patches,
+                     const std::vector<glm::vec3>& sample_irradiance,
+                     const std::vector<glm::vec3>& patch_indirect, std::vector<glm::vec3>& out) {
+  const std::size_t n = samples.samples.size();
+  if (sample_irradiance.size() != n || patch_indirect.size() != patches.size())
+    throw Error("final gather", "one irradiance per sample and one T b per patch expected");
+  out.assign(n, glm::vec3(0.0f));
+  for (std::size_t p = 0; p < patches.size(); ++p)
+    for (std::uint32_t k = patches.member_first[p]; k < patches.member_first[p + 1]; ++k) {
+      const std::uint32_t s = patches.member_samples[k];
+      out[s] = samples.samples[s].albedo * sample_irradiance[s] + patch_indirect[p];
+    }
+}
+
+std::vector<glm::vec3> near_exitance(const NearSources& near, const RayTracer* tracer,
+                                     const std::vector<Light>& lights,
+                                     const std::vector<AreaLight>& area,
+                                     const std::vector<glm::vec3>& patch_indirect) {
+  std::vector<glm::vec3> out;
+  near_exitance(near, tracer, lights, area, patch_indirect, out);
+  return out;
+}
+
+void near_exitance(const NearSources& near, const RayTracer* tracer,
+                   const std::vector<Light>& lights, const std::vector<AreaLight>& area,
+                   const std::vector<glm::vec3>& patch_indirect, std::vector<glm::vec3>& out) {
+  const std::size_t n = near.size();
+  // Every source is written below: resizing keeps a reused buffer's pages.
+  out.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (near.patch[i] >= patch_indirect.size())
+      throw Error("final gather", "near source " + std::to_string(i) + " names patch " +
+                                      std::to_string(near.patch[i]) + " of " +
+                                      std::to_string(patch_indirect.size()));
+  const float eps = tracer ? 10.0f * tracer->epsilon() : 0.0f;
+  // The shadow rays to one light go to Embree in batches of a few hundred
+  // (its stream API): on Sponza's 421,838 near sources and the sun 1.5
+  // times as fast as one rtcOccluded1 call per ray. (Marking the batches
+  // coherent, or sending them as packets of 8 or 16, measured no faster.)
+  // Each source sums its lights in order, then the area lights, as
+  // irradiance_at() does, so the light is the same to the last bit.
+  constexpr std::size_t kBatch = 256;
+  const std::size_t batches = (n + kBatch - 1) / kBatch;
+  std::vector<LightReach> reach;
+  for (const Light& light : lights) reach.emplace_back(light);
+#pragma omp parallel
+  {
+    std::vector<ShadowRay> rays;
+    std::vector<glm::vec3> value, e;
+    std::vector<std::uint32_t> who;
+    std::vector<std::uint8_t> blocked;
+    rays.reserve(kBatch);
+    value.reserve(kBatch);
+    who.reserve(kBatch);
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t bi = 0; bi < static_cast<std::int64_t>(batches); ++bi) {
+      const std::size_t lo = static_cast<std::size_t>(bi) * kBatch, hi = std::min(n, lo + kBatch);
+      e.assign(hi - lo, glm::vec3(0.0f));
+      if (tracer) {
+        for (const LightReach& light : reach) {
+          rays.clear();
+          value.clear();
+          who.clear();
+          for (std::size_t i = lo; i < hi; ++i) {
+            // Lifted once here and once more by the light's own offset, as
+            // irradiance_at() lifts the point it is given.
+            const glm::vec3 at = near.position[i] + eps * near.normal[i];
+            const UnshadowedLight u = light.at(at, near.normal[i], eps);
+            if (!u.reaches) continue;
+            rays.push_back(u.ray);
+            value.push_back(u.value);
+            who.push_back(static_cast<std::uint32_t>(i - lo));
+          }
+          blocked.resize(rays.size());
+          tracer->occluded(rays.data(), rays.size(), blocked.data());
+          for (std::size_t k = 0; k < rays.size(); ++k)
+            if (!blocked[k]) e[who[k]] += value[k];
+        }
+        for (const AreaLight& light : area)
+          for (std::size_t i = lo; i < hi; ++i)
+            e[i - lo] += area_light_irradiance(*tracer, near.position[i] + eps * near.normal[i],
+                                               near.normal[i], light, 4, i);
+      }
+      for (std::size_t i = lo; i < hi; ++i)
+        out[i] = near.albedo[i] * e[i - lo] + patch_indirect[near.patch[i]];
+    }
+  }
+}
+
+}  // namespace bounce
