@@ -11,6 +11,7 @@
 #include "runtime/compressed_transport.h"
 #include "runtime/compressed_transport_cl.h"
 #include "runtime/dense_transport.h"
+#include "runtime/gather_row_loops.h"
 #include "transport/text_format.h"
 
 namespace bounce {
@@ -212,8 +213,27 @@ RuntimeBench run_runtime_bench(const CompressedMatrix& m, const std::array<int, 
           gather->irradiance(x, sample_light, near_light, y);
         },
         b, bench.repeats, out, bench.gather);
-    bench.gather.max_rel_diff =
-        max_rel_diff(out, gather_in_double(*gather, b, sample_light, near_light));
+    const std::vector<glm::vec3> in_double = gather_in_double(*gather, b, sample_light, near_light);
+    bench.gather.max_rel_diff = max_rel_diff(out, in_double);
+    bench.gather.what += " (" + (bench.gather_compact ? gather->compact_loop : "float rows") + ")";
+    bench.gather.default_loop = true;
+    if (bench.gather_compact) {
+      // Every loop this CPU has, on a copy of the rows naming it.
+      FinalGather each = *gather;
+      for (const gather_loops::CompactLoop& loop : gather_loops::compact_loops()) {
+        each.compact_loop = loop.name;
+        RuntimeBenchEntry e = bench.gather;
+        e.what = "final gather, " + loop.name + " loop";
+        e.default_loop = loop.name == gather->compact_loop;
+        time_product(
+            [&each, &sample_light, &near_light](const auto& x, auto& y) {
+              each.irradiance(x, sample_light, near_light, y);
+            },
+            b, bench.repeats, out, e);
+        e.max_rel_diff = max_rel_diff(out, in_double);
+        bench.gather_loops.push_back(e);
+      }
+    }
   }
   bench.stream_gb_per_s = measure_read_bandwidth();
   return bench;
@@ -261,6 +281,12 @@ std::string runtime_bench_table(const RuntimeBench& bench) {
                      g.what.c_str(), g.best_ms, g.median_ms,
                      static_cast<double>(g.bytes) / (1024.0 * 1024.0), g.gb_per_s,
                      100.0 * of_memory, g.max_rel_diff);
+    for (const RuntimeBenchEntry& l : bench.gather_loops)
+      s += text_format(
+          "  %-*s %10.3f %10.3f %10.1f %8.1f %6.0f%%         - %9.2e%s\n", w, l.what.c_str(),
+          l.best_ms, l.median_ms, static_cast<double>(l.bytes) / (1024.0 * 1024.0), l.gb_per_s,
+          bench.stream_gb_per_s > 0.0 ? 100.0 * l.gb_per_s / bench.stream_gb_per_s : 0.0,
+          l.max_rel_diff, l.default_loop ? "  (the loop the product chose)" : "");
   }
   // What the default C++ loop is to reach: >= 8x dense sgemv, and within 2x
   // of the time its bytes take at the measured bandwidth.

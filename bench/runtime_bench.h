@@ -46,6 +46,9 @@ struct RuntimeBench {
   RuntimeBenchEntry gather;
   std::size_t gather_points = 0, gather_entries = 0;
   bool gather_compact = false;  // the rows in 4-byte entries (FinalGather::compact)
+  // Compact rows: the gather again with each loop this CPU has (default_loop:
+  // the one FinalGather::compact_rows() timed fastest and the product runs).
+  std::vector<RuntimeBenchEntry> gather_loops;
 };
 
 // Each path: one warm-up, then `repeats` timed products of the same random

@@ -68,8 +68,16 @@ void run(const RuntimeBenchOptions& opt) {
                          {"gb_per_s", e.gb_per_s},
                          {"max_rel_diff", e.max_rel_diff}});
     nlohmann::json final_gather = nullptr;
+    nlohmann::json gather_loops = nlohmann::json::array();
+    for (const RuntimeBenchEntry& e : bench.gather_loops)
+      gather_loops.push_back({{"what", e.what},
+                              {"chosen", e.default_loop},
+                              {"best_ms", e.best_ms},
+                              {"median_ms", e.median_ms},
+                              {"max_rel_diff", e.max_rel_diff}});
     if (bench.gather.available)
       final_gather = {{"vertices", bench.gather_points},
+                      {"loops", gather_loops},
                       {"entries", bench.gather_entries},
                       {"entry_bytes", bench.gather_compact ? 4 : 8},
                       {"best_ms", bench.gather.best_ms},

@@ -146,8 +146,12 @@ struct FinalGather {
   // bits left); the product then reads `source` and `weight`.
   std::vector<std::uint32_t> compact;
   int compact_count_bits = 0, compact_rays = 0;
+  // The loop that sums the compact rows ("sse2", "avx2", "avx512"; see
+  // runtime/gather_row_loops.h): the fastest of those this CPU has, timed on
+  // these rows by compact_rows(). A caller may name another this CPU has.
+  std::string compact_loop;
   // Fills `compact` from the rows (after building or reading them, or after
-  // any change to them).
+  // any change to them) and picks `compact_loop`.
   void compact_rows();
 
   std::size_t points() const { return first.empty() ? 0 : first.size() - 1; }

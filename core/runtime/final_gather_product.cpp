@@ -7,77 +7,83 @@
 #include <bit>
 #include <cmath>
 
+#include <chrono>
+#include <limits>
+
 #include "base/error.h"
 #include "runtime/direct_light.h"
-
-#if defined(__SSE2__)
-#include <immintrin.h>
-#endif
+#include "runtime/gather_row_loops.h"
 
 namespace bounce {
 
 namespace {
 
-// A source's light, padded to 16 bytes.
-struct alignas(16) PaddedLight {
-  float c[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-};
+using gather_loops::PaddedLight;
 
-// sum_k term(k) over one row's entries [begin, end), times `scale`, where
-// term(k) is entry k's weight times its source's padded light.
-#if defined(__SSE2__)
-template <typename Term>
-glm::vec3 sum_row(Term term, std::uint64_t begin, std::uint64_t end, float scale) {
-  // Two sums, so that consecutive entries do not wait on each other's add.
-  __m128 e0 = _mm_setzero_ps(), e1 = _mm_setzero_ps();
-  std::uint64_t k = begin;
-  for (; k + 2 <= end; k += 2) {
-    e0 = _mm_add_ps(e0, _mm_mul_ps(_mm_set1_ps(term.weight(k)), _mm_load_ps(term.light(k))));
-    e1 =
-        _mm_add_ps(e1, _mm_mul_ps(_mm_set1_ps(term.weight(k + 1)), _mm_load_ps(term.light(k + 1))));
+// The padded light of every source the rows read: the patches', then each
+// cluster's area-weighted mean, then the samples', then the near sources'.
+void pad_light(const FinalGather& g, const std::vector<glm::vec3>& patch_exitance,
+               const std::vector<glm::vec3>& sample_exitance,
+               const std::vector<glm::vec3>& near_exitance, std::vector<PaddedLight>& light) {
+  const std::size_t patches = g.patches, clusters = g.clusters, samples = g.samples;
+  light.resize(patches + clusters + samples + g.near.size());
+  const auto copy_padded = [](const std::vector<glm::vec3>& from, PaddedLight* to) {
+#pragma omp parallel for schedule(static, 4096)
+    for (std::int64_t i = 0; i < static_cast<std::int64_t>(from.size()); ++i) {
+      const glm::vec3& v = from[static_cast<std::size_t>(i)];
+      to[i] = PaddedLight{{v.x, v.y, v.z, 0.0f}};
+    }
+  };
+  copy_padded(patch_exitance, light.data());
+  std::fill(light.begin() + static_cast<std::ptrdiff_t>(patches),
+            light.begin() + static_cast<std::ptrdiff_t>(patches + clusters), PaddedLight{});
+  for (std::size_t p = 0; p < patches; ++p) {
+    PaddedLight& cl = light[patches + g.cluster_of_patch[p]];
+    for (int c = 0; c < 3; ++c) cl.c[c] += g.cluster_share[p] * patch_exitance[p][c];
   }
-  if (k < end)
-    e0 = _mm_add_ps(e0, _mm_mul_ps(_mm_set1_ps(term.weight(k)), _mm_load_ps(term.light(k))));
-  alignas(16) float e[4];
-  _mm_store_ps(e, _mm_mul_ps(_mm_set1_ps(scale), _mm_add_ps(e0, e1)));
-  return glm::vec3(e[0], e[1], e[2]);
+  if (samples > 0) copy_padded(sample_exitance, light.data() + patches + clusters);
+  copy_padded(near_exitance, light.data() + patches + clusters + samples);
 }
-#else
-template <typename Term>
-glm::vec3 sum_row(Term term, std::uint64_t begin, std::uint64_t end, float scale) {
-  glm::vec3 e(0.0f);
-  for (std::uint64_t k = begin; k < end; ++k) {
-    const float* l = term.light(k);
-    e += term.weight(k) * glm::vec3(l[0], l[1], l[2]);
-  }
-  return scale * e;
+
+gather_loops::CompactRows compact_rows_of(const FinalGather& g,
+                                          const std::vector<PaddedLight>& light) {
+  return {light.data(), g.first.data(), g.compact.data(), g.compact_count_bits,
+          static_cast<float>(1.0 / g.compact_rays)};
 }
-#endif
 
-// Float rows: a source index and a weight per entry.
-struct FloatEntries {
-  const PaddedLight* light_of;
-  const std::uint32_t* source;
-  const float* weights;
-  float weight(std::uint64_t k) const { return weights[k]; }
-  const float* light(std::uint64_t k) const { return light_of[source[k]].c; }
-};
-
-// Compact rows: the ray count in the low bits, the source above them; the
-// row's sum is scaled by 1 / rays once at the end.
-struct CompactEntries {
-  const PaddedLight* light_of;
-  const std::uint32_t* entry;
-  int count_bits;
-  std::uint32_t count_mask;
-  float weight(std::uint64_t k) const { return static_cast<float>(entry[k] & count_mask); }
-  const float* light(std::uint64_t k) const { return light_of[entry[k] >> count_bits].c; }
-};
+// Which compact loop sums these rows fastest: each runs the whole product
+// once to warm its caches, then three times timed, and the fastest time
+// counts. Which is fastest depends on the CPU (how it splits wide
+// instructions, how many loads it issues a cycle) more than on its feature
+// flags, so it is measured on the rows themselves.
+std::string fastest_compact_loop(const FinalGather& g) {
+  const std::vector<gather_loops::CompactLoop> loops = gather_loops::compact_loops();
+  if (loops.size() == 1) return loops.front().name;
+  std::vector<PaddedLight> light(g.patches + g.clusters + g.samples + g.near.size(),
+                                 PaddedLight{{1.0f, 1.0f, 1.0f, 0.0f}});
+  const gather_loops::CompactRows rows = compact_rows_of(g, light);
+  std::vector<glm::vec3> out(g.points());
+  using Clock = std::chrono::steady_clock;
+  std::string best_name;
+  double best = std::numeric_limits<double>::infinity();
+  for (const gather_loops::CompactLoop& loop : loops)
+    for (int run = 0; run < 4; ++run) {
+      const auto start = Clock::now();
+      gather_loops::sum_compact_rows(loop, rows, g.points(), out.data());
+      const double t = std::chrono::duration<double>(Clock::now() - start).count();
+      if (run > 0 && t < best) {
+        best = t;
+        best_name = loop.name;
+      }
+    }
+  return best_name;
+}
 
 }  // namespace
 
 void FinalGather::compact_rows() {
   compact.clear();
+  compact_loop.clear();
   compact_count_bits = 0;
   compact_rays = 0;
   if (source.empty() || source.size() != weight.size()) return;
@@ -108,6 +114,7 @@ void FinalGather::compact_rows() {
   compact = std::move(c);
   compact_count_bits = bits;
   compact_rays = r;
+  compact_loop = fastest_compact_loop(*this);
 }
 
 void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
@@ -138,47 +145,28 @@ void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
   if (samples > 0 && sample_exitance.size() != samples)
     throw Error("final gather", "light for " + std::to_string(sample_exitance.size()) +
                                     " samples, the gather was made for " + std::to_string(samples));
-  // The patches' light, then each cluster's area-weighted mean, then the
-  // samples', then the near sources', each padded to four floats: one
-  // 16-byte load then fetches a source's colour, and an entry costs one
-  // four-lane multiply-add. (Three separate floats made the compiler shuffle
-  // lanes for every entry: the product took three times as long as its
-  // memory traffic.) The buffer stays with the thread, so a frame does not
-  // page in megabytes of fresh memory.
-  const std::size_t sources = patches + clusters + samples + near.size();
+  // Each source's light padded to four floats: one 16-byte load then
+  // fetches its colour, and an entry costs one four-lane multiply-add.
+  // (Three separate floats made the compiler shuffle lanes for every entry:
+  // the product took three times as long as its memory traffic.) The buffer
+  // stays with the thread, so a frame does not page in megabytes of fresh
+  // memory.
   thread_local std::vector<PaddedLight> light;
-  light.resize(sources);
-  const auto copy_padded = [](const std::vector<glm::vec3>& from, PaddedLight* to) {
-#pragma omp parallel for schedule(static, 4096)
-    for (std::int64_t i = 0; i < static_cast<std::int64_t>(from.size()); ++i) {
-      const glm::vec3& v = from[static_cast<std::size_t>(i)];
-      to[i] = PaddedLight{{v.x, v.y, v.z, 0.0f}};
-    }
-  };
-  copy_padded(patch_exitance, light.data());
-  std::fill(light.begin() + static_cast<std::ptrdiff_t>(patches),
-            light.begin() + static_cast<std::ptrdiff_t>(patches + clusters), PaddedLight{});
-  for (std::size_t p = 0; p < patches; ++p) {
-    PaddedLight& cl = light[patches + cluster_of_patch[p]];
-    for (int c = 0; c < 3; ++c) cl.c[c] += cluster_share[p] * patch_exitance[p][c];
-  }
-  if (samples > 0) copy_padded(sample_exitance, light.data() + patches + clusters);
-  copy_padded(near_exitance, light.data() + patches + clusters + samples);
+  pad_light(*this, patch_exitance, sample_exitance, near_exitance, light);
   const std::size_t n = points();
   out.resize(n);
-  const auto sum_rows = [&](const auto& entries, float scale) {
+  if (compact.size() == source.size() && !compact.empty()) {
+    gather_loops::sum_compact_rows(
+        gather_loops::compact_loop(compact_loop.empty() ? "sse2" : compact_loop),
+        compact_rows_of(*this, light), n, out.data());
+    return;
+  }
+  const gather_loops::FloatEntries entries{light.data(), source.data(), weight.data()};
 #pragma omp parallel for schedule(static, 1024)
-    for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
-      const auto row = static_cast<std::size_t>(i);
-      out[row] = sum_row(entries, first[row], first[row + 1], scale);
-    }
-  };
-  if (compact.size() == source.size() && !compact.empty())
-    sum_rows(CompactEntries{light.data(), compact.data(), compact_count_bits,
-                            (1u << compact_count_bits) - 1u},
-             static_cast<float>(1.0 / compact_rays));
-  else
-    sum_rows(FloatEntries{light.data(), source.data(), weight.data()}, 1.0f);
+  for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
+    const auto row = static_cast<std::size_t>(i);
+    out[row] = gather_loops::sum_row(entries, first[row], first[row + 1], 1.0f);
+  }
 }
 
 std::vector<glm::vec3> sample_exitance(const SampleSet& samples, const PatchSet& patches,

@@ -5,6 +5,7 @@
 // batches get the light irradiance_at() gives each alone.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -19,6 +20,7 @@
 #include "reference/path_tracer.h"
 #include "runtime/direct_light.h"
 #include "runtime/final_gather.h"
+#include "runtime/gather_row_loops.h"
 #include "runtime/mesh_transfer.h"
 #include "test_scenes.h"
 
@@ -508,6 +510,66 @@ TEST(FinalGather, CompactAndFloatRowsGiveTheSameProduct) {
       EXPECT_NEAR(compact[i][c], expected[i][c], tolerance) << i;
       EXPECT_NEAR(plain[i][c], expected[i][c], tolerance) << i;
     }
+}
+
+// Rows of every length from 0 to 200 entries (so that each wide loop runs
+// its full vectors, its half vector and its one-by-one rest), ray counts of
+// 1 to 256 of 256 rays, sources spread over a million padded lights.
+FinalGather long_random_rows(std::size_t patches, std::size_t near, std::uint64_t seed) {
+  Rng rng(seed, 0);
+  FinalGather g;
+  g.patches = patches;
+  g.clusters = 1;
+  g.cluster_of_patch.assign(patches, 0);
+  g.cluster_share.assign(patches, 1.0f / static_cast<float>(patches));
+  g.near.position.assign(near, glm::vec3(0.0f));
+  g.near.normal.assign(near, glm::vec3(0.0f, 1.0f, 0.0f));
+  g.near.albedo.assign(near, glm::vec3(0.5f));
+  g.near.patch.assign(near, 0);
+  g.rays = 256;
+  g.first.push_back(0);
+  const std::size_t sources = patches + 1 + near;
+  for (std::size_t row = 0; row <= 200; ++row) {
+    for (std::size_t k = 0; k < row; ++k) {
+      const auto pick = static_cast<std::size_t>(rng.next() % sources);
+      g.source.push_back(static_cast<std::uint32_t>(pick));
+      const int count = 1 + static_cast<int>(rng.uniform() * 255.0f);
+      g.weight.push_back(static_cast<float>(static_cast<double>(count) / 256.0));
+    }
+    g.first.push_back(g.source.size());
+  }
+  return g;
+}
+
+TEST(FinalGather, EveryRowLoopGivesTheProductInDouble) {
+  FinalGather g = long_random_rows(5000, 1000000, 7);
+  g.compact_rows();
+  ASSERT_EQ(g.compact.size(), g.source.size());
+  Rng rng(11, 0);
+  std::vector<glm::vec3> patch(g.patches), near(g.near.size());
+  for (glm::vec3& v : patch) v = glm::vec3(rng.uniform(), rng.uniform(), rng.uniform());
+  for (glm::vec3& v : near) v = glm::vec3(rng.uniform(), rng.uniform(), 4.0f * rng.uniform());
+  const std::vector<glm::dvec3> expected = product_in_double(g, patch, {}, near);
+  // The loop the product picked is one this CPU has.
+  bool known = false;
+  for (const gather_loops::CompactLoop& loop : gather_loops::compact_loops())
+    known = known || loop.name == g.compact_loop;
+  EXPECT_TRUE(known) << g.compact_loop;
+  for (const gather_loops::CompactLoop& loop : gather_loops::compact_loops()) {
+    g.compact_loop = loop.name;
+    std::vector<glm::vec3> out;
+    g.irradiance(patch, {}, near, out);
+    ASSERT_EQ(out.size(), expected.size());
+    // Up to 200 positive terms summed in float: a relative error of a few
+    // hundred float epsilons at most.
+    for (std::size_t i = 0; i < expected.size(); ++i)
+      for (int c = 0; c < 3; ++c)
+        ASSERT_NEAR(out[i][c], expected[i][c], 2e-5 * expected[i][c] + 1e-7)
+            << loop.name << ", row " << i << ", channel " << c;
+  }
+  g.compact_loop = "no such loop";
+  std::vector<glm::vec3> out;
+  EXPECT_THROW(g.irradiance(patch, {}, near, out), Error);
 }
 
 TEST(FinalGather, NearSourcesLitInBatchesGetEachPointsOwnLight) {
