@@ -37,7 +37,10 @@ SettingsPanel::SettingsPanel(QWidget* parent)
       kept_mode_box_(new QComboBox(this)),
       kept_box_(new QDoubleSpinBox(this)),
       budget_box_(new QDoubleSpinBox(this)),
-      size_limit_box_(new QDoubleSpinBox(this)) {
+      size_limit_box_(new QDoubleSpinBox(this)),
+      gather_rays_box_(new QSpinBox(this)),
+      near_box_(new QDoubleSpinBox(this)),
+      near_min_rays_box_(new QSpinBox(this)) {
   grid_box_->addItems({tr("Scene's own"), tr("Voxel size"), tr("Total patches")});
   grid_box_->setToolTip(
       tr("How fine the patch grid is: as the scene file suggests, by voxel size, or by the "
@@ -59,6 +62,14 @@ SettingsPanel::SettingsPanel(QWidget* parent)
   add_control("kept_fraction", kept_box_);
   add_control("error_budget", budget_box_);
   add_control("size_limit", size_limit_box_);
+  // The final gather's settings, last: they decide how sharp the lit mesh
+  // is and how long every light move takes in the preview.
+  gather_rays_box_->setSingleStep(64);
+  near_box_->setDecimals(3);
+  near_box_->setSingleStep(0.05);
+  add_control("final_gather_rays", gather_rays_box_);
+  add_control("final_gather_near", near_box_);
+  add_control("final_gather_near_min_rays", near_min_rays_box_);
   // Where the spin boxes start when the setting is left to the scene or the codec.
   voxel_box_->setValue(BakeSettings::kDefaultVoxelResolution);
   patches_total_box_->setValue(2048);
@@ -66,6 +77,10 @@ SettingsPanel::SettingsPanel(QWidget* parent)
   kept_box_->setValue(kPaperKeptFraction);
   budget_box_->setValue(BakeSettings::kDefaultErrorBudget);
   size_limit_box_->setValue(BakeSettings::kDefaultSizeLimit);
+  const BakeSettings defaults;
+  gather_rays_box_->setValue(defaults.final_gather_rays);
+  near_box_->setValue(defaults.final_gather_near);
+  near_min_rays_box_->setValue(defaults.final_gather_near_min_rays);
   kept_mode_box_->addItems({tr("from error budget"), tr("fixed share")});
   kept_mode_box_->setToolTip(
       tr("Which of the matrix's largest values are kept exactly: as few as meet the error "
@@ -84,8 +99,16 @@ SettingsPanel::SettingsPanel(QWidget* parent)
       update_enabled();
       emit changed();
     });
-  for (QSpinBox* box : {voxel_box_, patches_total_box_, per_voxel_box_})
+  for (QSpinBox* box : {voxel_box_, patches_total_box_, per_voxel_box_, near_min_rays_box_})
     connect(box, qOverload<int>(&QSpinBox::valueChanged), this, &SettingsPanel::changed);
+  connect(gather_rays_box_, qOverload<int>(&QSpinBox::valueChanged), this, [this](int) {
+    update_enabled();
+    emit changed();
+  });
+  connect(near_box_, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this](double) {
+    update_enabled();
+    emit changed();
+  });
   for (QDoubleSpinBox* box : {kept_box_, budget_box_, size_limit_box_})
     connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, &SettingsPanel::changed);
   update_enabled();
@@ -147,6 +170,10 @@ void SettingsPanel::update_enabled() {
   budget_box_->setEnabled(compressed && !fixed);
   // The size limit bounds the budget's search; a fixed share has none.
   size_limit_box_->setEnabled(compressed && !fixed);
+  // Near sources are part of the final gather; their threshold needs some.
+  const bool gather = gather_rays_box_->value() > 0;
+  near_box_->setEnabled(gather);
+  near_min_rays_box_->setEnabled(gather && near_box_->value() > 0.0);
 }
 
 BakeSettings SettingsPanel::settings() const {

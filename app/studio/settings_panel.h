@@ -65,6 +65,9 @@ class SettingsPanel : public QWidget {
   QDoubleSpinBox* kept_box_;
   QDoubleSpinBox* budget_box_;
   QDoubleSpinBox* size_limit_box_;
+  QSpinBox* gather_rays_box_;
+  QDoubleSpinBox* near_box_;
+  QSpinBox* near_min_rays_box_;
   // Every control that shows one setting, in the settings table's order.
   std::vector<std::pair<const SettingRow*, QWidget*>> controls_;
 };

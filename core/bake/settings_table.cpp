@@ -244,6 +244,10 @@ std::vector<SettingRow> make_rows() {
       .help = "Rays per vertex of the lit mesh: each vertex gathers its indirect light from "
               "the patches it sees through these ray-traced form factors, stored in the bake "
               "(gather_*.npy). 0: no final gather; vertices take the nearest patches' light",
+      .label = "Gather rays per vertex",
+      .studio_help = "Rays each vertex of the lit mesh sends to find the surfaces it gathers "
+                     "light from: more is smoother and sharper, and every light move reads "
+                     "more entries. 0: vertices blend the nearest patches' light",
       .stage = BakeStage::Patches,
       .get = get_int<&S::final_gather_rays>,
       .set = set_int<&S::final_gather_rays>,
