@@ -4,10 +4,10 @@
 #include "runtime/final_gather.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
-#include <cmath>
-
 #include <chrono>
+#include <cmath>
 #include <limits>
 
 #include "base/error.h"
@@ -206,11 +206,9 @@ void near_exitance(const NearSources& near, const RayTracer* tracer,
   const std::size_t n = near.size();
   // Every source is written below: resizing keeps a reused buffer's pages.
   out.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    if (near.patch[i] >= patch_indirect.size())
-      throw Error("final gather", "near source " + std::to_string(i) + " names patch " +
-                                      std::to_string(near.patch[i]) + " of " +
-                                      std::to_string(patch_indirect.size()));
+  // The first source naming a patch that is not there, checked on the
+  // threads as each source is written (n: none).
+  std::atomic<std::size_t> first_bad{n};
   const float eps = tracer ? 10.0f * tracer->epsilon() : 0.0f;
   // The shadow rays to one light go to Embree in batches of a few hundred
   // (its stream API): on Sponza's 421,838 near sources and the sun 1.5
@@ -224,35 +222,28 @@ void near_exitance(const NearSources& near, const RayTracer* tracer,
   for (const Light& light : lights) reach.emplace_back(light);
 #pragma omp parallel
   {
-    std::vector<ShadowRay> rays;
-    std::vector<glm::vec3> value, e;
-    std::vector<std::uint32_t> who;
-    std::vector<std::uint8_t> blocked;
-    rays.reserve(kBatch);
-    value.reserve(kBatch);
-    who.reserve(kBatch);
+    // A batch's rays to one light, their unshadowed light and whose they
+    // are: written field by field in place (see LightReach::at).
+    std::vector<ShadowRay> rays(kBatch);
+    std::vector<glm::vec3> value(kBatch), e;
+    std::vector<std::uint32_t> who(kBatch);
+    std::vector<std::uint8_t> blocked(kBatch);
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t bi = 0; bi < static_cast<std::int64_t>(batches); ++bi) {
       const std::size_t lo = static_cast<std::size_t>(bi) * kBatch, hi = std::min(n, lo + kBatch);
       e.assign(hi - lo, glm::vec3(0.0f));
       if (tracer) {
         for (const LightReach& light : reach) {
-          rays.clear();
-          value.clear();
-          who.clear();
+          std::size_t m = 0;
           for (std::size_t i = lo; i < hi; ++i) {
             // Lifted once here and once more by the light's own offset, as
             // irradiance_at() lifts the point it is given.
             const glm::vec3 at = near.position[i] + eps * near.normal[i];
-            const UnshadowedLight u = light.at(at, near.normal[i], eps);
-            if (!u.reaches) continue;
-            rays.push_back(u.ray);
-            value.push_back(u.value);
-            who.push_back(static_cast<std::uint32_t>(i - lo));
+            if (light.at(at, near.normal[i], eps, rays[m], value[m]))
+              who[m++] = static_cast<std::uint32_t>(i - lo);
           }
-          blocked.resize(rays.size());
-          tracer->occluded(rays.data(), rays.size(), blocked.data());
-          for (std::size_t k = 0; k < rays.size(); ++k)
+          tracer->occluded(rays.data(), m, blocked.data());
+          for (std::size_t k = 0; k < m; ++k)
             if (!blocked[k]) e[who[k]] += value[k];
         }
         for (const AreaLight& light : area)
@@ -260,10 +251,23 @@ void near_exitance(const NearSources& near, const RayTracer* tracer,
             e[i - lo] += area_light_irradiance(*tracer, near.position[i] + eps * near.normal[i],
                                                near.normal[i], light, 4, i);
       }
-      for (std::size_t i = lo; i < hi; ++i)
-        out[i] = near.albedo[i] * e[i - lo] + patch_indirect[near.patch[i]];
+      for (std::size_t i = lo; i < hi; ++i) {
+        const std::uint32_t p = near.patch[i];
+        if (p < patch_indirect.size()) {
+          out[i] = near.albedo[i] * e[i - lo] + patch_indirect[p];
+          continue;
+        }
+        out[i] = glm::vec3(0.0f);
+        std::size_t seen = first_bad.load();
+        while (i < seen && !first_bad.compare_exchange_weak(seen, i)) {
+        }
+      }
     }
   }
+  if (const std::size_t i = first_bad.load(); i < n)
+    throw Error("final gather", "near source " + std::to_string(i) + " names patch " +
+                                    std::to_string(near.patch[i]) + " of " +
+                                    std::to_string(patch_indirect.size()));
 }
 
 }  // namespace bounce

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -570,6 +571,25 @@ TEST(FinalGather, EveryRowLoopGivesTheProductInDouble) {
   g.compact_loop = "no such loop";
   std::vector<glm::vec3> out;
   EXPECT_THROW(g.irradiance(patch, {}, near, out), Error);
+}
+
+TEST(FinalGather, NearSourceNamingAMissingPatchIsOneErrorNamingIt) {
+  NearSources near;
+  for (int i = 0; i < 600; ++i) {  // three batches, the bad ones in the last two
+    near.position.emplace_back(0.0f);
+    near.normal.emplace_back(0.0f, 1.0f, 0.0f);
+    near.albedo.emplace_back(0.5f);
+    near.patch.push_back(i == 300 || i == 599 ? 7u : 1u);
+  }
+  const std::vector<glm::vec3> indirect(3, glm::vec3(1.0f));
+  try {
+    near_exitance(near, nullptr, {}, {}, indirect);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    // The first bad source, whichever thread met it first.
+    EXPECT_NE(std::string(e.what()).find("near source 300 names patch 7 of 3"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(FinalGather, NearSourcesLitInBatchesGetEachPointsOwnLight) {
