@@ -188,9 +188,23 @@ void RayTracer::occluded(const ShadowRay* rays, std::size_t count, std::uint8_t*
   ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   for (std::size_t start = 0; start < count; start += kChunk) {
     const std::size_t n = std::min(kChunk, count - start);
+    // Each field written in place: a whole RTCRayHit built and copied went
+    // through the stack in stores that the copy's wide loads waited on.
     for (std::size_t k = 0; k < n; ++k) {
       const ShadowRay& r = rays[start + k];
-      batch[k] = make_rayhit(r.origin, r.direction, r.t_near, r.t_far).ray;
+      RTCRay& ray = batch[k];
+      ray.org_x = r.origin.x;
+      ray.org_y = r.origin.y;
+      ray.org_z = r.origin.z;
+      ray.tnear = r.t_near;
+      ray.dir_x = r.direction.x;
+      ray.dir_y = r.direction.y;
+      ray.dir_z = r.direction.z;
+      ray.time = 0.0f;
+      ray.tfar = r.t_far;
+      ray.mask = 0xFFFFFFFFu;
+      ray.id = 0;
+      ray.flags = 0;
     }
     rtcOccluded1M(impl_->scene, &ctx, batch, static_cast<unsigned>(n), sizeof(RTCRay));
     for (std::size_t k = 0; k < n; ++k) blocked[start + k] = batch[k].tfar < 0.0f ? 1 : 0;

@@ -19,11 +19,13 @@ bool sees_light(const RayTracer& tracer, const glm::vec3& origin, const Light& l
 
 // Irradiance at point p (normal n) from one light, visibility included.
 glm::vec3 from_light(const RayTracer& tracer, const glm::vec3& p, const glm::vec3& n,
-                     const Light& light, float eps) {
-  const UnshadowedLight u = LightReach(light).at(p, n, eps);
-  if (!u.reaches || tracer.occluded(u.ray.origin, u.ray.direction, u.ray.t_near, u.ray.t_far))
+                     const LightReach& light, float eps) {
+  ShadowRay ray;
+  glm::vec3 value;
+  if (!light.at(p, n, eps, ray, value) ||
+      tracer.occluded(ray.origin, ray.direction, ray.t_near, ray.t_far))
     return glm::vec3(0.0f);
-  return u.value;
+  return value;
 }
 
 // Whether any light is one that direct light integrates over the carried
@@ -166,8 +168,15 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
     throw Error("direct light", "the polygon frames have " + std::to_string(frames.size()) +
                                     " entries for " + std::to_string(samples.carried.size()) +
                                     " carried polygons");
+  // Each light's cone and reach once, not once per sample (a spot's two
+  // cosines and the light's direction cost as much as the rest of a
+  // sample's sun light).
   std::vector<SpotCone> cones;
-  for (const Light& light : lights) cones.emplace_back(light);
+  std::vector<LightReach> reach;
+  for (const Light& light : lights) {
+    cones.emplace_back(light);
+    reach.emplace_back(light);
+  }
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(patches.size()); ++pi) {
     const auto p = static_cast<std::size_t>(pi);
@@ -183,7 +192,7 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
         if (polygons && light.type != Light::Type::Directional)
           polygon_power += point_light_power(tracer, samples, frames, si, light, cones[li], eps);
         else
-          es += from_light(tracer, s.position, s.normal, light, eps);
+          es += from_light(tracer, s.position, s.normal, reach[li], eps);
       }
       for (const AreaLight& light : area_lights)
         es += area_light_irradiance(tracer, s.position, s.normal, light, area_strata, si);
@@ -208,7 +217,7 @@ glm::vec3 irradiance_at(const RayTracer& tracer, const glm::vec3& p, const glm::
                         int area_strata, std::uint64_t seed) {
   const float eps = 10.0f * tracer.epsilon();  // the same offset as for patch samples
   glm::vec3 e(0.0f);
-  for (const Light& light : lights) e += from_light(tracer, p, n, light, eps);
+  for (const Light& light : lights) e += from_light(tracer, p, n, LightReach(light), eps);
   for (const AreaLight& light : area)
     e += area_light_irradiance(tracer, p, n, light, area_strata, seed);
   return e;
