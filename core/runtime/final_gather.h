@@ -70,6 +70,10 @@
 
 namespace bounce {
 
+namespace gather_loops {
+struct PaddedLight;  // runtime/gather_row_loops.h
+}  // namespace gather_loops
+
 struct FinalGatherSettings {
   int rays = 256;  // per point
   // Patches kept exactly per point: the strongest, until they hold
@@ -167,10 +171,27 @@ struct FinalGather {
   void irradiance(const std::vector<glm::vec3>& patch_exitance,
                   const std::vector<glm::vec3>& sample_exitance,
                   const std::vector<glm::vec3>& near_exitance, std::vector<glm::vec3>& out) const;
+  // One frame of a relighter: the near sources lit as near_exitance() lights
+  // them (shadow rays from `tracer` to `lights` and `area`, plus their
+  // patch's T b from `patch_indirect`), written straight into the product's
+  // buffer, then E at every point as irradiance() gives it. `near_seconds`
+  // (if given): the time lighting the near sources took.
+  void irradiance_lighting_near(const std::vector<glm::vec3>& patch_exitance,
+                                const std::vector<glm::vec3>& sample_exitance,
+                                const RayTracer& tracer, const std::vector<Light>& lights,
+                                const std::vector<AreaLight>& area,
+                                const std::vector<glm::vec3>& patch_indirect,
+                                std::vector<glm::vec3>& out, double* near_seconds = nullptr) const;
   // Checks the rows: monotone offsets, sources in range, finite weights in
   // [0, 1], row totals at most 1 (+ rounding), clusters' shares. Throws
   // bounce::Error naming `what` and the first bad row.
   void validate(const std::string& what) const;
+
+ private:
+  void check_light(const std::vector<glm::vec3>& patch_exitance,
+                   const std::vector<glm::vec3>& sample_exitance) const;
+  // The product from the padded light of every source.
+  void sum_padded(const gather_loops::PaddedLight* light, std::vector<glm::vec3>& out) const;
 };
 
 // The light a sample source carries: the sample's own first-hit light

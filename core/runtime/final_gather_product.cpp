@@ -21,10 +21,11 @@ namespace {
 using gather_loops::PaddedLight;
 
 // The padded light of every source the rows read: the patches', then each
-// cluster's area-weighted mean, then the samples', then the near sources'.
+// cluster's area-weighted mean, then the samples', then the near sources'
+// (`near_exitance` null: sized for them, left for the caller to write).
 void pad_light(const FinalGather& g, const std::vector<glm::vec3>& patch_exitance,
                const std::vector<glm::vec3>& sample_exitance,
-               const std::vector<glm::vec3>& near_exitance, std::vector<PaddedLight>& light) {
+               const std::vector<glm::vec3>* near_exitance, std::vector<PaddedLight>& light) {
   const std::size_t patches = g.patches, clusters = g.clusters, samples = g.samples;
   light.resize(patches + clusters + samples + g.near.size());
   const auto copy_padded = [](const std::vector<glm::vec3>& from, PaddedLight* to) {
@@ -42,8 +43,16 @@ void pad_light(const FinalGather& g, const std::vector<glm::vec3>& patch_exitanc
     for (int c = 0; c < 3; ++c) cl.c[c] += g.cluster_share[p] * patch_exitance[p][c];
   }
   if (samples > 0) copy_padded(sample_exitance, light.data() + patches + clusters);
-  copy_padded(near_exitance, light.data() + patches + clusters + samples);
+  if (near_exitance) copy_padded(*near_exitance, light.data() + patches + clusters + samples);
 }
+
+// The near sources' light (see near_exitance()) written to out[i * stride],
+// three floats each (and a zero fourth when stride is 4, the product's
+// padded light).
+void light_near_sources(const NearSources& near, const RayTracer* tracer,
+                        const std::vector<Light>& lights, const std::vector<AreaLight>& area,
+                        const std::vector<glm::vec3>& patch_indirect, float* out,
+                        std::size_t stride);
 
 gather_loops::CompactRows compact_rows_of(const FinalGather& g,
                                           const std::vector<PaddedLight>& light) {
@@ -132,6 +141,25 @@ void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
   irradiance(patch_exitance, sample_exitance, {}, out);
 }
 
+void FinalGather::check_light(const std::vector<glm::vec3>& patch_exitance,
+                              const std::vector<glm::vec3>& sample_exitance) const {
+  if (patch_exitance.size() != patches)
+    throw Error("final gather", "light for " + std::to_string(patch_exitance.size()) +
+                                    " patches, the gather was made for " + std::to_string(patches));
+  if (samples > 0 && sample_exitance.size() != samples)
+    throw Error("final gather", "light for " + std::to_string(sample_exitance.size()) +
+                                    " samples, the gather was made for " + std::to_string(samples));
+}
+
+// Each source's light padded to four floats: one 16-byte load then fetches
+// its colour, and an entry costs one four-lane multiply-add. (Three separate
+// floats made the compiler shuffle lanes for every entry: the product took
+// three times as long as its memory traffic.) The buffer stays with the
+// thread, so a frame does not page in megabytes of fresh memory.
+namespace {
+thread_local std::vector<PaddedLight> padded_light;
+}  // namespace
+
 void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
                              const std::vector<glm::vec3>& sample_exitance,
                              const std::vector<glm::vec3>& near_exitance,
@@ -139,29 +167,38 @@ void FinalGather::irradiance(const std::vector<glm::vec3>& patch_exitance,
   if (near_exitance.size() != near.size())
     throw Error("final gather", "light for " + std::to_string(near_exitance.size()) +
                                     " near sources, the gather has " + std::to_string(near.size()));
-  if (patch_exitance.size() != patches)
-    throw Error("final gather", "light for " + std::to_string(patch_exitance.size()) +
-                                    " patches, the gather was made for " + std::to_string(patches));
-  if (samples > 0 && sample_exitance.size() != samples)
-    throw Error("final gather", "light for " + std::to_string(sample_exitance.size()) +
-                                    " samples, the gather was made for " + std::to_string(samples));
-  // Each source's light padded to four floats: one 16-byte load then
-  // fetches its colour, and an entry costs one four-lane multiply-add.
-  // (Three separate floats made the compiler shuffle lanes for every entry:
-  // the product took three times as long as its memory traffic.) The buffer
-  // stays with the thread, so a frame does not page in megabytes of fresh
-  // memory.
-  thread_local std::vector<PaddedLight> light;
-  pad_light(*this, patch_exitance, sample_exitance, near_exitance, light);
+  check_light(patch_exitance, sample_exitance);
+  pad_light(*this, patch_exitance, sample_exitance, &near_exitance, padded_light);
+  sum_padded(padded_light.data(), out);
+}
+
+void FinalGather::irradiance_lighting_near(
+    const std::vector<glm::vec3>& patch_exitance, const std::vector<glm::vec3>& sample_exitance,
+    const RayTracer& tracer, const std::vector<Light>& lights, const std::vector<AreaLight>& area,
+    const std::vector<glm::vec3>& patch_indirect, std::vector<glm::vec3>& out,
+    double* near_seconds) const {
+  check_light(patch_exitance, sample_exitance);
+  pad_light(*this, patch_exitance, sample_exitance, nullptr, padded_light);
+  const auto start = std::chrono::steady_clock::now();
+  light_near_sources(near, &tracer, lights, area, patch_indirect,
+                     padded_light[patches + clusters + samples].c, 4);
+  if (near_seconds)
+    *near_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  sum_padded(padded_light.data(), out);
+}
+
+void FinalGather::sum_padded(const PaddedLight* light, std::vector<glm::vec3>& out) const {
   const std::size_t n = points();
   out.resize(n);
   if (compact.size() == source.size() && !compact.empty()) {
     gather_loops::sum_compact_rows(
         gather_loops::compact_loop(compact_loop.empty() ? "sse2" : compact_loop),
-        compact_rows_of(*this, light), n, out.data());
+        gather_loops::CompactRows{light, first.data(), compact.data(), compact_count_bits,
+                                  static_cast<float>(1.0 / compact_rays)},
+        n, out.data());
     return;
   }
-  const gather_loops::FloatEntries entries{light.data(), source.data(), weight.data()};
+  const gather_loops::FloatEntries entries{light, source.data(), weight.data()};
 #pragma omp parallel for schedule(static, 1024)
   for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
     const auto row = static_cast<std::size_t>(i);
@@ -184,11 +221,16 @@ void sample_exitance(const SampleSet& samples, const PatchSet& patches,
   if (sample_irradiance.size() != n || patch_indirect.size() != patches.size())
     throw Error("final gather", "one irradiance per sample and one T b per patch expected");
   out.assign(n, glm::vec3(0.0f));
-  for (std::size_t p = 0; p < patches.size(); ++p)
+  // On the threads: a serial pass over Sponza's 44,396 samples took a third
+  // of a millisecond a frame.
+#pragma omp parallel for schedule(static, 256)
+  for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(patches.size()); ++pi) {
+    const auto p = static_cast<std::size_t>(pi);
     for (std::uint32_t k = patches.member_first[p]; k < patches.member_first[p + 1]; ++k) {
       const std::uint32_t s = patches.member_samples[k];
       out[s] = samples.samples[s].albedo * sample_irradiance[s] + patch_indirect[p];
     }
+  }
 }
 
 std::vector<glm::vec3> near_exitance(const NearSources& near, const RayTracer* tracer,
@@ -203,9 +245,20 @@ std::vector<glm::vec3> near_exitance(const NearSources& near, const RayTracer* t
 void near_exitance(const NearSources& near, const RayTracer* tracer,
                    const std::vector<Light>& lights, const std::vector<AreaLight>& area,
                    const std::vector<glm::vec3>& patch_indirect, std::vector<glm::vec3>& out) {
+  // Every source is written: resizing keeps a reused buffer's pages.
+  out.resize(near.size());
+  static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+  light_near_sources(near, tracer, lights, area, patch_indirect, out.empty() ? nullptr : &out[0].x,
+                     3);
+}
+
+namespace {
+
+void light_near_sources(const NearSources& near, const RayTracer* tracer,
+                        const std::vector<Light>& lights, const std::vector<AreaLight>& area,
+                        const std::vector<glm::vec3>& patch_indirect, float* out,
+                        std::size_t stride) {
   const std::size_t n = near.size();
-  // Every source is written below: resizing keeps a reused buffer's pages.
-  out.resize(n);
   // The first source naming a patch that is not there, checked on the
   // threads as each source is written (n: none).
   std::atomic<std::size_t> first_bad{n};
@@ -253,11 +306,15 @@ void near_exitance(const NearSources& near, const RayTracer* tracer,
       }
       for (std::size_t i = lo; i < hi; ++i) {
         const std::uint32_t p = near.patch[i];
-        if (p < patch_indirect.size()) {
-          out[i] = near.albedo[i] * e[i - lo] + patch_indirect[p];
-          continue;
-        }
-        out[i] = glm::vec3(0.0f);
+        float* o = out + i * stride;
+        const glm::vec3 v = p < patch_indirect.size()
+                                ? near.albedo[i] * e[i - lo] + patch_indirect[p]
+                                : glm::vec3(0.0f);
+        o[0] = v.x;
+        o[1] = v.y;
+        o[2] = v.z;
+        if (stride == 4) o[3] = 0.0f;
+        if (p < patch_indirect.size()) continue;
         std::size_t seen = first_bad.load();
         while (i < seen && !first_bad.compare_exchange_weak(seen, i)) {
         }
@@ -269,5 +326,7 @@ void near_exitance(const NearSources& near, const RayTracer* tracer,
                                     std::to_string(near.patch[i]) + " of " +
                                     std::to_string(patch_indirect.size()));
 }
+
+}  // namespace
 
 }  // namespace bounce

@@ -74,7 +74,7 @@ class Relighter {
   std::vector<AreaLight> area_;
   mutable double near_seconds_ = 0.0;
   // gather()'s buffers, kept so that a frame does not allocate them again.
-  mutable std::vector<glm::vec3> first_hit_, indirect_, reflected_, sample_light_, near_light_;
+  mutable std::vector<glm::vec3> first_hit_, indirect_, reflected_, sample_light_;
   RuntimeFrame frame_;
 };
 

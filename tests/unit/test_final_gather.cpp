@@ -618,6 +618,36 @@ TEST(FinalGather, NearSourcesLitInBatchesGetEachPointsOwnLight) {
   EXPECT_GT(dark, 0u);
 }
 
+TEST(FinalGather, LightingTheNearSourcesIntoTheProductGivesTheSameLight) {
+  // A relighter's frame lights the near sources straight into the
+  // product's buffer: the same E to the bit as lighting them on their own
+  // and summing the rows after.
+  const Scene scene = shaded_floor();
+  const BakeResult bake = bake_of(scene, 8);
+  const RayTracer tracer(scene);
+  const FinalGather g = gather_over_the_floor(tracer, bake, 256);
+  ASSERT_GT(g.near.size(), 0u);
+  std::vector<glm::vec3> patch(g.patches), sample(g.samples), indirect(g.patches);
+  for (std::size_t p = 0; p < g.patches; ++p) {
+    patch[p] = glm::vec3(0.3f + 0.01f * static_cast<float>(p), 0.5f, 0.2f);
+    indirect[p] = glm::vec3(0.01f * static_cast<float>(p), 0.02f, 0.03f);
+  }
+  for (std::size_t s = 0; s < sample.size(); ++s)
+    sample[s] = glm::vec3(0.1f, 0.001f * static_cast<float>(s), 0.4f);
+  std::vector<glm::vec3> apart, together;
+  g.irradiance(patch, sample, near_exitance(g.near, &tracer, scene.lights, {}, indirect), apart);
+  double seconds = -1.0;
+  g.irradiance_lighting_near(patch, sample, tracer, scene.lights, {}, indirect, together, &seconds);
+  ASSERT_EQ(together.size(), apart.size());
+  for (std::size_t i = 0; i < apart.size(); ++i) EXPECT_EQ(together[i], apart[i]) << i;
+  EXPECT_GE(seconds, 0.0);
+  // A light buffer of the wrong size is one error, as for irradiance().
+  std::vector<glm::vec3> short_patch(g.patches - 1);
+  EXPECT_THROW(
+      g.irradiance_lighting_near(short_patch, sample, tracer, scene.lights, {}, indirect, together),
+      Error);
+}
+
 TEST(FinalGather, NearSourcesWithFewRaysGoBackToTheirSurface) {
   // The same rays with every near source kept and with those under three
   // rays folded back: each point keeps its rays (its total), every kept
