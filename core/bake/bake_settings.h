@@ -63,7 +63,7 @@ struct BakeSettings {
   // Near sources fewer of the gather's rays landed in go back to the sample
   // or patch the vertices read for that surface (runtime/final_gather.h):
   // each near source costs a shadow ray per light every frame.
-  int final_gather_near_min_rays = 1;
+  int final_gather_near_min_rays = 2;
   std::uint64_t seed = 1;
   bool dump_matrices = false;
 

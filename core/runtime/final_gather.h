@@ -99,7 +99,7 @@ struct FinalGatherSettings {
   int near_resolution = 24;
   // Near sources fewer rays than this landed in, over all points, go back to
   // the sample (or patch, or cluster) the points read for that surface.
-  int near_min_rays = 1;
+  int near_min_rays = 2;
   // Cluster blocks are this many voxels along each axis.
   int cluster_voxels = 4;
   std::uint64_t seed = 1;

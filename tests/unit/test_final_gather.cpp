@@ -158,6 +158,9 @@ TEST(FinalGather, NearSourcesFollowAShadowEdgeUnderThePoint) {
   with_near.rays = 4096;
   with_near.near_cells = 1.0f;     // every ray within a voxel
   with_near.near_resolution = 96;  // 4 mm cells: the edge blurs over one
+  // Every cell kept, even one ray's: this is about the cells themselves
+  // (4 mm cells take one or two of a point's rays each).
+  with_near.near_min_rays = 1;
   FinalGatherSettings without_near = with_near;
   without_near.near_cells = 0.0f;
   const auto gathered = [&](const FinalGatherSettings& fs) {
@@ -230,6 +233,7 @@ TEST(FinalGather, NearSourcesLieOnTheFaceTheirRaysLandedOn) {
   FinalGatherSettings fs;
   fs.rays = 2048;
   fs.near_cells = 1.0f;
+  fs.near_min_rays = 1;  // every cell kept: this is about where the cells lie
   const FinalGather g = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
                                            points, normals, fs);
   g.validate("moulding");
