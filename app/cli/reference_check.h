@@ -17,7 +17,9 @@ namespace bounce::cli {
 
 // The bake's indirect picture (96 x 72) against a 256-path reference (cached
 // in ReferenceCache::default_dir()), noise-corrected relative RMSE, with the
-// run time of one light update. Returns the JSON summary; `line` gets one
+// run time of one light move: `update_ms` the direct light and T b,
+// `gather_ms` the bake's gather to its lit mesh's vertices (0 without one),
+// `light_move_ms` both. Returns the JSON summary; `line` gets one
 // human-readable sentence.
 nlohmann::json check_bake_against_reference(const Scene& scene, const BakeResult& bake,
                                             Progress& progress, std::string& line);

@@ -124,6 +124,11 @@ TEST(CliReport, BakeWithReferencePrintsItsErrorAndRunTime) {
   EXPECT_TRUE(std::isfinite(error) && error >= 0.0) << check.dump();
   EXPECT_GT(check.at("reference_noise").get<double>(), 0.0);
   EXPECT_GT(check.at("update_ms").get<double>(), 0.0);
+  // The light move includes the gather to the lit mesh's vertices.
+  EXPECT_GT(check.at("gather_vertices").get<std::size_t>(), 0u);
+  EXPECT_GT(check.at("gather_ms").get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(check.at("light_move_ms").get<double>(),
+                   check.at("update_ms").get<double>() + check.at("gather_ms").get<double>());
   EXPECT_FALSE(check.at("reference_cached").get<bool>());
   // The reference landed in $XDG_CACHE_HOME/bounce/reference.
   EXPECT_FALSE(fs::is_empty(dir / "xdg" / "bounce" / "reference"));
