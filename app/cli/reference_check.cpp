@@ -33,9 +33,15 @@ nlohmann::json check_bake_against_reference(const Scene& scene, const BakeResult
   relight.frame.record = false;
   Relighter relighter(tracer, bake.samples, bake.patches,
                       stored_transport(bake.transport, bake.storage), relight);
-  relighter.light(scene.lights, area_lights(scene));
-  double update_seconds = 0.0;
-  for (const double s : relighter.frame().pass_seconds()) update_seconds += s;
+  // Best of three frames: the first also pages in the frame's buffers.
+  const std::vector<AreaLight> area = area_lights(scene);
+  double update_seconds = std::numeric_limits<double>::infinity();
+  for (int frame = 0; frame < 3; ++frame) {
+    relighter.light(scene.lights, area);
+    double seconds = 0.0;
+    for (const double s : relighter.frame().pass_seconds()) seconds += s;
+    update_seconds = std::min(update_seconds, seconds);
+  }
   const double update_ms = 1e3 * update_seconds;
   // The rest of a light move: the bake's gather to its lit mesh's vertices
   // (their near sources lit, then the sparse product), best of three frames.
@@ -93,8 +99,11 @@ nlohmann::json check_bake_against_reference(const Scene& scene, const BakeResult
   if (vertices > 0) {
     std::snprintf(text, sizeof text,
                   " (direct light and T b %.2f ms, the gather to the lit mesh's %zu vertices "
-                  "%.2f ms)",
-                  update_ms, vertices, gather_ms);
+                  "%.2f ms, %s loop)",
+                  update_ms, vertices, gather_ms,
+                  bake.vertex_gather.compact_loop.empty()
+                      ? "float-row"
+                      : bake.vertex_gather.compact_loop.c_str());
     line += text;
   }
   return {{"indirect_relative_rmse", error},
@@ -108,6 +117,7 @@ nlohmann::json check_bake_against_reference(const Scene& scene, const BakeResult
           {"update_ms", update_ms},
           {"gather_vertices", vertices},
           {"gather_ms", gather_ms},
+          {"gather_loop", bake.vertex_gather.compact_loop},
           {"light_move_ms", update_ms + gather_ms}};
 }
 
