@@ -93,22 +93,18 @@ SettingsPanel::SettingsPanel(QWidget* parent)
     form->addRow(tr(row->label), control);
   }
 
+  // Controls that decide which others apply refresh the enabled states.
+  const auto refresh = [this] {
+    update_enabled();
+    emit changed();
+  };
   for (QComboBox* box :
        {grid_box_, patch_mode_box_, bounces_box_, codec_box_, ordering_box_, kept_mode_box_})
-    connect(box, qOverload<int>(&QComboBox::currentIndexChanged), this, [this](int) {
-      update_enabled();
-      emit changed();
-    });
+    connect(box, qOverload<int>(&QComboBox::currentIndexChanged), this, refresh);
+  connect(gather_rays_box_, qOverload<int>(&QSpinBox::valueChanged), this, refresh);
+  connect(near_box_, qOverload<double>(&QDoubleSpinBox::valueChanged), this, refresh);
   for (QSpinBox* box : {voxel_box_, patches_total_box_, per_voxel_box_, near_min_rays_box_})
     connect(box, qOverload<int>(&QSpinBox::valueChanged), this, &SettingsPanel::changed);
-  connect(gather_rays_box_, qOverload<int>(&QSpinBox::valueChanged), this, [this](int) {
-    update_enabled();
-    emit changed();
-  });
-  connect(near_box_, qOverload<double>(&QDoubleSpinBox::valueChanged), this, [this](double) {
-    update_enabled();
-    emit changed();
-  });
   for (QDoubleSpinBox* box : {kept_box_, budget_box_, size_limit_box_})
     connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, &SettingsPanel::changed);
   update_enabled();

@@ -168,15 +168,11 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
     throw Error("direct light", "the polygon frames have " + std::to_string(frames.size()) +
                                     " entries for " + std::to_string(samples.carried.size()) +
                                     " carried polygons");
-  // Each light's cone and reach once, not once per sample (a spot's two
-  // cosines and the light's direction cost as much as the rest of a
-  // sample's sun light).
-  std::vector<SpotCone> cones;
+  // Each light's reach (and a spot's cone) once, not once per sample (a
+  // spot's two cosines and the light's direction cost as much as the rest
+  // of a sample's sun light).
   std::vector<LightReach> reach;
-  for (const Light& light : lights) {
-    cones.emplace_back(light);
-    reach.emplace_back(light);
-  }
+  for (const Light& light : lights) reach.emplace_back(light);
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(patches.size()); ++pi) {
     const auto p = static_cast<std::size_t>(pi);
@@ -190,7 +186,8 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
       for (std::size_t li = 0; li < lights.size(); ++li) {
         const Light& light = lights[li];
         if (polygons && light.type != Light::Type::Directional)
-          polygon_power += point_light_power(tracer, samples, frames, si, light, cones[li], eps);
+          polygon_power +=
+              point_light_power(tracer, samples, frames, si, light, reach[li].cone(), eps);
         else
           es += from_light(tracer, s.position, s.normal, reach[li], eps);
       }

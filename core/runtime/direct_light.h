@@ -57,16 +57,6 @@ glm::vec3 irradiance_at(const RayTracer& tracer, const glm::vec3& p, const glm::
                         const std::vector<Light>& lights, const std::vector<AreaLight>& area = {},
                         int area_strata = 4, std::uint64_t seed = 0);
 
-// The light one point, spot or directional light sends to a surface point if
-// nothing is in the way, and the shadow ray that decides whether something
-// is. Made once per light, so that the per-point part (at()) is a few
-// multiply-adds: callers that light many points batch the rays.
-struct UnshadowedLight {
-  glm::vec3 value{0.0f};
-  ShadowRay ray;
-  bool reaches = false;  // false: p faces away or lies outside a spot's cone
-};
-
 // A spot light's cones, for the smoothstep between them (1 for other lights).
 struct SpotCone {
   explicit SpotCone(const Light& light)
@@ -87,21 +77,21 @@ struct SpotCone {
   float cos_inner, cos_outer;
 };
 
+// The light one point, spot or directional light sends to a surface point if
+// nothing is in the way, and the shadow ray that decides whether something
+// is. Made once per light, so that the per-point part (at()) is a few
+// multiply-adds: callers that light many points batch the rays.
 class LightReach {
  public:
   explicit LightReach(const Light& light);
   // For point p with unit normal n (the side that receives); `eps` lifts the
-  // ray's origin off the surface along n.
-  UnshadowedLight at(const glm::vec3& p, const glm::vec3& n, float eps) const {
-    UnshadowedLight u;
-    u.reaches = at(p, n, eps, u.ray, u.value);
-    return u;
-  }
-  // The same into `ray` and `value` (left alone when it does not reach p):
-  // a caller filling arrays of rays writes each field in place. (Returned
-  // in a struct and copied, the struct went through the stack in small
-  // stores read back as wide loads, and every read waited on the stores:
-  // a third of the time lighting Sponza's near sources.)
+  // ray's origin off the surface along n. False when p faces away or lies
+  // outside a spot's cone; else `ray` and `value` (the unshadowed
+  // irradiance) are written, field by field, so that a caller filling
+  // arrays of rays writes them in place. (Returned in a struct and copied,
+  // they went through the stack in small stores read back as wide loads,
+  // and every read waited on the stores: a third of the time lighting
+  // Sponza's near sources.)
   bool at(const glm::vec3& p, const glm::vec3& n, float eps, ShadowRay& ray,
           glm::vec3& value) const {
     const glm::vec3 origin = p + eps * n;
@@ -131,6 +121,7 @@ class LightReach {
     value = power_ * spot * cos_n / r2;
     return true;
   }
+  const SpotCone& cone() const { return cone_; }
 
  private:
   bool directional_ = false;

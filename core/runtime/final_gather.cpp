@@ -434,9 +434,10 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
     src_out.reserve(chunk_patch[c].size());
     weight_out.reserve(chunk_weight[c].size());
     std::size_t at = 0;
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> folded;  // (sample, hits) of a row
     for (std::uint32_t& row_count : chunk_count[c]) {
       const std::size_t row_begin = src_out.size();
-      std::vector<std::pair<std::uint32_t, std::uint32_t>> folded;  // (sample, hits)
+      folded.clear();
       for (std::size_t k = at; k < at + row_count; ++k) {
         std::uint32_t src = chunk_patch[c][k];
         if (src & kChunkNearSource) {

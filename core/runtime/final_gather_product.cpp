@@ -305,19 +305,18 @@ void light_near_sources(const NearSources& near, const RayTracer* tracer,
                                                near.normal[i], light, 4, i);
       }
       for (std::size_t i = lo; i < hi; ++i) {
-        const std::uint32_t p = near.patch[i];
+        const bool known = near.patch[i] < patch_indirect.size();
+        const glm::vec3 v =
+            known ? near.albedo[i] * e[i - lo] + patch_indirect[near.patch[i]] : glm::vec3(0.0f);
         float* o = out + i * stride;
-        const glm::vec3 v = p < patch_indirect.size()
-                                ? near.albedo[i] * e[i - lo] + patch_indirect[p]
-                                : glm::vec3(0.0f);
         o[0] = v.x;
         o[1] = v.y;
         o[2] = v.z;
         if (stride == 4) o[3] = 0.0f;
-        if (p < patch_indirect.size()) continue;
-        std::size_t seen = first_bad.load();
-        while (i < seen && !first_bad.compare_exchange_weak(seen, i)) {
-        }
+        if (!known)
+          for (std::size_t seen = first_bad.load();
+               i < seen && !first_bad.compare_exchange_weak(seen, i);) {
+          }
       }
     }
   }
