@@ -65,8 +65,15 @@ gather_loops::CompactRows compact_rows_of(const FinalGather& g,
 // counts. Which is fastest depends on the CPU (how it splits wide
 // instructions, how many loads it issues a cycle) more than on its feature
 // flags, so it is measured on the rows themselves.
+//
+// Only loops that give the same light compete: the fused ones where this CPU
+// has them, else the portable one. (Between the portable and a fused loop a
+// timing race would decide the last bits of the light, and two processes
+// lighting the same bake could disagree.)
 std::string fastest_compact_loop(const FinalGather& g) {
-  const std::vector<gather_loops::CompactLoop> loops = gather_loops::compact_loops();
+  std::vector<gather_loops::CompactLoop> loops = gather_loops::compact_loops();
+  if (std::any_of(loops.begin(), loops.end(), [](const auto& l) { return l.fused; }))
+    std::erase_if(loops, [](const auto& l) { return !l.fused; });
   if (loops.size() == 1) return loops.front().name;
   std::vector<PaddedLight> light(g.patches + g.clusters + g.samples + g.near.size(),
                                  PaddedLight{{1.0f, 1.0f, 1.0f, 0.0f}});

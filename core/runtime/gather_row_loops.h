@@ -93,13 +93,16 @@ using CompactBandFn = void (*)(const CompactRows&, std::size_t begin, std::size_
 struct CompactLoop {
   std::string name;
   CompactBandFn sum = nullptr;
+  // The fused loops ("avx2", "avx512") give the same sums to the bit.
+  bool fused = false;
 };
 
 // The loops this CPU runs, the portable one first: "sse2" decodes and adds
 // one entry at a time; "avx2" decodes eight entries at once and adds two per
 // fused multiply-add; "avx512" decodes sixteen and adds four per fused
 // multiply-add. The wider loops round each multiply-add once instead of
-// twice, so their sums differ from the portable one's in the last bits.
+// twice, so their sums differ from the portable one's in the last bits; the
+// two wide loops add every entry in the same order, so they agree to the bit.
 std::vector<CompactLoop> compact_loops();
 // The loop named `name`; throws bounce::Error when this CPU has none by that
 // name.
