@@ -59,8 +59,14 @@ std::vector<glm::vec3> gather_in_double(const FinalGather& g, const std::vector<
     light[g.patches + g.clusters + g.samples + k] = glm::dvec3(near_light[k]);
   for (std::size_t p = 0; p < g.patches; ++p) {
     light[p] = glm::dvec3(b[p]);
-    light[g.patches + g.cluster_of_patch[p]] +=
-        static_cast<double>(g.cluster_share[p]) * glm::dvec3(b[p]);
+    // A patch with seen weights reads its samples' light so weighted.
+    if (p + 1 < g.seen_first.size() && g.seen_first[p] < g.seen_first[p + 1]) {
+      light[p] = glm::dvec3(0.0);
+      for (std::uint32_t k = g.seen_first[p]; k < g.seen_first[p + 1]; ++k)
+        light[p] +=
+            static_cast<double>(g.seen_weight[k]) * glm::dvec3(sample_light[g.seen_sample[k]]);
+    }
+    light[g.patches + g.cluster_of_patch[p]] += static_cast<double>(g.cluster_share[p]) * light[p];
   }
   std::vector<glm::vec3> out(g.points());
   for (std::size_t i = 0; i < out.size(); ++i) {

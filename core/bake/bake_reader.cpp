@@ -10,6 +10,7 @@
 #include "base/checked_size.h"
 #include "compress/dds.h"
 #include "io/npy.h"
+#include "runtime/seen_first_hit.h"
 #include "voxel/voxel_grid.h"
 
 namespace bounce {
@@ -190,6 +191,32 @@ void read_patches(const fs::path& dir, std::size_t n, LoadedBake& b) {
   for (const auto& m : members) {
     b.patches.member_samples.insert(b.patches.member_samples.end(), m.begin(), m.end());
     b.patches.member_first.push_back(static_cast<std::uint32_t>(b.patches.member_samples.size()));
+  }
+}
+
+// The seen weights of the bake's final gather (runtime/seen_first_hit.h):
+// a patch's first-hit light is then its samples' as the gather's rays see
+// them. Bakes made before them have none and use area means.
+void read_seen_weights(const fs::path& dir, LoadedBake& b) {
+  const fs::path ff = dir / bake_file::kGatherSeenFirst;
+  std::error_code ec;
+  if (!fs::exists(ff, ec)) return;
+  const fs::path sf = dir / bake_file::kGatherSeenSample, wf = dir / bake_file::kGatherSeenWeight;
+  const NpyArray<std::uint32_t> first = read_npy_u32(ff);
+  require_shape(ff, first.shape, {b.patches.size() + 1});
+  const NpyArray<std::uint32_t> sample = read_npy_u32(sf);
+  if (sample.shape.size() != 1) throw ReadError(sf.string(), "expected a one-dimensional array");
+  const NpyArray<float> weight = read_npy_f32(wf);
+  require_shape(wf, weight.shape, {sample.shape[0]});
+  FinalGather g;
+  g.patches = b.patches.size();
+  g.seen_first = first.data;
+  g.seen_sample = sample.data;
+  g.seen_weight = weight.data;
+  try {
+    set_seen_weights(g, b.patches, "");
+  } catch (const Error& e) {
+    throw ReadError(ff.string(), e.what());
   }
 }
 
@@ -391,6 +418,7 @@ LoadedBake BakeReader::read_checked(const fs::path& dir, Dense dense) {
   const auto n = b.manifest.at("counts").at("patches").get<std::size_t>();
   if (n == 0) throw ReadError(manifest_path.string(), "counts.patches is 0");
   read_patches(dir, n, b);
+  read_seen_weights(dir, b);
   read_carried_polygons(dir, b.samples);
   read_voxel_cells(dir, b);
   const json& t = b.manifest.at("transport");

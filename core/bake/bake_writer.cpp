@@ -541,7 +541,17 @@ json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const Bake
            "patches + clusters + sample index, or patches + clusters + samples + near source");
     record(bake_file::kGatherWeight, "float32 [entries]: vertex-to-patch (or cluster) form factor");
     record(bake_file::kGatherCluster, "uint32 [patches]: cluster of each patch");
-    record(bake_file::kGatherShare, "float32 [patches]: each patch's share of its cluster's area");
+    record(bake_file::kGatherShare,
+           "float32 [patches]: each patch's share of its cluster's light (of the rays folded "
+           "into the cluster)");
+    if (!r.vertex_gather.seen_first.empty()) {
+      record(bake_file::kGatherSeenFirst,
+             "uint32 [patches + 1]: row starts of each patch's seen weights");
+      record(bake_file::kGatherSeenSample, "uint32 [entries]: a sample of the patch");
+      record(bake_file::kGatherSeenWeight,
+             "float32 [entries]: its share of the gather's rays read through the patch: a "
+             "patch entry's light is the sum of share x the sample's light");
+    }
     if (r.vertex_gather.near.size() > 0) {
       record(bake_file::kGatherNearPosition,
              "float32 [near sources x 3]: where each near source is lit every frame");

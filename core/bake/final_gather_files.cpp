@@ -22,6 +22,11 @@ void write_final_gather(const fs::path& dir, const FinalGather& g) {
   write_npy(dir / bake_file::kGatherWeight, g.weight, {g.weight.size()});
   write_npy(dir / bake_file::kGatherCluster, g.cluster_of_patch, {g.cluster_of_patch.size()});
   write_npy(dir / bake_file::kGatherShare, g.cluster_share, {g.cluster_share.size()});
+  if (!g.seen_first.empty()) {
+    write_npy(dir / bake_file::kGatherSeenFirst, g.seen_first, {g.seen_first.size()});
+    write_npy(dir / bake_file::kGatherSeenSample, g.seen_sample, {g.seen_sample.size()});
+    write_npy(dir / bake_file::kGatherSeenWeight, g.seen_weight, {g.seen_weight.size()});
+  }
   if (g.near.size() == 0) return;
   const auto rows = [](const std::vector<glm::vec3>& v) {
     return std::span<const float>(reinterpret_cast<const float*>(v.data()), 3 * v.size());
@@ -88,6 +93,14 @@ std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t pa
         g.near.normal.size() != g.near.patch.size() || g.near.albedo.size() != g.near.patch.size())
       throw Error((dir / bake_file::kGatherNearPatch).string(),
                   "the near sources' files differ in length");
+  }
+  // Seen weights (bakes made before them have none: patches read their own
+  // light).
+  if (fs::exists(dir / bake_file::kGatherSeenFirst)) {
+    g.seen_first = vector_of(bake_file::kGatherSeenFirst, u32);
+    g.seen_sample = vector_of(bake_file::kGatherSeenSample, u32);
+    g.seen_weight = vector_of(bake_file::kGatherSeenWeight, f32);
+    g.samples = samples;
   }
   g.validate((dir / "gather_*.npy").string());
   g.compact_rows();

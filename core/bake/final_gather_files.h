@@ -8,7 +8,11 @@
 //                                           near source
 //   gather_weight.npy  <f4 [entries]        point-to-source form factor
 //   gather_cluster.npy <u4 [patches]        each patch's cluster
-//   gather_share.npy   <f4 [patches]        its share of the cluster's area
+//   gather_share.npy   <f4 [patches]        its share of the cluster's light
+//   gather_seen_first.npy <u4 [patches + 1], gather_seen_sample.npy <u4 [k],
+//   gather_seen_weight.npy <f4 [k]          each patch's samples weighed by
+//                                           the rays that landed on them
+//                                           (absent: area weights)
 //   gather_near_position.npy, gather_near_normal.npy, gather_near_albedo.npy
 //                      <f4 [near, 3]        the near sources (absent: none)
 //   gather_near_patch.npy <u4 [near]        the patch whose T b each carries

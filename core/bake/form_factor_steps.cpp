@@ -10,6 +10,7 @@
 #include "bake/bake_steps.h"
 #include "runtime/direct_light.h"
 #include "runtime/mesh_transfer.h"
+#include "runtime/seen_first_hit.h"
 
 namespace bounce {
 
@@ -177,6 +178,9 @@ void final_gather_step(BakeRun& run) {
   r.vertex_gather = build_final_gather(*run.tracer, lookup, r.patches.patches, r.voxels.grid,
                                        gather_points_of_vertices(mesh.positions, mesh.triangles),
                                        mesh.normals, fg, &run.progress);
+  // From here on a patch's first-hit light is its samples' as the vertices'
+  // rays see them (runtime/seen_first_hit.h).
+  set_seen_weights(r.vertex_gather, r.patches, "final gather");
 }
 
 // Rows a little above 1 are the quadrature error of the near field (~1%):
@@ -201,15 +205,22 @@ void evaluation_lights_step(BakeRun& run) {
   r.probe = IndirectLightProbe{};
   r.probe_lights_total = lights.size() + (area.empty() ? 0 : 1);
   for (const Patch& p : r.patches.patches) r.probe.area.push_back(p.area);
+  // b as the run time makes it: seen-weighted over the samples when the
+  // final gather gave the patches seen weights (runtime/seen_first_hit.h).
+  const auto first_hit = [&run, &r](const std::vector<Light>& point,
+                                    const std::vector<AreaLight>& emissive) {
+    std::vector<glm::vec3> e(r.patches.size()), b(r.patches.size()),
+        sample_e(r.patches.member_seen_weight.empty() ? 0 : r.samples.samples.size());
+    direct_irradiance(*run.tracer, r.samples, r.patches, point, emissive, 4, e, sample_e);
+    seen_first_hit(r.samples, r.patches, e, sample_e, b);
+    return b;
+  };
   for (const Light& light : lights) {
     run.progress.check();
-    r.probe.first_hit.push_back(
-        first_bounce(r.patches, direct_irradiance(*run.tracer, r.samples, r.patches, {light})));
+    r.probe.first_hit.push_back(first_hit({light}, {}));
     run.progress.advance();
   }
-  if (!area.empty())
-    r.probe.first_hit.push_back(
-        first_bounce(r.patches, direct_irradiance(*run.tracer, r.samples, r.patches, {}, area)));
+  if (!area.empty()) r.probe.first_hit.push_back(first_hit({}, area));
   run.progress.advance();
   run.progress.end_stage();
 }

@@ -45,6 +45,10 @@ void PatchSet::keep_only(const std::vector<bool>& keep) {
     out.patches.push_back(patches[p]);
     out.member_samples.insert(out.member_samples.end(), member_samples.begin() + member_first[p],
                               member_samples.begin() + member_first[p + 1]);
+    if (!member_seen_weight.empty())
+      out.member_seen_weight.insert(out.member_seen_weight.end(),
+                                    member_seen_weight.begin() + member_first[p],
+                                    member_seen_weight.begin() + member_first[p + 1]);
     out.member_first.push_back(static_cast<std::uint32_t>(out.member_samples.size()));
   }
   *this = std::move(out);

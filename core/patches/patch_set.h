@@ -28,6 +28,12 @@ struct PatchSet {
   // Members of patch p: member_samples[member_first[p] .. member_first[p+1]).
   std::vector<std::uint32_t> member_first;
   std::vector<std::uint32_t> member_samples;
+  // Seen weights (empty: none): each member's share of the patch's first-hit
+  // light, by how often the rays of the bake's final gather landed on it
+  // instead of by its area (runtime/seen_first_hit.h). Aligned with
+  // member_samples; a patch whose members' weights are all 0 uses its area
+  // mean.
+  std::vector<float> member_seen_weight;
 
   std::size_t size() const { return patches.size(); }
   std::size_t member_count(std::size_t p) const { return member_first[p + 1] - member_first[p]; }

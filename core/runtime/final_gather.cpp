@@ -37,6 +37,29 @@ void FinalGather::validate(const std::string& what) const {
       throw Error(what, "near source " + std::to_string(k) + " names patch " +
                             std::to_string(near.patch[k]) + " of " + std::to_string(patches));
   }
+  if (!seen_first.empty()) {
+    if (seen_first.size() != patches + 1 || seen_first.front() != 0 ||
+        seen_first.back() != seen_sample.size() || seen_sample.size() != seen_weight.size())
+      throw Error(what, "the seen weights' row starts do not match their " +
+                            std::to_string(seen_sample.size()) + " entries and " +
+                            std::to_string(patches) + " patches");
+    if (samples == 0) throw Error(what, "seen weights without the bake's sample count");
+    for (std::size_t p = 0; p < patches; ++p) {
+      if (seen_first[p + 1] < seen_first[p])
+        throw Error(what, "the seen weights' row starts decrease at patch " + std::to_string(p));
+      double total = 0.0;
+      for (std::uint32_t k = seen_first[p]; k < seen_first[p + 1]; ++k) {
+        if (seen_sample[k] >= samples || !(seen_weight[k] >= 0.0f && seen_weight[k] <= 1.0f))
+          throw Error(what, "patch " + std::to_string(p) +
+                                "'s seen weights name a sample out of range or a weight "
+                                "outside [0, 1]");
+        total += seen_weight[k];
+      }
+      if (seen_first[p + 1] > seen_first[p] && std::abs(total - 1.0) > 1e-3)
+        throw Error(what, "patch " + std::to_string(p) + "'s seen weights sum to " +
+                              std::to_string(total) + ", not 1");
+    }
+  }
   for (std::size_t i = 0; i + 1 < first.size(); ++i) {
     if (first[i + 1] < first[i])
       throw Error(what, "row offsets decrease at point " + std::to_string(i));
@@ -168,6 +191,42 @@ struct ChunkNearSources {
 // until the chunks are merged.
 constexpr std::uint32_t kChunkNearSource = 0x80000000u;
 
+// The seen weights (FinalGather::seen_first) from the rays read through
+// patch and cluster entries: each patch's samples weighed by the rays that
+// landed on them, each patch's share of its cluster by the rays folded into
+// it. A patch or cluster no such ray landed on keeps its area weights.
+void weigh_by_seen_rays(const SurfacePatchLookup& lookup, const std::vector<std::uint64_t>& seen,
+                        const std::vector<std::uint64_t>& cluster_rays, FinalGather& g) {
+  std::vector<std::uint64_t> patch_total(g.patches, 0);
+  std::vector<std::uint32_t> patch_entries(g.patches, 0);
+  for (std::size_t s = 0; s < seen.size(); ++s)
+    if (seen[s] > 0) {
+      const auto p = static_cast<std::size_t>(lookup.patch_of(static_cast<std::uint32_t>(s)));
+      patch_total[p] += seen[s];
+      ++patch_entries[p];
+    }
+  g.seen_first.assign(g.patches + 1, 0);
+  for (std::size_t p = 0; p < g.patches; ++p)
+    g.seen_first[p + 1] = g.seen_first[p] + patch_entries[p];
+  g.seen_sample.resize(g.seen_first.back());
+  g.seen_weight.resize(g.seen_first.back());
+  std::vector<std::uint32_t> at(g.seen_first.begin(), g.seen_first.end() - 1);
+  for (std::size_t s = 0; s < seen.size(); ++s)
+    if (seen[s] > 0) {
+      const auto p = static_cast<std::size_t>(lookup.patch_of(static_cast<std::uint32_t>(s)));
+      g.seen_sample[at[p]] = static_cast<std::uint32_t>(s);
+      g.seen_weight[at[p]++] =
+          static_cast<float>(static_cast<double>(seen[s]) / static_cast<double>(patch_total[p]));
+    }
+  std::vector<std::uint64_t> cluster_total(g.clusters, 0);
+  for (std::size_t p = 0; p < g.patches; ++p)
+    cluster_total[g.cluster_of_patch[p]] += cluster_rays[p];
+  for (std::size_t p = 0; p < g.patches; ++p)
+    if (const std::uint64_t t = cluster_total[g.cluster_of_patch[p]]; t > 0)
+      g.cluster_share[p] =
+          static_cast<float>(static_cast<double>(cluster_rays[p]) / static_cast<double>(t));
+}
+
 }  // namespace
 
 FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup& lookup,
@@ -217,8 +276,15 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   std::vector<ChunkNearSources> chunk_near(chunks);
   if (progress) progress->begin_stage("final gather", std::max<std::size_t>(1, chunks));
   std::size_t escaped = 0, backs = 0, unrepresented = 0, landed_rays = 0, near_rays = 0;
+  // Over all points: the rays read through a patch or cluster entry that
+  // landed on each sample, and those folded into a cluster per patch (they
+  // weigh the sources' light, see FinalGather::seen_first).
+  std::vector<std::uint64_t> seen_rays(sample_sources ? g.samples : 0, 0),
+      cluster_rays(sample_sources ? patch_count : 0, 0);
 #pragma omp parallel reduction(+ : escaped, backs, unrepresented, landed_rays, near_rays)
   {
+    std::vector<std::uint64_t> seen_local(seen_rays.size(), 0),
+        cluster_local(cluster_rays.size(), 0);
     std::unordered_map<NearKey, std::uint32_t, NearKeyHash> near_index;
     std::vector<std::uint32_t> near_hits, near_touched;
     std::vector<std::uint32_t> hits(patch_count, 0), cluster_hits(g.clusters, 0);
@@ -300,11 +366,15 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
                     });
           std::size_t landed = 0, covered = 0;
           for (std::uint32_t p : touched) landed += hits[p];
+          bool keeping = true;
           for (std::uint32_t s : samples_touched) {
-            if (entries >= sample_kept ||
-                static_cast<double>(covered) >=
-                    settings.sample_coverage * static_cast<double>(landed))
-              break;
+            keeping = keeping && entries < sample_kept &&
+                      static_cast<double>(covered) <
+                          settings.sample_coverage * static_cast<double>(landed);
+            if (!keeping) {
+              seen_local[s] += sample_hits[s];
+              continue;
+            }
             covered += sample_hits[s];
             hits[static_cast<std::size_t>(lookup.patch_of(s))] -= sample_hits[s];
             chunk_patch[c].push_back(static_cast<std::uint32_t>(sample_base + s));
@@ -334,6 +404,7 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
         }
         cluster_touched.clear();
         for (std::size_t k = keep; k < touched.size(); ++k) {
+          if (sample_sources) cluster_local[touched[k]] += hits[touched[k]];
           const std::uint32_t cl = g.cluster_of_patch[touched[k]];
           if (cluster_hits[cl] == 0) cluster_touched.push_back(cl);
           cluster_hits[cl] += hits[touched[k]];
@@ -357,6 +428,11 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
         for (std::uint32_t p : touched) hits[p] = 0;
       }
       if (progress) progress->advance();
+    }
+#pragma omp critical(final_gather_seen_rays)
+    {
+      for (std::size_t s = 0; s < seen_local.size(); ++s) seen_rays[s] += seen_local[s];
+      for (std::size_t p = 0; p < cluster_local.size(); ++p) cluster_rays[p] += cluster_local[p];
     }
   }
   if (progress) {
@@ -468,6 +544,10 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
           src_out.push_back(p);
           weight_out.push_back(0.0f);
         }
+        if (src_out[found] < sample_base && !seen_rays.empty()) {
+          seen_rays[sample] += hits;
+          if (src_out[found] >= patch_count) cluster_rays[p] += hits;
+        }
         weight_out[found] = static_cast<float>(per_ray * (hits_of(weight_out[found]) + hits));
       }
       at += row_count;
@@ -483,6 +563,7 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
     g.source.insert(g.source.end(), chunk_patch[c].begin(), chunk_patch[c].end());
     g.weight.insert(g.weight.end(), chunk_weight[c].begin(), chunk_weight[c].end());
   }
+  if (!seen_rays.empty()) weigh_by_seen_rays(lookup, seen_rays, cluster_rays, g);
   g.compact_rows();
   return g;
 }

@@ -24,12 +24,12 @@
 //
 // Storage: the `kept` strongest patches per point exactly; the weaker ones
 // are folded into their clusters -- the patches of a block of voxels facing
-// the same way -- whose light each frame is the area-weighted mean of their
-// patches'. Every ray keeps its weight, so each point's total (its closure)
-// stays exact, and light concentrated in small patches (the ceiling above a
-// lamp) is not lost: spreading the weak patches' share over the kept ones
-// instead took 15% of the Cornell box's indirect light at 4000 patches. A
-// frame is then a sparse product of a few dozen entries per point.
+// the same way -- whose light each frame is the mean of their patches'
+// weighted by the rays folded into each (see seen weights below). Every ray keeps its weight, so
+// each point's total (its closure) stays exact, and light concentrated in small patches (the
+// ceiling above a lamp) is not lost: spreading the weak patches' share over the kept ones instead
+// took 15% of the Cornell box's indirect light at 4000 patches. A frame is then a sparse product of
+// a few dozen entries per point.
 //
 // Sample sources (optional): a patch's light is its mean over 1-2 m, but the
 // first-hit light b changes within centimetres (a sun shadow's edge, the lit
@@ -126,10 +126,24 @@ struct FinalGather {
   std::vector<std::uint32_t> source;
   std::vector<float> weight;
   std::size_t patches = 0;  // size of the B it multiplies
-  // Per patch: its cluster, and its share of the cluster's area.
+  // Per patch: its cluster, and its share of the cluster's light (its share
+  // of the rays folded into the cluster; of its area where none were).
   std::vector<std::uint32_t> cluster_of_patch;
   std::vector<float> cluster_share;
   std::size_t clusters = 0;
+  // Seen weights (rows read samples; empty: a patch reads its own light): a
+  // patch's light as its entries read it is the mean of its samples' light
+  // (b + T b) weighted by how many of the rays read through the patch (or
+  // its cluster) landed on each, over all points -- not by area. Within a
+  // patch, the parts open to the sun are the parts other surfaces see
+  // (the top of a ledge, a column's face toward the open court), so an area
+  // mean weighs the shaded parts the gather's rays seldom reach as much as
+  // the lit ones. Summed over all points, the light the patch entries carry
+  // is then what sample entries would carry. Patch p's samples are
+  // seen_sample[k], weight seen_weight[k], k in [seen_first[p],
+  // seen_first[p + 1]); a patch with none reads its own light.
+  std::vector<std::uint32_t> seen_first, seen_sample;
+  std::vector<float> seen_weight;
   // Sample sources: the sample count of the bake (0: the rows read no sample
   // and there are no near sources).
   std::size_t samples = 0;

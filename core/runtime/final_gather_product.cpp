@@ -36,11 +36,22 @@ void pad_light(const FinalGather& g, const std::vector<glm::vec3>& patch_exitanc
     }
   };
   copy_padded(patch_exitance, light.data());
+  if (samples > 0 && !g.seen_first.empty()) {
+#pragma omp parallel for schedule(static, 256)
+    for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(patches); ++pi) {
+      const auto p = static_cast<std::size_t>(pi);
+      if (g.seen_first[p] == g.seen_first[p + 1]) continue;
+      glm::vec3 sum(0.0f);
+      for (std::uint32_t k = g.seen_first[p]; k < g.seen_first[p + 1]; ++k)
+        sum += g.seen_weight[k] * sample_exitance[g.seen_sample[k]];
+      light[p] = PaddedLight{{sum.x, sum.y, sum.z, 0.0f}};
+    }
+  }
   std::fill(light.begin() + static_cast<std::ptrdiff_t>(patches),
             light.begin() + static_cast<std::ptrdiff_t>(patches + clusters), PaddedLight{});
   for (std::size_t p = 0; p < patches; ++p) {
     PaddedLight& cl = light[patches + g.cluster_of_patch[p]];
-    for (int c = 0; c < 3; ++c) cl.c[c] += g.cluster_share[p] * patch_exitance[p][c];
+    for (int c = 0; c < 3; ++c) cl.c[c] += g.cluster_share[p] * light[p].c[c];
   }
   if (samples > 0) copy_padded(sample_exitance, light.data() + patches + clusters);
   if (near_exitance) copy_padded(*near_exitance, light.data() + patches + clusters + samples);

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "runtime/direct_light.h"
+#include "runtime/seen_first_hit.h"
 
 namespace bounce {
 
@@ -15,7 +16,8 @@ PatchLighting light_patches(const RayTracer& tracer, const SampleSet& samples,
   l.irradiance.assign(patches.size(), glm::vec3(0.0f));
   l.sample_irradiance.assign(samples.samples.size(), glm::vec3(0.0f));
   direct_irradiance(tracer, samples, patches, lights, area, 4, l.irradiance, l.sample_irradiance);
-  l.first_hit = first_bounce(patches, l.irradiance);
+  l.first_hit.resize(patches.size());
+  seen_first_hit(samples, patches, l.irradiance, l.sample_irradiance, l.first_hit);
   l.seconds_direct = std::chrono::duration<double>(Clock::now() - t).count();
   t = Clock::now();
   multiply(l.first_hit, l.indirect);

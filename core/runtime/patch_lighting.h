@@ -30,9 +30,11 @@ struct PatchLighting {
   // Direct, at each sample (a patch's is their area-weighted mean): what a
   // final gather with sample sources reads.
   std::vector<glm::vec3> sample_irradiance;
-  std::vector<glm::vec3> first_hit;  // b = albedo * irradiance
-  std::vector<glm::vec3> indirect;   // T b
-  std::vector<glm::vec3> exitance;   // emission + b + T b: what the patch sends out
+  // b = albedo * irradiance (seen-weighted over the samples when the patches
+  // have seen weights: runtime/seen_first_hit.h)
+  std::vector<glm::vec3> first_hit;
+  std::vector<glm::vec3> indirect;  // T b
+  std::vector<glm::vec3> exitance;  // emission + b + T b: what the patch sends out
   double seconds_direct = 0.0, seconds_indirect = 0.0;
 };
 

@@ -9,6 +9,7 @@
 
 #include "base/error.h"
 #include "runtime/direct_light.h"
+#include "runtime/seen_first_hit.h"
 
 namespace bounce {
 
@@ -77,6 +78,8 @@ void RuntimeFrame::build() {
     indirect_.assign(n_, glm::vec3(0.0f));
   }
   if (settings_.record) record_.assign(n_ * 9, 0.0f);
+  // Seen weights make b from each sample's own E (runtime/seen_first_hit.h).
+  if (!patches_.member_seen_weight.empty()) settings_.sample_irradiance = true;
   if (settings_.sample_irradiance)
     sample_irradiance_.assign(samples_.samples.size(), glm::vec3(0.0f));
 
@@ -104,9 +107,7 @@ void RuntimeFrame::build() {
                                      settings_.area_strata, span(c, e), sample_irradiance_);
                  });
   add_timed_pass("first hit", {e}, {b}, [this, e, b, span](const FrameGraph::Context& c) {
-    const auto irradiance = span(c, e);
-    const auto first_hit = span(c, b);
-    for (std::size_t p = 0; p < n_; ++p) first_hit[p] = patches_.patches[p].albedo * irradiance[p];
+    seen_first_hit(samples_, patches_, span(c, e), sample_irradiance_, span(c, b));
   });
   if (settings_.record)
     add_timed_pass("record direct", {e, b}, {record},

@@ -6,7 +6,10 @@
 // once per light configuration without allocating:
 //
 //   direct light      lights            -> E        E = direct irradiance
-//   first hit         E                 -> b        b = albedo * E
+//   first hit         E                 -> b        b = albedo * E (seen-
+//                                                    weighted over the samples
+//                                                    with seen weights:
+//                                                    runtime/seen_first_hit.h)
 //   record direct     E, b              -> record   (optional) E, b per patch
 //   indirect product  T, b              -> T b      the caller's multiply
 //   apply             b, T b            -> exitance emission + b + T b

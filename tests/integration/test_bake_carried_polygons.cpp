@@ -13,6 +13,7 @@
 #include "io/npy.h"
 #include "raytrace/ray_tracer.h"
 #include "runtime/direct_light.h"
+#include "runtime/patch_lighting.h"
 #include "scene/scene_loader.h"
 
 namespace bounce::itest {
@@ -59,18 +60,24 @@ TEST_F(CarriedPolygons, BakeReadBackGivesTheBakesOwnDirectLight) {
   // Light 0 is the scene's point light under the ceiling, where evaluating
   // at the samples is far off; the others are the four evaluation lights.
   std::vector<double> with_polygons, at_samples;
+  // b as the run time makes it from the bake read back (seen-weighted over
+  // the samples: the bake stores its gather's seen weights).
+  ASSERT_FALSE(b.patches.member_seen_weight.empty());
+  const auto first_hit = [&](const Light& light) {
+    return light_patches(tracer, b.samples, b.patches, {light}, {},
+                         [](const std::vector<glm::vec3>& x, std::vector<glm::vec3>& y) {
+                           y.assign(x.size(), glm::vec3(0.0f));
+                         })
+        .first_hit;
+  };
   for (std::size_t l = 0; l < lights.size(); ++l)
-    with_polygons.push_back(relative_difference(
-        first_bounce(b.patches, direct_irradiance(tracer, b.samples, b.patches, {lights[l]})),
-        b.probe.first_hit[l]));
+    with_polygons.push_back(relative_difference(first_hit(lights[l]), b.probe.first_hit[l]));
   // The same bake without its polygons falls back to the samples' points.
   b.samples.carried.clear();
   b.samples.carried_first.clear();
   b.samples.carried_vertices.clear();
   for (std::size_t l = 0; l < lights.size(); ++l)
-    at_samples.push_back(relative_difference(
-        first_bounce(b.patches, direct_irradiance(tracer, b.samples, b.patches, {lights[l]})),
-        b.probe.first_hit[l]));
+    at_samples.push_back(relative_difference(first_hit(lights[l]), b.probe.first_hit[l]));
   for (std::size_t l = 0; l < lights.size(); ++l)
     EXPECT_LT(with_polygons[l], 1e-5) << "light " << l;
   // Without the files the test could not tell: the point evaluation must be

@@ -71,13 +71,29 @@ TEST_F(FurnaceBake, ManifestFileListMatchesTheFilesOnDisk) {
   }
   // The furnace's matrix is far under 1 MiB: stored dense, so no DDS, CSR or
   // error pictures.
-  EXPECT_EQ(listed,
-            (std::set<std::string>{
-                "patches.npy", "voxels.npy", "samples.npy", "carried_polygons.npy",
-                "carried_area.npy", "carried_vertices.npy", "closure.npy", "gather_first.npy",
-                "gather_source.npy", "gather_weight.npy", "gather_cluster.npy", "gather_share.npy",
-                "gather_near_position.npy", "gather_near_normal.npy", "gather_near_albedo.npy",
-                "gather_near_patch.npy", "F.npy", "T.npy", "T.png", "lights_first_hit.npy"}));
+  EXPECT_EQ(listed, (std::set<std::string>{"patches.npy",
+                                           "voxels.npy",
+                                           "samples.npy",
+                                           "carried_polygons.npy",
+                                           "carried_area.npy",
+                                           "carried_vertices.npy",
+                                           "closure.npy",
+                                           "gather_first.npy",
+                                           "gather_source.npy",
+                                           "gather_weight.npy",
+                                           "gather_cluster.npy",
+                                           "gather_share.npy",
+                                           "gather_seen_first.npy",
+                                           "gather_seen_sample.npy",
+                                           "gather_seen_weight.npy",
+                                           "gather_near_position.npy",
+                                           "gather_near_normal.npy",
+                                           "gather_near_albedo.npy",
+                                           "gather_near_patch.npy",
+                                           "F.npy",
+                                           "T.npy",
+                                           "T.png",
+                                           "lights_first_hit.npy"}));
   std::set<std::string> on_disk;
   for (const std::string& e : entries(out)) on_disk.insert(e);
   listed.insert("manifest.json");
@@ -209,15 +225,29 @@ TEST(BakeFolder, RebakingIntoTheSameOutReplacesThePreviousBake) {
   ASSERT_EQ(third.exit_code, 0) << third;
   EXPECT_EQ(read_manifest(out)["settings"]["voxel_resolution"], 5);
   EXPECT_EQ(entries(tmp.path()), std::vector<std::string>{"bake"});
-  EXPECT_EQ(entries(out),
-            (std::vector<std::string>{"T.npy", "T.png", "carried_area.npy", "carried_polygons.npy",
-                                      "carried_vertices.npy", "closure.npy", "gather_cluster.npy",
-                                      "gather_first.npy", "gather_near_albedo.npy",
-                                      "gather_near_normal.npy", "gather_near_patch.npy",
-                                      "gather_near_position.npy", "gather_share.npy",
-                                      "gather_source.npy",
-                                      "gather_weight.npy", "lights_first_hit.npy", "manifest.json",
-                                      "patches.npy", "samples.npy", "voxels.npy"}));
+  EXPECT_EQ(entries(out), (std::vector<std::string>{"T.npy",
+                                                    "T.png",
+                                                    "carried_area.npy",
+                                                    "carried_polygons.npy",
+                                                    "carried_vertices.npy",
+                                                    "closure.npy",
+                                                    "gather_cluster.npy",
+                                                    "gather_first.npy",
+                                                    "gather_near_albedo.npy",
+                                                    "gather_near_normal.npy",
+                                                    "gather_near_patch.npy",
+                                                    "gather_near_position.npy",
+                                                    "gather_seen_first.npy",
+                                                    "gather_seen_sample.npy",
+                                                    "gather_seen_weight.npy",
+                                                    "gather_share.npy",
+                                                    "gather_source.npy",
+                                                    "gather_weight.npy",
+                                                    "lights_first_hit.npy",
+                                                    "manifest.json",
+                                                    "patches.npy",
+                                                    "samples.npy",
+                                                    "voxels.npy"}));
 }
 
 }  // namespace

@@ -64,8 +64,11 @@ TEST(CliReport, QuickSweepOnTheCornellBox) {
         row.at("mode").get<std::string>() + std::to_string(row.at("patches").get<int>());
     for (const char* key : {"layout_image_indirect_noise_corrected_relative_rmse",
                             "layout_vertex_indirect_noise_corrected_relative_rmse"}) {
+      // 0 when it is below the reference's noise (the quick reference is
+      // noisy, and the Cornell box's picture through the gather's seen
+      // weights gets there).
       const double e = row.at(key).get<double>();
-      EXPECT_TRUE(std::isfinite(e) && e > 0.0) << key << " = " << e << " in " << row.dump();
+      EXPECT_TRUE(std::isfinite(e) && e >= 0.0) << key << " = " << e << " in " << row.dump();
       const auto [it, first] = layout[bake_key].emplace(key, e);
       EXPECT_EQ(it->second, e) << key << " differs between rows of bake " << bake_key;
     }

@@ -397,6 +397,76 @@ TEST(FinalGather, SampleSourcesSplitThePatchesRaysAndKeepTheirLight) {
   }
 }
 
+TEST(FinalGather, PatchEntriesCarryTheLightOfTheSamplesTheirRaysLandedOn) {
+  // A patch entry reads its samples' light weighted by where the rays read
+  // through patch entries landed, over all points. Summed over the points,
+  // the gather then gives what a gather keeping every sample as its own
+  // entry gives (the same rays), whatever the light of each sample; the
+  // area mean would not.
+  const Scene scene = corner_lit_along_the_floor();
+  const BakeResult bake = bake_of(scene, 3);
+  const RayTracer tracer(scene);
+  const SurfacePatchLookup lookup(bake.voxels, bake.samples, bake.patch_of_sample);
+  std::vector<glm::vec3> points, normals;
+  for (int i = 0; i < 24; ++i) {
+    const float t = static_cast<float>(i) / 23.0f;
+    points.emplace_back(0.05f + 0.9f * t, 0.0f, 0.05f + 0.6f * t * t);
+    normals.emplace_back(0.0f, 1.0f, 0.0f);
+    points.emplace_back(0.0f, 0.05f + 0.9f * t, 0.1f + 0.8f * t);
+    normals.emplace_back(1.0f, 0.0f, 0.0f);
+  }
+  // No clusters (their light mixes the rays of two kinds of entry) and no
+  // near sources: patch and sample entries only.
+  FinalGatherSettings seen;
+  seen.near_cells = 0.0f;
+  seen.kept = 100000;
+  seen.coverage = 1.0;
+  FinalGatherSettings every_sample = seen;
+  every_sample.sample_kept = 100000;
+  every_sample.sample_coverage = 1.0;
+  const FinalGather a = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
+                                           points, normals, seen);
+  const FinalGather b = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
+                                           points, normals, every_sample);
+  a.validate("seen weights");
+  ASSERT_FALSE(a.seen_first.empty());
+  ASSERT_GT(a.seen_sample.size(), 0u) << "some rays are read through patch entries";
+  for (std::uint32_t src : b.source) ASSERT_GE(src, b.patches + b.clusters) << "samples only";
+  // Light varying within every patch, so that the weights matter.
+  const std::size_t samples = bake.samples.samples.size();
+  std::vector<glm::vec3> patch_light(bake.patches.size(), glm::vec3(0.0f)), sample_light(samples);
+  for (std::size_t s = 0; s < samples; ++s)
+    sample_light[s] =
+        glm::vec3(1.0f + static_cast<float>(s % 7), 0.5f + static_cast<float>(s % 3), 1.0f);
+  for (std::size_t p = 0; p < patch_light.size(); ++p) {
+    double area = 0.0;
+    for (std::uint32_t k = bake.patches.member_first[p]; k < bake.patches.member_first[p + 1];
+         ++k) {
+      const std::uint32_t s = bake.patches.member_samples[k];
+      patch_light[p] += bake.samples.samples[s].area * sample_light[s];
+      area += bake.samples.samples[s].area;
+    }
+    if (area > 0.0) patch_light[p] /= static_cast<float>(area);
+  }
+  const auto total = [&](const FinalGather& g) {
+    std::vector<glm::vec3> e;
+    g.irradiance(patch_light, sample_light, e);
+    glm::dvec3 t(0.0);
+    for (const glm::vec3& v : e) t += glm::dvec3(v);
+    return t;
+  };
+  const glm::dvec3 ta = total(a), tb = total(b);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(ta[c], tb[c], 1e-5 * tb[c]) << c;
+  // Each patch's area mean instead (no seen weights): another total.
+  FinalGather area_weighted = a;
+  area_weighted.seen_first.clear();
+  area_weighted.seen_sample.clear();
+  area_weighted.seen_weight.clear();
+  const glm::dvec3 tarea = total(area_weighted);
+  EXPECT_GT(glm::length(tarea - tb), 1e-3 * glm::length(tb))
+      << "the area mean gives the same total here: the test cannot tell the weights apart";
+}
+
 // A floor half shaded by a board, a wall at its far edge, lit by a sun, a
 // point light and a spot: near sources on either side of the shadow's edge,
 // some facing each light and some not.
@@ -443,10 +513,16 @@ std::vector<glm::dvec3> product_in_double(const FinalGather& g, const std::vecto
                                           const std::vector<glm::vec3>& near) {
   std::vector<glm::dvec3> light;
   for (const glm::vec3& v : patch) light.emplace_back(v);
+  // A patch with seen weights reads its samples' light so weighted.
+  for (std::size_t p = 0; p + 1 < g.seen_first.size(); ++p) {
+    if (g.seen_first[p] == g.seen_first[p + 1]) continue;
+    light[p] = glm::dvec3(0.0);
+    for (std::uint32_t k = g.seen_first[p]; k < g.seen_first[p + 1]; ++k)
+      light[p] += static_cast<double>(g.seen_weight[k]) * glm::dvec3(sample[g.seen_sample[k]]);
+  }
   std::vector<glm::dvec3> cluster(g.clusters, glm::dvec3(0.0));
   for (std::size_t p = 0; p < g.patches; ++p)
-    cluster[g.cluster_of_patch[p]] +=
-        static_cast<double>(g.cluster_share[p]) * glm::dvec3(patch[p]);
+    cluster[g.cluster_of_patch[p]] += static_cast<double>(g.cluster_share[p]) * light[p];
   light.insert(light.end(), cluster.begin(), cluster.end());
   for (const glm::vec3& v : sample) light.emplace_back(v);
   for (const glm::vec3& v : near) light.emplace_back(v);
