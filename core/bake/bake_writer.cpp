@@ -433,8 +433,20 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
           {"back_faces", fg.rays_back},
           {"near", fg.rays_near},
           {"unrepresented_surface", fg.rays_unrepresented}}},
+        // Seen weights (runtime/seen_first_hit.h): the patches whose first-hit
+        // light is their samples' as the vertices' rays saw them.
+        {"seen_weights",
+         {{"patches",
+           [&fg] {
+             std::size_t with_rows = 0;
+             for (std::size_t p = 0; p + 1 < fg.seen_first.size(); ++p)
+               with_rows += fg.seen_first[p + 1] > fg.seen_first[p] ? 1 : 0;
+             return with_rows;
+           }()},
+          {"entries", fg.seen_sample.size()}}},
         {"bytes", 4 * (fg.first.size() + fg.source.size() + fg.weight.size() +
-                       2 * fg.cluster_of_patch.size())}};
+                       2 * fg.cluster_of_patch.size() + fg.seen_first.size() +
+                       fg.seen_sample.size() + fg.seen_weight.size())}};
   } else {
     m["final_gather"] = {{"transfer", "nearest patches"}};
   }

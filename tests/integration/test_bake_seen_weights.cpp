@@ -55,6 +55,10 @@ TEST_F(SeenWeights, ReadBackOntoEachPatchsMembers) {
   }
   EXPECT_GT(rows, b.patches.size() / 2) << "most of the box's patches are seen by its vertices";
   EXPECT_EQ(sample.data.size(), weight.data.size());
+  // The manifest says how many.
+  const json seen = read_manifest(out).at("final_gather").at("seen_weights");
+  EXPECT_EQ(seen.at("patches").get<std::size_t>(), rows);
+  EXPECT_EQ(seen.at("entries").get<std::size_t>(), sample.data.size());
 }
 
 TEST_F(SeenWeights, SampleOfAnotherPatchIsOneErrorNamingTheFile) {

@@ -15,7 +15,11 @@
 // 3.2 m), and the level of 0.98 there was that excess cancelling the first
 // bounce the gather lost next to sunlit ledges. With near sources lighting
 // that first bounce the 1024-patch level is 1.06; at 2048 patches, where T b
-// is within 3% of exact, it is 0.955.
+// is within 3% of exact, it was 0.955. Within each patch the parts open to the
+// sun are the parts other surfaces see, and an area mean of the first-hit
+// light weighed the shaded parts as much as the lit ones: with each patch's b
+// weighted by where the gather's rays land (runtime/seen_first_hit.h) it is
+// 0.994, and the tolerance is the 3% asked of the method.
 #include <regex>
 
 #include "cli_harness.h"
@@ -45,7 +49,7 @@ TEST(SponzaLevel, IndirectMeanLevelNearTheReference) {
   const std::string output = r.out + r.err;
   ASSERT_TRUE(std::regex_search(output, m, level)) << r;
   const double mean_level = std::stod(m[1].str());
-  EXPECT_NEAR(mean_level, 1.0, 0.05) << output;
+  EXPECT_NEAR(mean_level, 1.0, 0.03) << output;
 }
 
 }  // namespace
