@@ -22,6 +22,13 @@ namespace {
 
 json vec(const glm::vec3& v) { return json::array({v.x, v.y, v.z}); }
 
+// How many rows of CSR row starts `first` hold at least one entry.
+std::size_t non_empty_rows(const std::vector<std::uint32_t>& first) {
+  std::size_t rows = 0;
+  for (std::size_t i = 0; i + 1 < first.size(); ++i) rows += first[i + 1] > first[i] ? 1 : 0;
+  return rows;
+}
+
 constexpr std::size_t kPatchColumns = patch_column::kCount;
 constexpr std::size_t kVoxelColumns = voxel_column::kCount;
 constexpr std::size_t kSampleColumns = sample_column::kCount;
@@ -426,6 +433,13 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
         {"near_distance_voxels", r.settings.final_gather_near},
         {"near_resolution_per_voxel", FinalGatherSettings{}.near_resolution},
         {"near_min_rays", r.settings.final_gather_near_min_rays},
+        // Spots (runtime/final_gather.h): points where the vertices' far
+        // rays landed on each sample, lit every frame with the near sources.
+        {"spots",
+         {{"samples", non_empty_rows(fg.spot_first)},
+          {"points", fg.spots()},
+          {"per_sample_max", FinalGatherSettings{}.spots},
+          {"resolution_per_voxel", FinalGatherSettings{}.spot_resolution}}},
         {"clusters", fg.clusters},
         {"rays",
          {{"landed", fg.rays_landed},
@@ -436,17 +450,11 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
         // Seen weights (runtime/seen_first_hit.h): the patches whose first-hit
         // light is their samples' as the vertices' rays saw them.
         {"seen_weights",
-         {{"patches",
-           [&fg] {
-             std::size_t with_rows = 0;
-             for (std::size_t p = 0; p + 1 < fg.seen_first.size(); ++p)
-               with_rows += fg.seen_first[p + 1] > fg.seen_first[p] ? 1 : 0;
-             return with_rows;
-           }()},
-          {"entries", fg.seen_sample.size()}}},
+         {{"patches", non_empty_rows(fg.seen_first)}, {"entries", fg.seen_sample.size()}}},
         {"bytes", 4 * (fg.first.size() + fg.source.size() + fg.weight.size() +
                        2 * fg.cluster_of_patch.size() + fg.seen_first.size() +
-                       fg.seen_sample.size() + fg.seen_weight.size())}};
+                       fg.seen_sample.size() + fg.seen_weight.size() + fg.spot_first.size() +
+                       fg.spot_weight.size() + 10 * fg.near.size())}};
   } else {
     m["final_gather"] = {{"transfer", "nearest patches"}};
   }
@@ -571,6 +579,13 @@ json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const Bake
       record(bake_file::kGatherNearAlbedo, "float32 [near sources x 3]: its mean albedo");
       record(bake_file::kGatherNearPatch,
              "uint32 [near sources]: the patch whose multi-bounce light T b it carries");
+    }
+    if (!r.vertex_gather.spot_first.empty()) {
+      record(bake_file::kGatherSpotFirst,
+             "uint32 [samples + 1]: row starts of each sample's spots, the last near sources");
+      record(bake_file::kGatherSpotWeight,
+             "float32 [spots]: the spot's share of the sample's light (of the far rays that "
+             "landed on the sample's spots)");
     }
   }
   if (r.settings.dump_matrices) {

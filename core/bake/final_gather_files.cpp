@@ -35,6 +35,9 @@ void write_final_gather(const fs::path& dir, const FinalGather& g) {
   write_npy(dir / bake_file::kGatherNearNormal, rows(g.near.normal), {g.near.size(), 3});
   write_npy(dir / bake_file::kGatherNearAlbedo, rows(g.near.albedo), {g.near.size(), 3});
   write_npy(dir / bake_file::kGatherNearPatch, g.near.patch, {g.near.size()});
+  if (g.spot_first.empty()) return;
+  write_npy(dir / bake_file::kGatherSpotFirst, g.spot_first, {g.spot_first.size()});
+  write_npy(dir / bake_file::kGatherSpotWeight, g.spot_weight, {g.spot_weight.size()});
 }
 
 std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t patches,
@@ -101,6 +104,22 @@ std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t pa
     g.seen_sample = vector_of(bake_file::kGatherSeenSample, u32);
     g.seen_weight = vector_of(bake_file::kGatherSeenWeight, f32);
     g.samples = samples;
+  }
+  // Spots (bakes made before them have none: samples are lit at their
+  // centres).
+  if (fs::exists(dir / bake_file::kGatherSpotFirst)) {
+    g.spot_first = vector_of(bake_file::kGatherSpotFirst, u32);
+    g.spot_weight = vector_of(bake_file::kGatherSpotWeight, f32);
+    g.samples = samples;
+    if (g.spot_first.size() != samples + 1)
+      throw Error((dir / bake_file::kGatherSpotFirst).string(),
+                  "expected one row start per sample and one more (" + std::to_string(samples + 1) +
+                      "), found " + std::to_string(g.spot_first.size()));
+    if (g.spot_weight.size() != g.spot_first.back() || g.spot_first.back() > g.near.size())
+      throw Error((dir / bake_file::kGatherSpotWeight).string(),
+                  "expected " + std::to_string(g.spot_first.back()) + " spot weights within " +
+                      std::to_string(g.near.size()) + " near sources, found " +
+                      std::to_string(g.spot_weight.size()) + " weights");
   }
   g.validate((dir / "gather_*.npy").string());
   g.compact_rows();

@@ -43,6 +43,7 @@ class SurfacePatchLookup {
   std::int32_t sample_at(std::uint32_t triangle, bool back, const glm::vec3& x) const;
   std::int32_t patch_of(std::uint32_t sample) const { return patch_of_sample_[sample]; }
   std::size_t sample_count() const { return samples_.samples.size(); }
+  const SampleSet& samples() const { return samples_; }
 
   // A carrying sample farther than this (voxel sizes) from the point's
   // plane stands on another surface: no patch (samples.h).

@@ -60,6 +60,27 @@ void FinalGather::validate(const std::string& what) const {
                               std::to_string(total) + ", not 1");
     }
   }
+  if (!spot_first.empty()) {
+    if (spot_first.size() != samples + 1 || spot_first.front() != 0 ||
+        spot_first.back() != spot_weight.size() || spot_first.back() > near.size())
+      throw Error(what, "the spots' row starts do not match their " +
+                            std::to_string(spot_weight.size()) + " weights, " +
+                            std::to_string(samples) + " samples and " +
+                            std::to_string(near.size()) + " near sources");
+    for (std::size_t s = 0; s < samples; ++s) {
+      if (spot_first[s + 1] < spot_first[s])
+        throw Error(what, "the spots' row starts decrease at sample " + std::to_string(s));
+      double total = 0.0;
+      for (std::uint32_t k = spot_first[s]; k < spot_first[s + 1]; ++k) {
+        if (!(spot_weight[k] >= 0.0f && spot_weight[k] <= 1.0f))
+          throw Error(what, "sample " + std::to_string(s) + " has a spot weight outside [0, 1]");
+        total += spot_weight[k];
+      }
+      if (spot_first[s + 1] > spot_first[s] && std::abs(total - 1.0) > 1e-3)
+        throw Error(what, "sample " + std::to_string(s) + "'s spot weights sum to " +
+                              std::to_string(total) + ", not 1");
+    }
+  }
   for (std::size_t i = 0; i + 1 < first.size(); ++i) {
     if (first[i + 1] < first[i])
       throw Error(what, "row offsets decrease at point " + std::to_string(i));
@@ -227,6 +248,69 @@ void weigh_by_seen_rays(const SurfacePatchLookup& lookup, const std::vector<std:
           static_cast<float>(static_cast<double>(cluster_rays[p]) / static_cast<double>(t));
 }
 
+// A spot's cell as the far rays found it: how many landed in it, and the
+// first of them (in point and ray order, so that the spot is the same
+// whatever the thread count): where it landed and the side it landed on.
+struct SpotCell {
+  std::uint64_t rays = 0, first = 0;
+  glm::vec3 position{0.0f}, normal{0.0f};
+};
+using SpotCells = std::unordered_map<NearKey, SpotCell, NearKeyHash>;
+
+void add_to_spot_cell(SpotCells& cells, const NearKey& key, const SpotCell& cell) {
+  const auto [it, added] = cells.try_emplace(key, cell);
+  if (added) return;
+  it->second.rays += cell.rays;
+  if (cell.first < it->second.first) {
+    it->second.first = cell.first;
+    it->second.position = cell.position;
+    it->second.normal = cell.normal;
+  }
+}
+
+// Each sample's `spots` cells with the most far rays (ties by first ray)
+// become its spots, weighted by their rays: FinalGather::spot_first, and
+// the spots appended to the near sources, lit with the sample's albedo.
+void make_spots(const SurfacePatchLookup& lookup, const SpotCells& cells, int spots,
+                FinalGather& g) {
+  struct Candidate {
+    std::uint32_t sample;
+    SpotCell cell;
+  };
+  std::vector<Candidate> all;
+  all.reserve(cells.size());
+  for (const auto& [key, cell] : cells)
+    all.push_back({static_cast<std::uint32_t>(key.sample), cell});
+  std::sort(all.begin(), all.end(), [](const Candidate& a, const Candidate& b) {
+    if (a.sample != b.sample) return a.sample < b.sample;
+    if (a.cell.rays != b.cell.rays) return a.cell.rays > b.cell.rays;
+    return a.cell.first < b.cell.first;
+  });
+  const SampleSet& samples = lookup.samples();
+  g.spot_first.assign(g.samples + 1, 0);
+  std::vector<std::uint32_t> count(g.samples, 0);
+  std::size_t at = 0;
+  while (at < all.size()) {
+    const std::uint32_t s = all[at].sample;
+    std::size_t end = at;
+    while (end < all.size() && all[end].sample == s) ++end;
+    const std::size_t kept = std::min(end - at, static_cast<std::size_t>(spots));
+    std::uint64_t total = 0;
+    for (std::size_t k = at; k < at + kept; ++k) total += all[k].cell.rays;
+    for (std::size_t k = at; k < at + kept; ++k) {
+      g.spot_weight.push_back(
+          static_cast<float>(static_cast<double>(all[k].cell.rays) / static_cast<double>(total)));
+      g.near.position.push_back(all[k].cell.position);
+      g.near.normal.push_back(all[k].cell.normal);
+      g.near.albedo.push_back(samples.samples[s].albedo);
+      g.near.patch.push_back(static_cast<std::uint32_t>(lookup.patch_of(s)));
+    }
+    count[s] = static_cast<std::uint32_t>(kept);
+    at = end;
+  }
+  for (std::size_t s = 0; s < g.samples; ++s) g.spot_first[s + 1] = g.spot_first[s] + count[s];
+}
+
 }  // namespace
 
 FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup& lookup,
@@ -241,6 +325,10 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   if (settings.sample_kept < 0 ||
       !(settings.sample_coverage >= 0.0 && settings.sample_coverage <= 1.0))
     throw Error("final gather", "kept samples must be >= 0 and their coverage in [0, 1]");
+  if (settings.spots < 0 || settings.spots > 64 || settings.spot_resolution < 1 ||
+      settings.spot_resolution > 1024)
+    throw Error("final gather",
+                "spots per sample must be in [0, 64] and their resolution in [1, 1024] per voxel");
   if (!(settings.near_cells >= 0.0f && settings.near_cells <= 16.0f) ||
       settings.near_resolution < 1 || settings.near_resolution > 1024)
     throw Error("final gather",
@@ -260,6 +348,9 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   if (sample_sources || near_sources) g.samples = lookup.sample_count();
   const float near_distance = settings.near_cells * grid.cell_size();
   const float near_cell = grid.cell_size() / static_cast<float>(settings.near_resolution);
+  const bool spot_sources = (sample_sources || near_sources) && settings.spots > 0;
+  const float spot_cell = grid.cell_size() / static_cast<float>(settings.spot_resolution);
+  SpotCells spot_cells;
   const std::size_t sample_base = patch_count + g.clusters;
   const float eps = settings.offset_epsilons * tracer.epsilon();
   const Scene& scene = tracer.scene();
@@ -290,6 +381,7 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
     std::vector<std::uint32_t> hits(patch_count, 0), cluster_hits(g.clusters, 0);
     std::vector<std::uint32_t> touched, cluster_touched;
     std::vector<std::uint32_t> sample_hits(sample_sources ? g.samples : 0, 0), samples_touched;
+    SpotCells spot_local;
 #pragma omp for schedule(dynamic, 1)
     for (std::int64_t ci = 0; ci < static_cast<std::int64_t>(chunks); ++ci) {
       if (progress && progress->should_stop()) continue;
@@ -347,6 +439,12 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
               if (near_hits[id]++ == 0) near_touched.push_back(id);
               ++near_rays;
               continue;
+            }
+            if (spot_sources) {
+              const glm::ivec3 cell(glm::floor(x / spot_cell));
+              add_to_spot_cell(spot_local, NearKey{s, cell.x, cell.y, cell.z, h.triangle},
+                               SpotCell{1, static_cast<std::uint64_t>(i) * rays + k, x,
+                                        back ? -h.geometric_normal : h.geometric_normal});
             }
             if (hits[static_cast<std::size_t>(p)]++ == 0)
               touched.push_back(static_cast<std::uint32_t>(p));
@@ -433,6 +531,7 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
     {
       for (std::size_t s = 0; s < seen_local.size(); ++s) seen_rays[s] += seen_local[s];
       for (std::size_t p = 0; p < cluster_local.size(); ++p) cluster_rays[p] += cluster_local[p];
+      for (const auto& [key, cell] : spot_local) add_to_spot_cell(spot_cells, key, cell);
     }
   }
   if (progress) {
@@ -556,6 +655,8 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
     chunk_patch[c] = std::move(src_out);
     chunk_weight[c] = std::move(weight_out);
   }
+  // The spots go after the near sources the rows read.
+  if (spot_sources) make_spots(lookup, spot_cells, settings.spots, g);
   g.first.reserve(n + 1);
   g.first.push_back(0);
   for (std::size_t c = 0; c < chunks; ++c) {

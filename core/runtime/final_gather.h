@@ -55,6 +55,21 @@
 // with one face's normal (on Sponza that left the first bounce at the
 // vertices 5% low, and the sunlit mouldings' undersides half as bright as
 // their own surface makes them).
+//
+// Spots (optional): a sample's first-hit light is the direct light at its
+// centre, but the part of a sample the gather's rays land on is not its
+// centre: the top of a ledge more than its shaded front, a column's face
+// toward the court more than its back. The light a point reads from a sample
+// is the light where its rays landed. Far rays (not near sources) are
+// therefore grouped by the cell (`spot_resolution` per voxel edge) and
+// triangle they landed on within each sample, over all points; the `spots`
+// cells most rays landed in become points lit every frame, one shadow ray
+// per light as near sources are, and the sample's light is the sample's
+// albedo times their irradiance weighted by those rays, plus its patch's
+// T b. On the sunlit Sponza the centres' light left the vertices' mean
+// indirect level 2-5% low at 4000-16000 patches. Spots are kept as near
+// sources past the ones the rows read, so every caller that lights the near
+// sources lights them too.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -100,6 +115,10 @@ struct FinalGatherSettings {
   // Near sources fewer rays than this landed in, over all points, go back to
   // the sample (or patch, or cluster) the points read for that surface.
   int near_min_rays = 2;
+  // Spots per sample (0: samples are lit at their centres) and the cells
+  // per voxel edge the far rays' landing points are grouped by.
+  int spots = 3;
+  int spot_resolution = 8;
   // Cluster blocks are this many voxels along each axis.
   int cluster_voxels = 4;
   std::uint64_t seed = 1;
@@ -148,6 +167,15 @@ struct FinalGather {
   // and there are no near sources).
   std::size_t samples = 0;
   NearSources near;
+  // Spots (empty: samples are lit at their centres): sample s's light is
+  // sum over k in [spot_first[s], spot_first[s + 1]) of spot_weight[k] x the
+  // light of near source spot_base() + k (its albedo is the sample's); a
+  // sample with none keeps its centre's light. The spots are the last
+  // spot_first.back() near sources; no row reads them.
+  std::vector<std::uint32_t> spot_first;
+  std::vector<float> spot_weight;
+  std::size_t spots() const { return spot_first.empty() ? 0 : spot_first.back(); }
+  std::size_t spot_base() const { return near.size() - spots(); }
   int rays = 0;
   // Where the rays went (at build time): onto a patch, out of the scene,
   // onto the back of a one-sided triangle, onto surface no patch stands for.

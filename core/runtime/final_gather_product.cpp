@@ -21,8 +21,11 @@ namespace {
 using gather_loops::PaddedLight;
 
 // The padded light of every source the rows read: the patches', then each
-// cluster's area-weighted mean, then the samples', then the near sources'
-// (`near_exitance` null: sized for them, left for the caller to write).
+// cluster's mean, then the samples', then the near sources'. `near_exitance`
+// null: the caller has written the near sources' light already (the buffer
+// sized for every source first). The near sources come first because the
+// samples with spots take their light from them, and the patches with seen
+// weights from their samples.
 void pad_light(const FinalGather& g, const std::vector<glm::vec3>& patch_exitance,
                const std::vector<glm::vec3>& sample_exitance,
                const std::vector<glm::vec3>* near_exitance, std::vector<PaddedLight>& light) {
@@ -35,16 +38,33 @@ void pad_light(const FinalGather& g, const std::vector<glm::vec3>& patch_exitanc
       to[i] = PaddedLight{{v.x, v.y, v.z, 0.0f}};
     }
   };
+  PaddedLight* const sample_light = light.data() + patches + clusters;
+  PaddedLight* const near_light = sample_light + samples;
+  if (near_exitance) copy_padded(*near_exitance, near_light);
+  if (samples > 0) copy_padded(sample_exitance, sample_light);
+  if (!g.spot_first.empty()) {
+    const PaddedLight* spot_light = near_light + g.spot_base();
+#pragma omp parallel for schedule(static, 4096)
+    for (std::int64_t si = 0; si < static_cast<std::int64_t>(samples); ++si) {
+      const auto s = static_cast<std::size_t>(si);
+      if (g.spot_first[s] == g.spot_first[s + 1]) continue;
+      PaddedLight sum{};
+      for (std::uint32_t k = g.spot_first[s]; k < g.spot_first[s + 1]; ++k)
+        for (int c = 0; c < 3; ++c) sum.c[c] += g.spot_weight[k] * spot_light[k].c[c];
+      sample_light[s] = sum;
+    }
+  }
   copy_padded(patch_exitance, light.data());
   if (samples > 0 && !g.seen_first.empty()) {
 #pragma omp parallel for schedule(static, 256)
     for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(patches); ++pi) {
       const auto p = static_cast<std::size_t>(pi);
       if (g.seen_first[p] == g.seen_first[p + 1]) continue;
-      glm::vec3 sum(0.0f);
+      PaddedLight sum{};
       for (std::uint32_t k = g.seen_first[p]; k < g.seen_first[p + 1]; ++k)
-        sum += g.seen_weight[k] * sample_exitance[g.seen_sample[k]];
-      light[p] = PaddedLight{{sum.x, sum.y, sum.z, 0.0f}};
+        for (int c = 0; c < 3; ++c)
+          sum.c[c] += g.seen_weight[k] * sample_light[g.seen_sample[k]].c[c];
+      light[p] = sum;
     }
   }
   std::fill(light.begin() + static_cast<std::ptrdiff_t>(patches),
@@ -53,8 +73,6 @@ void pad_light(const FinalGather& g, const std::vector<glm::vec3>& patch_exitanc
     PaddedLight& cl = light[patches + g.cluster_of_patch[p]];
     for (int c = 0; c < 3; ++c) cl.c[c] += g.cluster_share[p] * light[p].c[c];
   }
-  if (samples > 0) copy_padded(sample_exitance, light.data() + patches + clusters);
-  if (near_exitance) copy_padded(*near_exitance, light.data() + patches + clusters + samples);
 }
 
 // The near sources' light (see near_exitance()) written to out[i * stride],
@@ -196,12 +214,14 @@ void FinalGather::irradiance_lighting_near(
     const std::vector<glm::vec3>& patch_indirect, std::vector<glm::vec3>& out,
     double* near_seconds) const {
   check_light(patch_exitance, sample_exitance);
-  pad_light(*this, patch_exitance, sample_exitance, nullptr, padded_light);
+  padded_light.resize(patches + clusters + samples + near.size());
   const auto start = std::chrono::steady_clock::now();
-  light_near_sources(near, &tracer, lights, area, patch_indirect,
-                     padded_light[patches + clusters + samples].c, 4);
+  if (near.size() > 0)
+    light_near_sources(near, &tracer, lights, area, patch_indirect,
+                       padded_light[patches + clusters + samples].c, 4);
   if (near_seconds)
     *near_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  pad_light(*this, patch_exitance, sample_exitance, nullptr, padded_light);
   sum_padded(padded_light.data(), out);
 }
 

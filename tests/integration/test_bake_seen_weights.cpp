@@ -1,11 +1,13 @@
 // The seen weights of a bake's final gather (gather_seen_*.npy,
-// runtime/seen_first_hit.h) read back onto the patches, and a damaged file
-// is one error naming it: never a crash, never weights that point at the
-// samples of another patch.
+// runtime/seen_first_hit.h) read back onto the patches, and its spots
+// (gather_spot_*.npy, runtime/final_gather.h) with the gather; a damaged
+// file is one error naming it: never a crash, never weights that point at
+// the samples of another patch.
 #include <cmath>
 #include <span>
 
 #include "bake/bake_reader.h"
+#include "bake/final_gather_files.h"
 #include "cli_harness.h"
 #include "io/npy.h"
 
@@ -93,6 +95,37 @@ TEST_F(SeenWeights, WeightsOfAnotherLengthOrNotFiniteAreRefused) {
   weight.data[0] = std::nanf("");
   write_npy(out / "gather_seen_weight.npy", std::span<const float>(weight.data), weight.shape);
   expect_solve_refuses("gather_seen_first.npy", "outside [0, 1]");
+}
+
+TEST_F(SeenWeights, SpotsReadBackWithTheGather) {
+  const LoadedBake b = BakeReader::read(out);
+  const std::optional<FinalGather> g = read_final_gather(out, b.size(), b.samples.samples.size());
+  ASSERT_TRUE(g.has_value());
+  ASSERT_EQ(g->spot_first.size(), b.samples.samples.size() + 1);
+  ASSERT_GT(g->spots(), 0u);
+  std::size_t with_spots = 0;
+  for (std::size_t s = 0; s < b.samples.samples.size(); ++s) {
+    with_spots += g->spot_first[s + 1] > g->spot_first[s] ? 1 : 0;
+    for (std::uint32_t k = g->spot_first[s]; k < g->spot_first[s + 1]; ++k)
+      EXPECT_EQ(g->near.patch[g->spot_base() + k], static_cast<std::uint32_t>(b.patch_of_sample[s]))
+          << "sample " << s;
+  }
+  const json spots = read_manifest(out).at("final_gather").at("spots");
+  EXPECT_EQ(spots.at("samples").get<std::size_t>(), with_spots);
+  EXPECT_EQ(spots.at("points").get<std::size_t>(), g->spots());
+}
+
+TEST_F(SeenWeights, SpotsOfAnotherLengthOrWeightAreRefused) {
+  auto first = read_npy_u32(out / "gather_spot_first.npy");
+  const auto shorter = std::span<const std::uint32_t>(first.data).first(first.data.size() - 1);
+  write_npy(out / "gather_spot_first.npy", shorter, {shorter.size()});
+  expect_solve_refuses("gather_spot_first.npy", "one row start per sample");
+  write_npy(out / "gather_spot_first.npy", std::span<const std::uint32_t>(first.data), first.shape);
+  auto weight = read_npy_f32(out / "gather_spot_weight.npy");
+  ASSERT_GT(weight.data.size(), 1u);
+  weight.data[0] = 2.0f;
+  write_npy(out / "gather_spot_weight.npy", std::span<const float>(weight.data), weight.shape);
+  expect_solve_refuses("gather_*.npy", "spot weight outside [0, 1]");
 }
 
 }  // namespace

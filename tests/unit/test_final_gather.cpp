@@ -161,8 +161,10 @@ TEST(FinalGather, NearSourcesFollowAShadowEdgeUnderThePoint) {
   // Every cell kept, even one ray's: this is about the cells themselves
   // (4 mm cells take one or two of a point's rays each).
   with_near.near_min_rays = 1;
+  // The samples at their centres: no near sources, no spots.
   FinalGatherSettings without_near = with_near;
   without_near.near_cells = 0.0f;
+  without_near.spots = 0;
   const auto gathered = [&](const FinalGatherSettings& fs) {
     const FinalGather g = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
                                              points, normals, fs);
@@ -192,6 +194,95 @@ TEST(FinalGather, NearSourcesFollowAShadowEdgeUnderThePoint) {
     sample_error += std::abs(far_e[i].r - exact);
   }
   EXPECT_LT(near_error, 0.5 * sample_error);
+}
+
+Scene shaded_floor();  // below
+
+TEST(FinalGather, SpotsLieWhereTheirSamplesRaysLanded) {
+  // Points 40 cm over the shaded floor: each sample's spots are at most
+  // `spots`, the ones most rays landed on first, on the sample's surface
+  // (within a voxel of its centre, the side it faces), lit with its albedo
+  // and carrying its patch's T b; no row reads them.
+  const Scene scene = shaded_floor();
+  const BakeResult bake = bake_of(scene, 8);
+  const RayTracer tracer(scene);
+  const SurfacePatchLookup lookup(bake.voxels, bake.samples, bake.patch_of_sample);
+  std::vector<glm::vec3> points, normals;
+  for (int i = 0; i < 40; ++i) {
+    const float t = static_cast<float>(i) / 39.0f;
+    points.emplace_back(-0.9f + 1.8f * t, 0.4f, 0.5f - t);
+    normals.emplace_back(0.0f, -1.0f, 0.0f);
+  }
+  FinalGatherSettings fs;
+  const FinalGather g = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
+                                           points, normals, fs);
+  g.validate("spots");
+  ASSERT_EQ(g.spot_first.size(), bake.samples.samples.size() + 1);
+  ASSERT_GT(g.spots(), 50u);
+  const float voxel = bake.voxels.grid.cell_size();
+  for (std::size_t s = 0; s < bake.samples.samples.size(); ++s) {
+    const Sample& sample = bake.samples.samples[s];
+    ASSERT_LE(g.spot_first[s + 1] - g.spot_first[s], static_cast<std::uint32_t>(fs.spots));
+    for (std::uint32_t k = g.spot_first[s]; k < g.spot_first[s + 1]; ++k) {
+      const std::size_t n = g.spot_base() + k;
+      if (k > g.spot_first[s]) {
+        EXPECT_LE(g.spot_weight[k], g.spot_weight[k - 1]) << s;
+      }
+      EXPECT_EQ(g.near.patch[n], static_cast<std::uint32_t>(bake.patch_of_sample[s])) << s;
+      EXPECT_EQ(g.near.albedo[n], sample.albedo) << s;
+      EXPECT_LE(glm::distance(g.near.position[n], sample.position), voxel) << s;
+      EXPECT_GT(glm::dot(g.near.normal[n], sample.normal), 0.5f) << s;
+    }
+  }
+  for (const std::uint32_t src : g.source)
+    EXPECT_LT(src, g.patches + g.clusters + g.samples + g.spot_base());
+}
+
+TEST(FinalGather, ASampleWithSpotsCarriesTheirLight) {
+  // Two samples of one patch, the first with two spots: by hand, a sample
+  // entry reads 0.25 x spot 0 + 0.75 x spot 1, a patch entry its seen
+  // samples' light (spots included), a cluster its patch's.
+  FinalGather g;
+  g.patches = 1;
+  g.clusters = 1;
+  g.samples = 2;
+  g.cluster_of_patch = {0};
+  g.cluster_share = {1.0f};
+  g.seen_first = {0, 2};
+  g.seen_sample = {0, 1};
+  g.seen_weight = {0.5f, 0.5f};
+  for (int k = 0; k < 3; ++k) {  // one near source the rows read, two spots
+    g.near.position.emplace_back(0.0f);
+    g.near.normal.emplace_back(0.0f, 1.0f, 0.0f);
+    g.near.albedo.emplace_back(0.5f);
+    g.near.patch.push_back(0);
+  }
+  g.spot_first = {0, 2, 2};
+  g.spot_weight = {0.25f, 0.75f};
+  // Rows: sample 0, sample 1, the patch, the cluster, the near source.
+  g.first = {0, 1, 2, 3, 4, 5};
+  g.source = {2, 3, 0, 1, 4};
+  g.weight = {1.0f, 1.0f, 0.5f, 1.0f, 1.0f};
+  g.validate("by hand");
+  const std::vector<glm::vec3> patch = {glm::vec3(100.0f)};                  // read by no row
+  const std::vector<glm::vec3> sample = {glm::vec3(3.0f), glm::vec3(2.0f)};  // centres
+  const std::vector<glm::vec3> near = {glm::vec3(9.0f), glm::vec3(4.0f), glm::vec3(8.0f)};
+  std::vector<glm::vec3> e;
+  g.irradiance(patch, sample, near, e);
+  ASSERT_EQ(e.size(), 5u);
+  const float spotted = 0.25f * 4.0f + 0.75f * 8.0f;  // 7, not the centre's 3
+  EXPECT_FLOAT_EQ(e[0].x, spotted);
+  EXPECT_FLOAT_EQ(e[1].x, 2.0f);
+  EXPECT_FLOAT_EQ(e[2].x, 0.5f * (0.5f * spotted + 0.5f * 2.0f));
+  EXPECT_FLOAT_EQ(e[3].x, 0.5f * spotted + 0.5f * 2.0f);
+  EXPECT_FLOAT_EQ(e[4].x, 9.0f);
+  // Spot weights that do not sum to 1 are one error.
+  FinalGather bad = g;
+  bad.spot_weight = {0.25f, 0.5f};
+  EXPECT_THROW(bad.validate("by hand"), Error);
+  bad = g;
+  bad.spot_first = {0, 3, 3};
+  EXPECT_THROW(bad.validate("by hand"), Error);
 }
 
 TEST(FinalGather, NearSourcesLieOnTheFaceTheirRaysLandedOn) {
@@ -360,7 +451,8 @@ TEST(FinalGather, SampleSourcesSplitThePatchesRaysAndKeepTheirLight) {
   // differ between the two), so that only the sample entries differ.
   FinalGatherSettings with_samples;
   ASSERT_GT(with_samples.sample_kept, 0);
-  with_samples.near_cells = 0.0f;  // sample sources alone
+  with_samples.near_cells = 0.0f;  // sample sources alone, lit at their centres
+  with_samples.spots = 0;
   with_samples.kept = 100000;
   with_samples.coverage = 1.0;
   FinalGatherSettings patches_only = with_samples;
@@ -419,6 +511,7 @@ TEST(FinalGather, PatchEntriesCarryTheLightOfTheSamplesTheirRaysLandedOn) {
   // near sources: patch and sample entries only.
   FinalGatherSettings seen;
   seen.near_cells = 0.0f;
+  seen.spots = 0;
   seen.kept = 100000;
   seen.coverage = 1.0;
   FinalGatherSettings every_sample = seen;
@@ -503,6 +596,7 @@ FinalGather gather_over_the_floor(const RayTracer& tracer, const BakeResult& bak
 FinalGather gather_over_the_floor(const RayTracer& tracer, const BakeResult& bake, int rays) {
   FinalGatherSettings fs;
   fs.rays = rays;
+  fs.spots = 0;  // the near sources the rows read, and only those
   return gather_over_the_floor(tracer, bake, fs);
 }
 
@@ -719,12 +813,15 @@ TEST(FinalGather, NearSourcesLitInBatchesGetEachPointsOwnLight) {
 TEST(FinalGather, LightingTheNearSourcesIntoTheProductGivesTheSameLight) {
   // A relighter's frame lights the near sources straight into the
   // product's buffer: the same E to the bit as lighting them on their own
-  // and summing the rows after.
+  // and summing the rows after (the samples' spots among them).
   const Scene scene = shaded_floor();
   const BakeResult bake = bake_of(scene, 8);
   const RayTracer tracer(scene);
-  const FinalGather g = gather_over_the_floor(tracer, bake, 256);
-  ASSERT_GT(g.near.size(), 0u);
+  FinalGatherSettings fs;
+  ASSERT_GT(fs.spots, 0);
+  const FinalGather g = gather_over_the_floor(tracer, bake, fs);
+  ASSERT_GT(g.spots(), 0u);
+  ASSERT_GT(g.spot_base(), 0u);
   std::vector<glm::vec3> patch(g.patches), sample(g.samples), indirect(g.patches);
   for (std::size_t p = 0; p < g.patches; ++p) {
     patch[p] = glm::vec3(0.3f + 0.01f * static_cast<float>(p), 0.5f, 0.2f);
@@ -756,6 +853,7 @@ TEST(FinalGather, NearSourcesWithFewRaysGoBackToTheirSurface) {
   FinalGatherSettings all, folded;
   all.near_min_rays = 1;
   folded.near_min_rays = 3;
+  all.spots = folded.spots = 0;  // the near sources the rows read
   const FinalGather a = gather_over_the_floor(tracer, bake, all);
   const FinalGather b = gather_over_the_floor(tracer, bake, folded);
   b.validate("folded");
