@@ -40,7 +40,8 @@ SettingsPanel::SettingsPanel(QWidget* parent)
       size_limit_box_(new QDoubleSpinBox(this)),
       gather_rays_box_(new QSpinBox(this)),
       near_box_(new QDoubleSpinBox(this)),
-      near_min_rays_box_(new QSpinBox(this)) {
+      near_min_rays_box_(new QSpinBox(this)),
+      spots_box_(new QSpinBox(this)) {
   grid_box_->addItems({tr("Scene's own"), tr("Voxel size"), tr("Total patches")});
   grid_box_->setToolTip(
       tr("How fine the patch grid is: as the scene file suggests, by voxel size, or by the "
@@ -70,6 +71,7 @@ SettingsPanel::SettingsPanel(QWidget* parent)
   add_control("final_gather_rays", gather_rays_box_);
   add_control("final_gather_near", near_box_);
   add_control("final_gather_near_min_rays", near_min_rays_box_);
+  add_control("final_gather_spots", spots_box_);
   // Where the spin boxes start when the setting is left to the scene or the codec.
   voxel_box_->setValue(BakeSettings::kDefaultVoxelResolution);
   patches_total_box_->setValue(2048);
@@ -81,6 +83,7 @@ SettingsPanel::SettingsPanel(QWidget* parent)
   gather_rays_box_->setValue(defaults.final_gather_rays);
   near_box_->setValue(defaults.final_gather_near);
   near_min_rays_box_->setValue(defaults.final_gather_near_min_rays);
+  spots_box_->setValue(defaults.final_gather_spots);
   kept_mode_box_->addItems({tr("from error budget"), tr("fixed share")});
   kept_mode_box_->setToolTip(
       tr("Which of the matrix's largest values are kept exactly: as few as meet the error "
@@ -103,7 +106,8 @@ SettingsPanel::SettingsPanel(QWidget* parent)
     connect(box, qOverload<int>(&QComboBox::currentIndexChanged), this, refresh);
   connect(gather_rays_box_, qOverload<int>(&QSpinBox::valueChanged), this, refresh);
   connect(near_box_, qOverload<double>(&QDoubleSpinBox::valueChanged), this, refresh);
-  for (QSpinBox* box : {voxel_box_, patches_total_box_, per_voxel_box_, near_min_rays_box_})
+  for (QSpinBox* box :
+       {voxel_box_, patches_total_box_, per_voxel_box_, near_min_rays_box_, spots_box_})
     connect(box, qOverload<int>(&QSpinBox::valueChanged), this, &SettingsPanel::changed);
   for (QDoubleSpinBox* box : {kept_box_, budget_box_, size_limit_box_})
     connect(box, qOverload<double>(&QDoubleSpinBox::valueChanged), this, &SettingsPanel::changed);
@@ -170,6 +174,7 @@ void SettingsPanel::update_enabled() {
   const bool gather = gather_rays_box_->value() > 0;
   near_box_->setEnabled(gather);
   near_min_rays_box_->setEnabled(gather && near_box_->value() > 0.0);
+  spots_box_->setEnabled(gather);
 }
 
 BakeSettings SettingsPanel::settings() const {

@@ -64,6 +64,10 @@ struct BakeSettings {
   // or patch the vertices read for that surface (runtime/final_gather.h):
   // each near source costs a shadow ray per light every frame.
   int final_gather_near_min_rays = 2;
+  // Points per sample where the vertices' far rays landed on it, each lit
+  // every frame, whose light is the sample's (runtime/final_gather.h, spots);
+  // 0: samples are lit at their centres.
+  int final_gather_spots = 2;
   std::uint64_t seed = 1;
   bool dump_matrices = false;
 

@@ -298,6 +298,7 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                    {"final_gather_rays", s.final_gather_rays},
                    {"final_gather_near", s.final_gather_near},
                    {"final_gather_near_min_rays", s.final_gather_near_min_rays},
+                   {"final_gather_spots", s.final_gather_spots},
                    {"seed", s.seed},
                    {"dump_matrices", s.dump_matrices},
                    {"out_of_core", to_string(s.out_of_core)}};

@@ -174,6 +174,7 @@ void final_gather_step(BakeRun& run) {
   fg.rays = r.settings.final_gather_rays;
   fg.near_cells = static_cast<float>(r.settings.final_gather_near);
   fg.near_min_rays = r.settings.final_gather_near_min_rays;
+  fg.spots = r.settings.final_gather_spots;
   fg.seed = r.settings.seed;
   r.vertex_gather = build_final_gather(*run.tracer, lookup, r.patches.patches, r.voxels.grid,
                                        gather_points_of_vertices(mesh.positions, mesh.triangles),

@@ -298,6 +298,31 @@ std::vector<SettingRow> make_rows() {
       .set = set_int<&S::final_gather_near_min_rays>,
   });
   rows.push_back({
+      .name = "final_gather_spots",
+      .manifest_key = "final_gather_spots",
+      .flag = "--final-gather-spots",
+      .type = SettingType::Int,
+      .min = 0,
+      .max = 64,
+      .range_note = "0: samples lit at their centres",
+      .help_shows_default = true,
+      .help = "Points per sample, where the vertices' gather rays beyond the near sources "
+              "landed on it most (cells of 1/8 voxel), lit every frame (one shadow ray per "
+              "light each) and weighted by those rays: a sample's light is then that of the "
+              "parts of it the vertices see (the sunlit top of a ledge more than its shaded "
+              "front) instead of its centre's. On Sponza (sun, 8192 patches) 2 brings the "
+              "mean indirect level from 3.5-5% low to within 1.5% of the reference (1 leaves "
+              "the picture 9% worse than 2, 3 is 1% better) and costs about 0.55 ms a light "
+              "move per spot at 4096 patches on 2 cores. 0: none",
+      .label = "Spots per sample",
+      .studio_help = "Each sample lit where the vertices' rays land on it (the parts of it "
+                     "that are seen) instead of at its centre; each spot costs a shadow ray "
+                     "every light move",
+      .stage = BakeStage::Patches,
+      .get = get_int<&S::final_gather_spots>,
+      .set = set_int<&S::final_gather_spots>,
+  });
+  rows.push_back({
       .name = "seed",
       .manifest_key = "seed",
       .flag = "--seed",

@@ -117,7 +117,7 @@ struct FinalGatherSettings {
   int near_min_rays = 2;
   // Spots per sample (0: samples are lit at their centres) and the cells
   // per voxel edge the far rays' landing points are grouped by.
-  int spots = 3;
+  int spots = 2;
   int spot_resolution = 8;
   // Cluster blocks are this many voxels along each axis.
   int cluster_voxels = 4;
