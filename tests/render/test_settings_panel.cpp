@@ -33,7 +33,12 @@ TEST(SettingsPanel, FinalGatherSettingsStartAtTheBakesDefaults) {
   EXPECT_EQ(s.final_gather_rays, defaults.final_gather_rays);
   EXPECT_EQ(s.final_gather_near, defaults.final_gather_near);
   EXPECT_EQ(s.final_gather_near_min_rays, defaults.final_gather_near_min_rays);
+  EXPECT_EQ(s.final_gather_spots, defaults.final_gather_spots);
   // Each has its own control, with the row's range.
+  QSpinBox* spots = control_of<QSpinBox>(panel, "final_gather_spots");
+  ASSERT_NE(spots, nullptr);
+  EXPECT_EQ(spots->minimum(), 0);
+  EXPECT_EQ(spots->maximum(), static_cast<int>(setting_row("final_gather_spots").max));
   QSpinBox* rays = control_of<QSpinBox>(panel, "final_gather_rays");
   QSpinBox* least = control_of<QSpinBox>(panel, "final_gather_near_min_rays");
   QDoubleSpinBox* near = control_of<QDoubleSpinBox>(panel, "final_gather_near");
@@ -50,7 +55,9 @@ TEST(SettingsPanel, FinalGatherSettingsReachTheBakeAndSurviveSaveAndLoad) {
   panel.set("final_gather_rays", "512");
   panel.set("final_gather_near", "0.125");
   panel.set("final_gather_near_min_rays", "3");
+  panel.set("final_gather_spots", "1");
   const BakeSettings s = panel.settings();
+  EXPECT_EQ(s.final_gather_spots, 1);
   EXPECT_EQ(s.final_gather_rays, 512);
   EXPECT_DOUBLE_EQ(s.final_gather_near, 0.125);
   EXPECT_EQ(s.final_gather_near_min_rays, 3);
@@ -68,6 +75,7 @@ TEST(SettingsPanel, FinalGatherSettingsReachTheBakeAndSurviveSaveAndLoad) {
   EXPECT_EQ(l.final_gather_rays, 512);
   EXPECT_DOUBLE_EQ(l.final_gather_near, 0.125);
   EXPECT_EQ(l.final_gather_near_min_rays, 3);
+  EXPECT_EQ(l.final_gather_spots, 1);
 }
 
 TEST(SettingsPanel, NearSourceControlsNeedAFinalGather) {
