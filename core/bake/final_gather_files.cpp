@@ -120,6 +120,7 @@ std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t pa
                   "expected " + std::to_string(g.spot_first.back()) + " spot weights within " +
                       std::to_string(g.near.size()) + " near sources, found " +
                       std::to_string(g.spot_weight.size()) + " weights");
+    g.near.spot_count = g.spot_first.back();
   }
   g.validate((dir / "gather_*.npy").string());
   g.compact_rows();

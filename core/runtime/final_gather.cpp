@@ -60,6 +60,9 @@ void FinalGather::validate(const std::string& what) const {
                               std::to_string(total) + ", not 1");
     }
   }
+  if (near.spot_count != spots())
+    throw Error(what, "the near sources end in " + std::to_string(near.spot_count) +
+                          " spots, the spots' row starts name " + std::to_string(spots()));
   if (!spot_first.empty()) {
     if (spot_first.size() != samples + 1 || spot_first.front() != 0 ||
         spot_first.back() != spot_weight.size() || spot_first.back() > near.size())
@@ -309,6 +312,7 @@ void make_spots(const SurfacePatchLookup& lookup, const SpotCells& cells, int sp
     at = end;
   }
   for (std::size_t s = 0; s < g.samples; ++s) g.spot_first[s + 1] = g.spot_first[s] + count[s];
+  g.near.spot_count = g.spot_first.back();
 }
 
 }  // namespace

@@ -301,6 +301,7 @@ void light_near_sources(const NearSources& near, const RayTracer* tracer,
   // threads as each source is written (n: none).
   std::atomic<std::size_t> first_bad{n};
   const float eps = tracer ? 10.0f * tracer->epsilon() : 0.0f;
+  const std::size_t first_spot = n - std::min(n, near.spot_count);
   // The shadow rays to one light go to Embree in batches of a few hundred
   // (its stream API): on Sponza's 421,838 near sources and the sun 1.5
   // times as fast as one rtcOccluded1 call per ray. (Marking the batches
@@ -340,7 +341,7 @@ void light_near_sources(const NearSources& near, const RayTracer* tracer,
         for (const AreaLight& light : area)
           for (std::size_t i = lo; i < hi; ++i)
             e[i - lo] += area_light_irradiance(*tracer, near.position[i] + eps * near.normal[i],
-                                               near.normal[i], light, 4, i);
+                                               near.normal[i], light, i >= first_spot ? 1 : 4, i);
       }
       for (std::size_t i = lo; i < hi; ++i) {
         const bool known = near.patch[i] < patch_indirect.size();

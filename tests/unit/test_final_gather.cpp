@@ -259,6 +259,7 @@ TEST(FinalGather, ASampleWithSpotsCarriesTheirLight) {
   }
   g.spot_first = {0, 2, 2};
   g.spot_weight = {0.25f, 0.75f};
+  g.near.spot_count = 2;
   // Rows: sample 0, sample 1, the patch, the cluster, the near source.
   g.first = {0, 1, 2, 3, 4, 5};
   g.source = {2, 3, 0, 1, 4};
@@ -282,6 +283,9 @@ TEST(FinalGather, ASampleWithSpotsCarriesTheirLight) {
   EXPECT_THROW(bad.validate("by hand"), Error);
   bad = g;
   bad.spot_first = {0, 3, 3};
+  EXPECT_THROW(bad.validate("by hand"), Error);
+  bad = g;
+  bad.near.spot_count = 1;  // the near sources and the row starts disagree
   EXPECT_THROW(bad.validate("by hand"), Error);
 }
 
