@@ -203,11 +203,12 @@ struct NearKeyHash {
 };
 
 // The near sources one chunk of points found, numbered in order of first
-// landing: sums of the landing points and their albedo, and the side's normal.
+// landing: sums of the landing points and their albedo, the first landing
+// point and its side's normal.
 struct ChunkNearSources {
   std::vector<NearKey> keys;
   std::vector<glm::dvec3> position_sum, albedo_sum;
-  std::vector<glm::vec3> normal;
+  std::vector<glm::vec3> first, normal;
   std::vector<std::uint32_t> count;
 };
 
@@ -370,14 +371,21 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   std::vector<std::vector<std::uint32_t>> chunk_count(chunks);
   std::vector<ChunkNearSources> chunk_near(chunks);
   if (progress) progress->begin_stage("final gather", std::max<std::size_t>(1, chunks));
-  std::size_t escaped = 0, backs = 0, unrepresented = 0, landed_rays = 0, near_rays = 0;
+  std::size_t escaped = 0, backs = 0, unrepresented = 0, landed_rays = 0, near_rays = 0,
+              points_enclosed = 0;
   // Over all points: the rays read through a patch or cluster entry that
   // landed on each sample, and those folded into a cluster per patch (they
   // weigh the sources' light, see FinalGather::seen_first).
   std::vector<std::uint64_t> seen_rays(sample_sources ? g.samples : 0, 0),
       cluster_rays(sample_sources ? patch_count : 0, 0);
-#pragma omp parallel reduction(+ : escaped, backs, unrepresented, landed_rays, near_rays)
+#pragma omp parallel reduction(+ : escaped, backs, unrepresented, landed_rays, near_rays, \
+                                    points_enclosed)
   {
+    struct TracedRay {
+      Hit hit;
+      glm::vec3 origin;
+    };
+    std::vector<TracedRay> traced;
     std::vector<std::uint64_t> seen_local(seen_rays.size(), 0),
         cluster_local(cluster_rays.size(), 0);
     std::unordered_map<NearKey, std::uint32_t, NearKeyHash> near_index;
@@ -402,10 +410,27 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
           Rng rng(settings.seed, 0xF1A1u ^ (static_cast<std::uint64_t>(i) << 16));
           const CosineLattice::Frame frame(nrm, 2.0f * std::numbers::pi_v<float> * rng.uniform());
           const glm::vec3 lifted = positions[i] + eps * nrm;
+          traced.clear();
+          std::size_t point_backs = 0;
           for (std::size_t k = 0; k < rays; ++k) {
             const glm::vec3 dir = lattice.direction(k, frame);
             glm::vec3 origin = lifted;
             const Hit h = intersect_leaving_surface(tracer, origin, dir, eps);
+            traced.push_back({h, origin});
+            if (h.hit && glm::dot(dir, h.geometric_normal) > 0.0f && !scene.two_sided(h.triangle))
+              ++point_backs;
+          }
+          // A point more than half of whose rays meet the back of a one-sided
+          // face is shut inside the geometry (a mesh's face under a block
+          // standing on it): no light reaches it, and the surface its other
+          // rays land on, under the block, must not pull the near sources
+          // and spots of the points outside there.
+          const bool enclosed = 2 * point_backs > rays;
+          if (enclosed) ++points_enclosed;
+          for (std::size_t k = 0; k < rays && !enclosed; ++k) {
+            const glm::vec3 dir = lattice.direction(k, frame);
+            const Hit& h = traced[k].hit;
+            const glm::vec3& origin = traced[k].origin;
             if (!h.hit) {
               ++escaped;
               continue;
@@ -432,6 +457,7 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
               if (added) {
                 cn.keys.push_back(it->first);
                 cn.position_sum.emplace_back(0.0);
+                cn.first.push_back(x);
                 cn.albedo_sum.emplace_back(0.0);
                 cn.normal.push_back(back ? -h.geometric_normal : h.geometric_normal);
                 cn.count.push_back(0);
@@ -547,6 +573,7 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   g.rays_back = backs;
   g.rays_unrepresented = unrepresented;
   g.rays_near = near_rays;
+  g.points_enclosed = points_enclosed;
   // Near sources found by several chunks become one, numbered in chunk order
   // (the same whatever the thread count).
   std::vector<std::vector<std::uint32_t>> near_number(chunks);
@@ -554,6 +581,7 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
   {
     std::unordered_map<NearKey, std::uint32_t, NearKeyHash> index;
     std::vector<glm::dvec3> position_sum, albedo_sum;
+    std::vector<glm::vec3> first;
     for (std::size_t c = 0; c < chunks; ++c) {
       const ChunkNearSources& cn = chunk_near[c];
       for (std::size_t l = 0; l < cn.keys.size(); ++l) {
@@ -562,6 +590,7 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
         if (added) {
           position_sum.emplace_back(0.0);
           albedo_sum.emplace_back(0.0);
+          first.push_back(cn.first[l]);
           count.push_back(0);
           near_sample.push_back(static_cast<std::uint32_t>(cn.keys[l].sample));
           g.near.normal.push_back(cn.normal[l]);
@@ -574,10 +603,22 @@ FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup
         near_number[c].push_back(it->second);
       }
     }
-    for (std::size_t k = 0; k < count.size(); ++k) {
-      g.near.position.push_back(glm::vec3(position_sum[k] / static_cast<double>(count[k])));
-      g.near.albedo.push_back(glm::vec3(albedo_sum[k] / static_cast<double>(count[k])));
+    g.near.position.resize(count.size());
+    // Each is lit at the mean of its landing points unless the way there
+    // from its first landing point, a hair above the surface, is blocked:
+    // then the mean lies under something standing on its triangle.
+#pragma omp parallel for schedule(static, 1024)
+    for (std::int64_t ki = 0; ki < static_cast<std::int64_t>(count.size()); ++ki) {
+      const auto k = static_cast<std::size_t>(ki);
+      const glm::vec3 mean(position_sum[k] / static_cast<double>(count[k]));
+      const glm::vec3 lift = eps * g.near.normal[k];
+      const glm::vec3 to_mean = mean - first[k];
+      const bool blocked = glm::dot(to_mean, to_mean) > 0.0f &&
+                           tracer.occluded(first[k] + lift, to_mean, 0.0f, 1.0f);
+      g.near.position[k] = blocked ? first[k] : mean;
     }
+    for (std::size_t k = 0; k < count.size(); ++k)
+      g.near.albedo.push_back(glm::vec3(albedo_sum[k] / static_cast<double>(count[k])));
   }
   // Near sources that fewer than `near_min_rays` rays landed in (over all
   // points) go back to the sample, patch or cluster the point reads for

@@ -377,6 +377,102 @@ TEST(FinalGather, NearSourcesLieOnTheFaceTheirRaysLandedOn) {
   EXPECT_NEAR(gathered, brute, 0.03 * brute);
 }
 
+// A floor (y = 0, x and z in [-1, 1]) under a sun straight above, and a
+// block standing on it ([kBlockA, kBlockB] in x and z, 0.3 high, no bottom):
+// the floor is lit everywhere but under the block. The floor's triangles run
+// on under the block, their diagonal clear of the corner at (kBlockA,
+// kBlockA), so one triangle holds the floor on both sides of that corner.
+constexpr float kBlockA = 0.01f, kBlockB = 0.6f;
+Scene block_on_a_floor() {
+  Scene scene;
+  test_scenes::add_quad(scene, "floor", {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, {-1, 0, -1});
+  const float a = kBlockA, b = kBlockB, top = 0.3f;
+  test_scenes::add_quad(scene, "block -x", {a, 0, a}, {a, 0, b}, {a, top, b}, {a, top, a});
+  test_scenes::add_quad(scene, "block -z", {a, 0, a}, {a, top, a}, {b, top, a}, {b, 0, a});
+  test_scenes::add_quad(scene, "block +x", {b, 0, a}, {b, top, a}, {b, top, b}, {b, 0, b});
+  test_scenes::add_quad(scene, "block +z", {a, 0, b}, {b, 0, b}, {b, top, b}, {a, top, b});
+  test_scenes::add_quad(scene, "block top", {a, top, a}, {a, top, b}, {b, top, b}, {b, top, a});
+  scene.lights.push_back({Light::Type::Directional, "sun", glm::vec3(0.0f),
+                          glm::vec3(0.0f, -1.0f, 0.0f), glm::vec3(1.0f), 1.0f});
+  return scene;
+}
+
+TEST(FinalGather, NearSourcesAtTheFootOfABlockLieInItsLight) {
+  // Points 5 mm up the block's two faces at one corner send rays onto the
+  // floor in front of one face and beside the other, into the same cells of
+  // the same triangle and sample. A near source lit at the mean of those
+  // landing points would lie under the block, in its shade. Every near
+  // source lies where a ray landed, on lit floor: its light is the floor's
+  // albedo x the sun's irradiance (1), and it lies outside the block's
+  // footprint.
+  const Scene scene = block_on_a_floor();
+  const float a = kBlockA, b = kBlockB;
+  const BakeResult bake = bake_of(scene, 4);
+  const RayTracer tracer(scene);
+  const SurfacePatchLookup lookup(bake.voxels, bake.samples, bake.patch_of_sample);
+  std::vector<glm::vec3> points, normals;
+  for (float t : {0.005f, 0.01f, 0.02f, 0.03f, 0.04f, 0.05f}) {
+    points.emplace_back(a, 0.005f, a + t);
+    normals.emplace_back(-1.0f, 0.0f, 0.0f);
+    points.emplace_back(a + t, 0.005f, a);
+    normals.emplace_back(0.0f, 0.0f, -1.0f);
+  }
+  FinalGatherSettings fs;
+  fs.rays = 2048;
+  fs.near_cells = 1.0f;    // every ray within a voxel
+  fs.near_resolution = 4;  // cells 12.5 cm across: one holds the corner
+  fs.near_min_rays = 1;    // every cell kept: this is about where the cells lie
+  fs.spots = 0;
+  const FinalGather g = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
+                                           points, normals, fs);
+  g.validate("block");
+  const std::vector<glm::vec3> no_indirect(bake.patches.size(), glm::vec3(0.0f));
+  const std::vector<glm::vec3> light =
+      near_exitance(g.near, &tracer, scene.lights, {}, no_indirect);
+  std::size_t on_floor = 0, under_block = 0, shaded = 0;
+  for (std::size_t k = 0; k < g.near.size(); ++k) {
+    if (g.near.normal[k].y < 0.999f) continue;  // the block's faces get no sun
+    ++on_floor;
+    const glm::vec3 x = g.near.position[k];
+    if (x.x > a + 1e-4f && x.z > a + 1e-4f && x.x < b && x.z < b) ++under_block;
+    if (std::abs(light[k].r - 0.5f) > 1e-5f) ++shaded;
+  }
+  std::printf("block: %zu near sources on the floor, %zu under the block, %zu shaded\n", on_floor,
+              under_block, shaded);
+  ASSERT_GT(on_floor, 10u);
+  EXPECT_EQ(under_block, 0u);
+  EXPECT_EQ(shaded, 0u);
+}
+
+TEST(FinalGather, PointsShutInsideTheGeometryGatherNothing) {
+  // Points on the floor under the block, facing up, are shut inside it: all
+  // of their rays meet the inside (the back) of its one-sided faces. They
+  // are counted as enclosed and gather nothing; a point outside at the
+  // block's foot, half of whose hemisphere is the block's lit-side floor,
+  // is not.
+  const Scene scene = block_on_a_floor();
+  const BakeResult bake = bake_of(scene, 4);
+  const RayTracer tracer(scene);
+  const SurfacePatchLookup lookup(bake.voxels, bake.samples, bake.patch_of_sample);
+  const std::vector<glm::vec3> points = {
+      {0.3f, 0.0f, 0.3f}, {0.2f, 0.0f, 0.5f}, {kBlockA, 0.005f, 0.2f}};
+  const std::vector<glm::vec3> normals = {{0, 1, 0}, {0, 1, 0}, {-1, 0, 0}};
+  FinalGatherSettings fs;
+  fs.rays = 256;
+  const FinalGather g = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
+                                           points, normals, fs);
+  g.validate("enclosed");
+  EXPECT_EQ(g.points_enclosed, 2u);
+  EXPECT_EQ(g.first[1] - g.first[0], 0u);
+  EXPECT_EQ(g.first[2] - g.first[1], 0u);
+  EXPECT_GT(g.first[3] - g.first[2], 0u);
+  const std::vector<glm::vec3> e =
+      gathered_first_bounce(g, first_hit_of(tracer, bake, scene), bake, tracer, scene);
+  EXPECT_EQ(e[0], glm::vec3(0.0f));
+  EXPECT_EQ(e[1], glm::vec3(0.0f));
+  EXPECT_GT(e[2].r, 0.1f);  // about albedo x half the hemisphere's lit floor
+}
+
 TEST(FinalGather, ConcaveCornerGetsItsLightFromTheWallBesideIt) {
   // A floor and a wall meeting at a right angle, the wall lit evenly by a
   // directional light grazing the floor: a floor point next to the corner
