@@ -20,6 +20,25 @@ namespace {
 
 using gather_loops::PaddedLight;
 
+// Rows of weighted sums over another light: out[r] = sum over k in
+// [first[r], first[r + 1]) of weight[k] x from[index(k)], for every row that
+// has entries (the others keep what out holds). A sample's spots and a
+// patch's seen samples are both such rows.
+template <typename Index>
+void weighted_rows(const std::vector<std::uint32_t>& first, const std::vector<float>& weight,
+                   const PaddedLight* from, Index index, PaddedLight* out) {
+  const std::size_t rows = first.size() - 1;
+#pragma omp parallel for schedule(static, 256)
+  for (std::int64_t ri = 0; ri < static_cast<std::int64_t>(rows); ++ri) {
+    const auto r = static_cast<std::size_t>(ri);
+    if (first[r] == first[r + 1]) continue;
+    PaddedLight sum{};
+    for (std::uint32_t k = first[r]; k < first[r + 1]; ++k)
+      for (int c = 0; c < 3; ++c) sum.c[c] += weight[k] * from[index(k)].c[c];
+    out[r] = sum;
+  }
+}
+
 // The padded light of every source the rows read: the patches', then each
 // cluster's mean, then the samples', then the near sources'. `near_exitance`
 // null: the caller has written the near sources' light already (the buffer
@@ -42,31 +61,15 @@ void pad_light(const FinalGather& g, const std::vector<glm::vec3>& patch_exitanc
   PaddedLight* const near_light = sample_light + samples;
   if (near_exitance) copy_padded(*near_exitance, near_light);
   if (samples > 0) copy_padded(sample_exitance, sample_light);
-  if (!g.spot_first.empty()) {
-    const PaddedLight* spot_light = near_light + g.spot_base();
-#pragma omp parallel for schedule(static, 4096)
-    for (std::int64_t si = 0; si < static_cast<std::int64_t>(samples); ++si) {
-      const auto s = static_cast<std::size_t>(si);
-      if (g.spot_first[s] == g.spot_first[s + 1]) continue;
-      PaddedLight sum{};
-      for (std::uint32_t k = g.spot_first[s]; k < g.spot_first[s + 1]; ++k)
-        for (int c = 0; c < 3; ++c) sum.c[c] += g.spot_weight[k] * spot_light[k].c[c];
-      sample_light[s] = sum;
-    }
-  }
+  if (!g.spot_first.empty())
+    weighted_rows(
+        g.spot_first, g.spot_weight, near_light + g.spot_base(), [](std::uint32_t k) { return k; },
+        sample_light);
   copy_padded(patch_exitance, light.data());
-  if (samples > 0 && !g.seen_first.empty()) {
-#pragma omp parallel for schedule(static, 256)
-    for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(patches); ++pi) {
-      const auto p = static_cast<std::size_t>(pi);
-      if (g.seen_first[p] == g.seen_first[p + 1]) continue;
-      PaddedLight sum{};
-      for (std::uint32_t k = g.seen_first[p]; k < g.seen_first[p + 1]; ++k)
-        for (int c = 0; c < 3; ++c)
-          sum.c[c] += g.seen_weight[k] * sample_light[g.seen_sample[k]].c[c];
-      light[p] = sum;
-    }
-  }
+  if (samples > 0 && !g.seen_first.empty())
+    weighted_rows(
+        g.seen_first, g.seen_weight, sample_light,
+        [&g](std::uint32_t k) { return g.seen_sample[k]; }, light.data());
   std::fill(light.begin() + static_cast<std::ptrdiff_t>(patches),
             light.begin() + static_cast<std::ptrdiff_t>(patches + clusters), PaddedLight{});
   for (std::size_t p = 0; p < patches; ++p) {
