@@ -15,6 +15,7 @@
 #include <assimp/texture.h>
 #include <assimp/Importer.hpp>
 
+#include "scene/gltf_check.h"
 #include "scene/mtl_scan.h"
 #include "scene/ply_check.h"
 #include "scene/scene_loader.h"
@@ -98,6 +99,8 @@ class FileImporter {
     // the extension is unknown).
     if (lower(file_.extension().string()) == ".ply" || looks_like_ply(file_))
       check_ply_structure(file_);
+    // Assimp asks for tens of gigabytes on a glTF primitive without vertices.
+    if (looks_like_gltf(file_)) check_gltf_structure(file_);
     Assimp::Importer importer;
     const aiScene* scene = importer.ReadFile(where_, kReadFlags);
     if (!scene)

@@ -9,8 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "base/diagnostics.h"
-#include "scene/scene_loader.h"
+#include "expect_load_error.h"
 
 namespace bounce {
 namespace {
@@ -60,6 +59,13 @@ const Regression kKnownInputs[] = {
     // every element and list count must be backed by values in the body.
     {"ply-ascii-out-of-memory-in-assimp.ply",
      "malformed PLY: element '9999999999999face' on line 11 is not one the PLY reader"},
+    // glTF with a damaged attribute name ("POSITs", found by a longer
+    // campaign on a kept work corpus): a line strip without vertices, of
+    // which Assimp made 2^32 - 1 lines (ASan: out of memory, 64 GB). A byte
+    // that is not UTF-8 in another key stops it now at the glTF check
+    // (core/scene/gltf_check); without that byte, the missing POSITION would
+    // (test_gltf_check.cpp).
+    {"gltf-line-strip-without-positions.gltf", "malformed glTF: not valid UTF-8 JSON"},
 };
 
 class FuzzRegression : public ::testing::TestWithParam<Regression> {};
@@ -67,14 +73,7 @@ class FuzzRegression : public ::testing::TestWithParam<Regression> {};
 TEST_P(FuzzRegression, IsOneLoadErrorNamingTheFile) {
   const fs::path file = kRegressions / GetParam().file;
   ASSERT_TRUE(fs::is_regular_file(file)) << file;
-  Diagnostics diagnostics;
-  try {
-    (void)SceneLoader(diagnostics).load(file);
-    ADD_FAILURE() << "loaded " << file << " without an error";
-  } catch (const SceneLoader::LoadError& e) {
-    EXPECT_EQ(e.where(), file.string());
-    EXPECT_NE(std::string(e.what()).find(GetParam().reason), std::string::npos) << e.what();
-  }
+  test::expect_load_error(file, GetParam().reason);
 }
 
 INSTANTIATE_TEST_SUITE_P(Inputs, FuzzRegression, ::testing::ValuesIn(kKnownInputs),

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "base/diagnostics.h"
+#include "expect_load_error.h"
 #include "scene/scene_loader.h"
 #include "scratch_dir.h"
 
@@ -32,15 +33,7 @@ class PlyCheck : public ::testing::Test {
 
   // Expects one LoadError about the file whose message holds `reason`.
   void expect_refused(const std::string& text, const std::string& reason) {
-    const fs::path file = write(text);
-    Diagnostics diagnostics;
-    try {
-      (void)SceneLoader(diagnostics).load(file);
-      ADD_FAILURE() << "loaded without an error";
-    } catch (const SceneLoader::LoadError& e) {
-      EXPECT_EQ(e.where(), file.string());
-      EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
-    }
+    test::expect_load_error(write(text), reason);
   }
 
   std::size_t triangles(const std::string& text) {
