@@ -68,6 +68,12 @@ std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t pa
   std::size_t clusters = 0;
   for (const std::uint32_t c : g.cluster_of_patch)
     clusters = std::max<std::size_t>(clusters, std::size_t{c} + 1);
+  // Clusters are numbered densely and each holds at least one patch, so a
+  // larger number is damage -- and would size every frame's light buffer.
+  if (clusters > patches)
+    throw Error(cluster_file.string(), "names cluster " + std::to_string(clusters - 1) + ", but " +
+                                           std::to_string(patches) +
+                                           " patches make at most that many clusters");
   g.clusters = clusters;
   // Sources past the clusters are samples, then near sources (validate()
   // checks the range).

@@ -238,19 +238,4 @@ CorrectionsFn corrections_function(const Tables& t, bool avx2) {
   return t.correction_width == 3 ? corrections_portable<3> : corrections_portable<1>;
 }
 
-#ifdef BOUNCE_AVX2_BLOCK_LOOP
-bool cpu_has_avx2() { return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"); }
-bool cpu_has_avx512() { return __builtin_cpu_supports("avx512f") && cpu_has_avx2(); }
-bool cpu_has_avx512_bf16() {
-  return cpu_has_avx512() && __builtin_cpu_supports("avx512bw") &&
-         __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512vbmi") &&
-         __builtin_cpu_supports("avx512bf16");
-}
-
-#else
-bool cpu_has_avx2() { return false; }
-bool cpu_has_avx512() { return false; }
-bool cpu_has_avx512_bf16() { return false; }
-#endif
-
 }  // namespace bounce::block_loops

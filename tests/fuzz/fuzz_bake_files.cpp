@@ -6,7 +6,8 @@
 //   manifest  the input is manifest.json of a small valid bake (tests/fuzz/
 //             bake), read with BakeReader like `bounce solve` reads it;
 //   folder    the input's first byte picks one file of that bake and the rest
-//             replaces it; BakeReader reads the whole folder.
+//             replaces it; BakeReader reads the whole folder, then the stored
+//             final gather is read as `bounce solve` reads it.
 // Every input must either be read or throw bounce::Error; anything else
 // (crash, sanitizer report, another exception type such as std::bad_alloc, a
 // leak, an allocation beyond libFuzzer's -malloc_limit_mb) is a defect.
@@ -19,7 +20,9 @@
 #include <string_view>
 #include <vector>
 
+#include "bake/bake_format.h"
 #include "bake/bake_reader.h"
+#include "bake/final_gather_files.h"
 #include "base/error.h"
 #include "compress/dds.h"
 #include "fuzz_workdir.h"
@@ -32,8 +35,9 @@ namespace fs = std::filesystem;
 constexpr std::string_view kTarget = BOUNCE_FUZZ_BAKE_TARGET;
 static_assert(kTarget == "npy" || kTarget == "dds" || kTarget == "manifest" || kTarget == "folder");
 
-// The files BakeReader reads, in the order the folder target's first byte
-// picks them (byte % count). voxels.npy and the pictures are not read.
+// The files BakeReader reads, then the stored final gather's, in the order
+// the folder target's first byte picks them (byte % count; the list in
+// make_bake_corpus.sh follows it). voxels.npy and the pictures are not read.
 const char* const kBakeFiles[] = {"manifest.json",
                                   "patches.npy",
                                   "samples.npy",
@@ -52,7 +56,21 @@ const char* const kBakeFiles[] = {"manifest.json",
                                   "T_kept_2_row_ptr.npy",
                                   "T_kept_2_col.npy",
                                   "T_kept_2_value.npy",
-                                  "T.npy"};
+                                  "T.npy",
+                                  bounce::bake_file::kGatherFirst,
+                                  bounce::bake_file::kGatherSource,
+                                  bounce::bake_file::kGatherWeight,
+                                  bounce::bake_file::kGatherCluster,
+                                  bounce::bake_file::kGatherShare,
+                                  bounce::bake_file::kGatherSeenFirst,
+                                  bounce::bake_file::kGatherSeenSample,
+                                  bounce::bake_file::kGatherSeenWeight,
+                                  bounce::bake_file::kGatherSpotFirst,
+                                  bounce::bake_file::kGatherSpotWeight,
+                                  bounce::bake_file::kGatherNearPosition,
+                                  bounce::bake_file::kGatherNearNormal,
+                                  bounce::bake_file::kGatherNearAlbedo,
+                                  bounce::bake_file::kGatherNearPatch};
 constexpr std::size_t kBakeFileCount = std::size(kBakeFiles);
 
 [[maybe_unused]] std::string read_all(const fs::path& path) {
@@ -80,7 +98,9 @@ Bake& bake() {
 
 [[maybe_unused]] void read_bake() {
   try {
-    (void)bounce::BakeReader::read(bake().dir, bounce::BakeReader::Dense::kRead);
+    const bounce::LoadedBake b =
+        bounce::BakeReader::read(bake().dir, bounce::BakeReader::Dense::kRead);
+    (void)bounce::read_final_gather(bake().dir, b.size(), b.samples.samples.size());
   } catch (const bounce::Error&) {
     // The expected way to refuse a damaged bake: one message naming the file.
   }
@@ -98,9 +118,12 @@ extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
       if (b.original.back().empty()) std::abort();  // the template bake is incomplete
     }
     for (std::size_t k = 0; k < kBakeFileCount; ++k) restore(k);
-    // The template itself must read: otherwise every input fails early and
-    // the campaign tests nothing.
-    (void)bounce::BakeReader::read(b.dir, bounce::BakeReader::Dense::kRead);
+    // The template itself must read, its gather included: otherwise every
+    // input fails early and the campaign tests nothing.
+    const bounce::LoadedBake loaded =
+        bounce::BakeReader::read(b.dir, bounce::BakeReader::Dense::kRead);
+    if (!bounce::read_final_gather(b.dir, loaded.size(), loaded.samples.samples.size()))
+      std::abort();
   }
   return 0;
 }

@@ -18,7 +18,11 @@ files=(manifest.json patches.npy samples.npy lights_first_hit.npy carried_polygo
   carried_area.npy carried_vertices.npy T.dds permutation.npy
   T_kept_0_row_ptr.npy T_kept_0_col.npy T_kept_0_value.npy
   T_kept_1_row_ptr.npy T_kept_1_col.npy T_kept_1_value.npy
-  T_kept_2_row_ptr.npy T_kept_2_col.npy T_kept_2_value.npy T.npy)
+  T_kept_2_row_ptr.npy T_kept_2_col.npy T_kept_2_value.npy T.npy
+  gather_first.npy gather_source.npy gather_weight.npy gather_cluster.npy gather_share.npy
+  gather_seen_first.npy gather_seen_sample.npy gather_seen_weight.npy
+  gather_spot_first.npy gather_spot_weight.npy
+  gather_near_position.npy gather_near_normal.npy gather_near_albedo.npy gather_near_patch.npy)
 
 for scene in cornell-box furnace; do
   "$bounce" bake "resources/scenes/$scene" --voxel 2 --patches-per-voxel 1 --codec ours \

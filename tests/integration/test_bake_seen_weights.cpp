@@ -2,7 +2,8 @@
 // runtime/seen_first_hit.h) read back onto the patches, and its spots
 // (gather_spot_*.npy, runtime/final_gather.h) with the gather; a damaged
 // file is one error naming it: never a crash, never weights that point at
-// the samples of another patch.
+// the samples of another patch, never a count that sizes memory beyond what
+// the bake holds.
 #include <cmath>
 #include <span>
 
@@ -126,6 +127,19 @@ TEST_F(SeenWeights, SpotsOfAnotherLengthOrWeightAreRefused) {
   weight.data[0] = 2.0f;
   write_npy(out / "gather_spot_weight.npy", std::span<const float>(weight.data), weight.shape);
   expect_solve_refuses("gather_*.npy", "spot weight outside [0, 1]");
+}
+
+// Found by the bake-folder fuzz target: the number of clusters is the largest
+// one named plus one, and every frame sizes its light buffer by it, so one
+// damaged entry (0xF3F3F3F3) asked for 65 GB. Dense numbering, each cluster
+// at least one patch: more clusters than patches is damage.
+TEST_F(SeenWeights, AClusterBeyondThePatchCountIsRefused) {
+  auto cluster = read_npy_u32(out / "gather_cluster.npy");
+  ASSERT_GT(cluster.data.size(), 1u);
+  cluster.data[0] = 0xF3F3F3F3u;
+  write_npy(out / "gather_cluster.npy", std::span<const std::uint32_t>(cluster.data),
+            cluster.shape);
+  expect_solve_refuses("gather_cluster.npy", "patches make at most that many clusters");
 }
 
 }  // namespace
