@@ -69,6 +69,34 @@ bool accessor_index(const json& object, const char* key, std::size_t count, std:
   return true;
 }
 
+// Refuses an image whose media type has no '/'.
+void check_image_media_types(const std::filesystem::path& file, const json& doc) {
+  const auto images = doc.find("images");
+  if (images == doc.end() || !images->is_array()) return;
+  for (std::size_t i = 0; i < images->size(); ++i) {
+    const json& image = (*images)[i];
+    if (!image.is_object()) continue;
+    // The media type: `mimeType`, or the one a data URI names before its
+    // first ';' or ','. Assimp reads the part after its '/' without looking
+    // for one (a crash, found by fuzzing), so one without is refused here.
+    std::string type;
+    if (const auto m = image.find("mimeType"); m != image.end()) {
+      if (!m->is_string()) refuse(file, "images[" + std::to_string(i) + "]'s mimeType is not text");
+      type = m->get<std::string>();
+    } else if (const auto u = image.find("uri"); u != image.end() && u->is_string()) {
+      const std::string& uri = u->get_ref<const std::string&>();
+      if (uri.rfind("data:", 0) != 0) continue;
+      type = uri.substr(5, uri.find_first_of(";,", 5) - 5);
+      if (type.empty()) continue;  // a data URI may leave its type out
+    } else {
+      continue;
+    }
+    if (type.find('/') == std::string::npos)
+      refuse(file, "images[" + std::to_string(i) + "]'s media type '" + type +
+                       "' is not a type/subtype such as image/png");
+  }
+}
+
 }  // namespace
 
 bool looks_like_gltf(const std::filesystem::path& file) {
@@ -84,6 +112,7 @@ void check_gltf_structure(const std::filesystem::path& file) {
     refuse(file, std::string("not valid UTF-8 JSON: ") + e.what());
   }
   if (!doc.is_object()) refuse(file, "the top level is not a JSON object");
+  check_image_media_types(file, doc);
   const auto accessors_it = doc.find("accessors");
   const json no_accessors = json::array();
   const json& accessors =

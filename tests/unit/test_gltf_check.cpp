@@ -1,5 +1,6 @@
 // The glTF check (core/scene/gltf_check) on the inputs fuzzing found Assimp
-// 5.2 allocating tens of gigabytes for: a mesh primitive without vertices.
+// 5.2 failing on: a mesh primitive without vertices (tens of gigabytes
+// asked for) and an image media type without a '/' (a crash).
 // Well-formed files, text and binary, still load.
 #include <gtest/gtest.h>
 
@@ -108,6 +109,23 @@ TEST_F(GltfCheck, APrimitiveWithoutVerticesIsRefused) {
                  "primitive 0's indices names no accessor");
   expect_refused(write(glb(gltf(R"({"attributes": {"POSITs": 0}, "mode": 3})")), "mesh.glb"),
                  "has no POSITION attribute");
+}
+
+// The fuzzed input's shape: an embedded image whose data URI names the media
+// type "ima<amfng". Assimp reads what follows the type's '/' without finding
+// one first, and the process died (SIGSEGV) in `bounce info`.
+TEST_F(GltfCheck, ImageMediaTypesWithoutASlashAreRefused) {
+  const std::string text = gltf(R"({"attributes": {"POSITION": 0}})");
+  const auto with_images = [&text](const std::string& images) {
+    return text.substr(0, text.rfind('}')) + R"(, "images": )" + images + "}";
+  };
+  expect_refused(write(with_images(R"([{"uri": "data:image;base64,AAAA"}])")),
+                 "images[0]'s media type 'image' is not a type/subtype");
+  expect_refused(write(with_images(R"([{"uri": "data:image/png;base64,AAAA"},
+                                       {"bufferView": 0, "mimeType": "x"}])")),
+                 "images[1]'s media type 'x'");
+  expect_refused(write(with_images(R"([{"bufferView": 0, "mimeType": 5}])")),
+                 "images[0]'s mimeType is not text");
 }
 
 TEST_F(GltfCheck, JsonThatIsNotUtf8OrCutShortIsRefused) {
