@@ -108,7 +108,7 @@ void check_gltf_structure(const std::filesystem::path& file) {
   json doc;
   try {
     doc = json::parse(json_text(file));
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // parse errors, and numbers out of range
     refuse(file, std::string("not valid UTF-8 JSON: ") + e.what());
   }
   if (!doc.is_object()) refuse(file, "the top level is not a JSON object");

@@ -135,6 +135,9 @@ TEST_F(GltfCheck, JsonThatIsNotUtf8OrCutShortIsRefused) {
   expect_refused(write(glb(gltf(R"({"attributes": {"POSITION": 0}})"), 1000), "mesh.glb"),
                  "the JSON chunk declares");
   expect_refused(write("glTF\x02\0\0\0", "mesh.glb"), "cut short");
+  // A number beyond a double's range (fuzzing: the parser threw something
+  // other than a parse error, which ended the process).
+  expect_refused(write(R"({"asset": 44E1357})"), "malformed glTF: not valid UTF-8 JSON");
 }
 
 }  // namespace
