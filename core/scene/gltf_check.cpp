@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <system_error>
 
 #include <nlohmann/json.hpp>
 
@@ -36,28 +37,42 @@ bool has_binary_magic(const std::filesystem::path& file) {
   return in.read(magic.data(), magic.size()) && std::memcmp(magic.data(), "glTF", 4) == 0;
 }
 
-std::uint32_t little_u32(const std::string& bytes, std::size_t at) {
+std::uint32_t little_u32(const char* bytes) {
   std::uint32_t v = 0;
-  for (int i = 3; i >= 0; --i)
-    v = v << 8 | static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(i)]);
+  for (int i = 3; i >= 0; --i) v = v << 8 | static_cast<unsigned char>(bytes[i]);
   return v;
 }
 
 // The JSON text: the whole file, or a binary file's first chunk, which the
-// format requires to be the JSON one.
+// format requires to be the JSON one. Of a binary file only the headers and
+// that chunk are read: its binary chunk (meshes, images) may be most of the
+// file, and Assimp reads it next anyway.
 std::string json_text(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SceneLoader::LoadError(file.string(), "cannot open the file");
-  std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (bytes.size() < 4 || std::memcmp(bytes.data(), "glTF", 4) != 0) return bytes;
-  // Binary: a 12-byte header, then chunks of (length, type, data).
-  if (bytes.size() < 20) refuse(file, "the binary header and first chunk header are cut short");
-  const std::uint32_t length = little_u32(bytes, 12), type = little_u32(bytes, 16);
+  // A 12-byte header, then chunks of (length, type, data).
+  std::array<char, 20> head{};
+  in.read(head.data(), head.size());
+  const auto got = static_cast<std::size_t>(in.gcount());
+  if (got < 4 || std::memcmp(head.data(), "glTF", 4) != 0) {
+    in.clear();
+    in.seekg(0);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+  if (got < head.size()) refuse(file, "the binary header and first chunk header are cut short");
+  const std::uint32_t length = little_u32(head.data() + 12), type = little_u32(head.data() + 16);
   if (type != 0x4E4F534Au) refuse(file, "the first chunk of a binary glTF is not its JSON chunk");
-  if (length > bytes.size() - 20)
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  const std::uintmax_t after = ec ? 0 : size - head.size();
+  if (length > after)
     refuse(file, "the JSON chunk declares " + std::to_string(length) + " bytes, the file holds " +
-                     std::to_string(bytes.size() - 20) + " after the headers");
-  return bytes.substr(20, length);
+                     std::to_string(after) + " after the headers");
+  std::string text(length, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(length));
+  if (static_cast<std::uint32_t>(in.gcount()) != length)
+    refuse(file, "the JSON chunk is cut short");
+  return text;
 }
 
 // Index `key` of `object`, when present: an unsigned integer below `count`.

@@ -99,7 +99,8 @@ class FileImporter {
     // the extension is unknown).
     if (lower(file_.extension().string()) == ".ply" || looks_like_ply(file_))
       check_ply_structure(file_);
-    // Assimp asks for tens of gigabytes on a glTF primitive without vertices.
+    // Assimp asks for tens of gigabytes on a glTF primitive without
+    // vertices and crashes on an image media type without a '/'.
     if (looks_like_gltf(file_)) check_gltf_structure(file_);
     Assimp::Importer importer;
     const aiScene* scene = importer.ReadFile(where_, kReadFlags);
