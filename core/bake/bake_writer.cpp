@@ -187,7 +187,8 @@ json storage_json(const MatrixStorage& s, std::size_t probe_lights_total) {
                       {"rel_frobenius", t.rel_frobenius},
                       {"light_rel_rms_max", t.light.rel_rms_max},
                       {"light_rel_rms_mean", t.light.rel_rms_mean},
-                      {"bytes", t.bytes}});
+                      {"bytes", t.bytes},
+                      {"rows_measured", t.rows}});
   m["kept_fraction_trials"] = trials;
   json quantizers = json::array();
   for (const LogQuantizer& q : c.quantizers)

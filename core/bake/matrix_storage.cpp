@@ -1,7 +1,9 @@
 #include "bake/matrix_storage.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 
 #include "compress/entry_importance.h"
 #include "compress/light_rebalance.h"
@@ -15,9 +17,136 @@ using Clock = std::chrono::steady_clock;
 
 using Trial = MeasuredCompression;
 
+// The kept-fraction search's state: one ordering and one sample of rows for
+// every trial, the lights' weights decided by the first trial (the plain
+// importance, or the one rebalanced by that trial's per-light errors:
+// compress_for_light), each rung's light error on the sample measured once.
+class KeptFractionSearch {
+ public:
+  // `codec`: with its permutation, sample of block rows and kept storage.
+  KeptFractionSearch(const std::vector<const float*>& exact, std::size_t n, CodecSettings codec,
+                     const IndirectLightProbe& probe, MatrixStorage& s, Progress* progress,
+                     CompressionExecutor* executor)
+      : exact_(exact),
+        n_(n),
+        codec_(std::move(codec)),
+        probe_(probe),
+        s_(s),
+        progress_(progress),
+        executor_(executor) {}
+  KeptFractionSearch(const KeptFractionSearch&) = delete;
+  KeptFractionSearch& operator=(const KeptFractionSearch&) = delete;
+
+  // The light error (what the budget bounds) of `rung` on the sample.
+  double sampled_error(int rung) {
+    if (const auto it = sampled_.find(rung); it != sampled_.end()) return it->second;
+    CodecSettings codec = codec_;
+    codec.kept_fraction = kKeptFractionLadder[rung];
+    MeasuredCompression t;
+    if (!weights_decided_) {
+      t = compress_for_light(exact_, n_, codec, probe_, nullptr, progress_);
+      decide_weights(t.light_factor);
+    } else {
+      t.compressed = compress_matrix(exact_, n_, codec, progress_);
+      t.errors = measure_compression(exact_, t.compressed, probe_, nullptr, progress_);
+    }
+    record(codec.kept_fraction, t.errors, predicted_bytes(codec.kept_fraction),
+           t.compressed.rows().size());
+    return sampled_[rung] = budgeted_light_error(t.errors.indirect);
+  }
+
+  std::size_t sampled_count() const { return sampled_.size(); }
+
+  // The whole matrix compressed at `rung` and measured (`error_map`: the
+  // error picture's |T~ - T| sums).
+  Trial compress_whole(int rung, std::vector<float>& error_map) {
+    CodecSettings codec = codec_;
+    codec.block_rows.clear();
+    codec.kept_fraction = kKeptFractionLadder[rung];
+    Trial t;
+    t.compressed = compress_matrix(exact_, n_, codec, progress_, executor_);
+    t.compressed.lights_rebalanced = rebalanced_.has_value();
+    t.errors = measure_compression(exact_, t.compressed, probe_, &error_map, progress_);
+    record(codec.kept_fraction, t.errors, t.compressed.total_bytes(), n_);
+    return t;
+  }
+
+ private:
+  void decide_weights(const std::vector<double>& light_factor) {
+    weights_decided_ = true;
+    if (light_factor.empty()) return;
+    rebalanced_ = light_importance(exact_, n_, probe_.first_hit, probe_.channel_of_rgb, probe_.area,
+                                   light_factor);
+    codec_.importance = &*rebalanced_;
+  }
+  std::size_t predicted_bytes(double kept_fraction) const {
+    return predicted_total_bytes(n_, static_cast<int>(exact_.size()), kept_fraction,
+                                 *codec_.kept_storage);
+  }
+  void record(double kept_fraction, const CompressionErrors& e, std::size_t bytes,
+              std::size_t rows) {
+    s_.trials.push_back({kept_fraction, e.matrix.rel_frobenius, e.indirect, bytes, rows});
+  }
+
+  const std::vector<const float*>& exact_;
+  std::size_t n_;
+  CodecSettings codec_;
+  const IndirectLightProbe& probe_;
+  MatrixStorage& s_;
+  Progress* progress_;
+  CompressionExecutor* executor_;
+  bool weights_decided_ = false;
+  std::optional<EntryImportance> rebalanced_;
+  std::map<int, double> sampled_;
+};
+
+// Bisection on rungs [0, top] of the light error on the sample: the smallest
+// rung whose sample meets the budget, else the top one.
+int search_on_sample(KeptFractionSearch& search, int top, double budget) {
+  int lo = 0, hi = top, found = top;
+  while (lo <= hi) {
+    const int mid = (lo + hi) / 2;
+    if (search.sampled_error(mid) <= budget) {
+      found = mid;
+      hi = mid - 1;
+    } else {
+      lo = mid + 1;
+    }
+  }
+  return found;
+}
+
+// The whole matrix from the rung the sample found: up the ladder while it
+// misses the budget; when it meets it, one rung down if the sample, scaled by
+// how far it was from the whole matrix at this rung (the same rows, so the
+// same bias), says that one meets it too. Returns the rung kept.
+int compress_whole_from(KeptFractionSearch& search, int rung, int top, double budget, Trial& kept,
+                        std::vector<float>& error_map) {
+  kept = search.compress_whole(rung, error_map);
+  const auto error = [](const Trial& t) { return budgeted_light_error(t.errors.indirect); };
+  if (error(kept) > budget) {
+    while (error(kept) > budget && rung < top) kept = search.compress_whole(++rung, error_map);
+    return rung;
+  }
+  const double sampled = search.sampled_error(rung);
+  if (rung == 0 || !(sampled > 0.0)) return rung;
+  const double scale = error(kept) / sampled;
+  if (search.sampled_error(rung - 1) * scale > budget) return rung;
+  std::vector<float> lower_map;
+  Trial lower = search.compress_whole(rung - 1, lower_map);
+  if (error(lower) > budget) return rung;
+  kept = std::move(lower);
+  error_map.swap(lower_map);
+  return rung - 1;
+}
+
 // The smallest kept fraction of the ladder whose light error meets the
 // budget within the size limit; when none does, the largest that fits (the
-// smallest light error the limit allows), said plainly.
+// smallest light error the limit allows), said plainly. The ladder is
+// searched on a sample of the rows with one ordering; the whole matrix is
+// then compressed at the fraction found, measured, and moved up a rung while
+// it misses the budget (the sample's estimate can be off), so the stored
+// matrix's own error is what meets the budget.
 Trial search_kept_fraction(const std::vector<const float*>& exact, std::size_t n,
                            const IndirectLightProbe& probe, const BakeSettings& settings,
                            CodecSettings codec, MatrixStorage& s, Progress* progress,
@@ -45,28 +174,20 @@ Trial search_kept_fraction(const std::vector<const float*>& exact, std::size_t n
     ++top;
   const bool nothing_fits = top < 0;
   if (nothing_fits) top = 0;
-  // The light error falls as more entries are kept: bisect on [0, top]. Only
-  // two trials are needed afterwards: the best that met the budget, and the
-  // last one tried (the top rung when none met it). Each keeps its error map,
-  // so the chosen one is not measured twice.
-  int lo = 0, hi = top, best = -1;
-  std::optional<Trial> passed, last;
-  std::vector<float> passed_map, last_map;
-  while (lo <= hi) {
-    const int mid = (lo + hi) / 2;
-    codec.kept_fraction = kKeptFractionLadder[mid];
-    last = compress_for_light(exact, n, codec, probe, &last_map, progress, executor);
-    s.trials.push_back({codec.kept_fraction, last->errors.matrix.rel_frobenius,
-                        last->errors.indirect, last->compressed.total_bytes()});
-    if (budgeted_light_error(last->errors.indirect) <= budget) {
-      best = mid;
-      hi = mid - 1;
-      passed = std::move(last);
-      passed_map.swap(last_map);
-    } else {
-      lo = mid + 1;
-    }
-  }
+  // One ordering for every trial, computed at the middle of the rungs.
+  const auto ordering_start = Clock::now();
+  codec.kept_fraction = kKeptFractionLadder[top / 2];
+  codec.permutation = compute_permutation(exact, n, codec, progress);
+  const double seconds_ordering =
+      std::chrono::duration<double>(Clock::now() - ordering_start).count();
+  codec.block_rows = search_sample_block_rows(n);
+  KeptFractionSearch search(exact, n, codec, probe, s, progress, executor);
+  const int found = search_on_sample(search, top, budget);
+  Trial passed;
+  std::vector<float> map;
+  const int best = compress_whole_from(search, found, top, budget, passed, map);
+  passed.compressed.seconds_ordering = seconds_ordering;
+  s.error_budget_met = budgeted_light_error(passed.errors.indirect) <= budget;
   const double mib = 1.0 / (1 << 20);
   const auto bytes_text = [&](std::size_t bytes) {
     return text_format("%.1f MiB, %.1fx smaller than dense float32 RGB",
@@ -75,15 +196,8 @@ Trial search_kept_fraction(const std::vector<const float*>& exact, std::size_t n
   };
   const std::string limit_text = text_format("the size limit (%g of dense float32 RGB: %.1f MiB)",
                                              limit, static_cast<double>(s.size_limit_bytes) * mib);
-  s.error_budget_met = best >= 0;
-  if (!s.error_budget_met) {
-    best = top;  // bisection that never passes ends on the top rung
-    passed = std::move(last);
-    passed_map.swap(last_map);
-  }
-  if (!passed) throw Error("compress", "the kept-fraction search compressed nothing");
-  const IndirectLightError& light = passed->errors.indirect;
-  const std::size_t bytes = passed->compressed.total_bytes();
+  const IndirectLightError& light = passed.errors.indirect;
+  const std::size_t bytes = passed.compressed.total_bytes();
   if (s.error_budget_met) {
     s.error_budget_outcome = text_format(
         "met: kept fraction %g gives a light error of %.3g on the worst of %zu evaluation "
@@ -101,21 +215,34 @@ Trial search_kept_fraction(const std::vector<const float*>& exact, std::size_t n
         light.lights, light.rel_rms_mean, budget, static_cast<double>(s.dense_bytes) * mib);
     diagnostics.warn("compress", "error budget " + s.error_budget_outcome);
   }
-  if (passed->errors.indirect.lights == 0)
+  if (passed.errors.indirect.lights == 0)
     diagnostics.warn("compress",
                      "no evaluation light puts any indirect light on the patches: the light "
                      "error is zero whatever is kept and the budget chose the smallest kept "
                      "fraction");
-  s.abs_error_sum = std::move(passed_map);
+  s.abs_error_sum = std::move(map);
   s.decisions.push_back(
       {text_format("kept fraction: %g", kKeptFractionLadder[best]),
-       text_format("error budget %g on the indirect light (%zu of the %d kept fractions tried): "
-                   "%s",
-                   budget, s.trials.size(), top + 1, s.error_budget_outcome.c_str())});
-  return std::move(*passed);
+       text_format("error budget %g on the indirect light (%zu of the %d kept fractions that fit "
+                   "measured on a sample of %zu of the %zu patch rows, then the whole matrix "
+                   "compressed at %zu of them): %s",
+                   budget, search.sampled_count(), top + 1, s.trials.front().rows, n,
+                   s.trials.size() - search.sampled_count(), s.error_budget_outcome.c_str())});
+  return passed;
 }
 
 }  // namespace
+
+std::vector<std::uint32_t> search_sample_block_rows(std::size_t n) {
+  const std::size_t block_rows = (n + 3) / 4;
+  const std::size_t stride =
+      std::clamp<std::size_t>(block_rows / kSearchSampleMinBlockRows, 1, kSearchSampleStride);
+  // Similar rows sit together after ordering: a stride takes some of each kind.
+  std::vector<std::uint32_t> sample;
+  for (std::size_t b = stride / 2; b < block_rows; b += stride)
+    sample.push_back(static_cast<std::uint32_t>(b));
+  return sample;
+}
 
 std::vector<const float*> stored_channels(const TransportResult& transport) {
   std::vector<const float*> m;

@@ -22,6 +22,9 @@ struct KeptFractionTrial {
   double rel_frobenius = 0.0;
   IndirectLightError light;  // what the error budget is measured on
   std::size_t bytes = 0;
+  // Patch rows the light error was measured on: a sample of the rows while
+  // searching (an estimate), every row for a matrix that could be stored.
+  std::size_t rows = 0;
 };
 
 struct MatrixStorage {
@@ -62,6 +65,16 @@ struct MatrixStorage {
 // up costs 8 bytes per entry kept and channel.
 inline constexpr double kKeptFractionLadder[] = {0.0025, 0.005, 0.01, 0.015, 0.02, 0.03, 0.04,
                                                  0.06,   0.08,  0.12, 0.16,  0.24, 0.32};
+
+// The search measures each kept fraction on every kSearchSampleStride-th
+// block row of the ordered matrix (at least kSearchSampleMinBlockRows of
+// them, all when there are fewer), then compresses the whole matrix once at
+// the fraction found and measures that.
+inline constexpr std::size_t kSearchSampleStride = 8;
+inline constexpr std::size_t kSearchSampleMinBlockRows = 128;
+
+// The sampled block rows for an n x n matrix (ascending).
+std::vector<std::uint32_t> search_sample_block_rows(std::size_t n);
 
 // `executor`: where the block encoding of every compression tried runs (a
 // distributed bake's ranks; compress_matrix); nullptr: in this process.

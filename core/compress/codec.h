@@ -74,6 +74,13 @@ struct CodecSettings {
   // still names `ordering`; seconds_ordering is then 0. Must be a bijection
   // of 0..n-1 (compress_matrix throws bounce::Error otherwise).
   std::optional<Permutation> permutation;
+  // A sample of the stored image's block rows (ascending, each below
+  // padded / 4; needs `permutation`): only the patches of those rows are
+  // split, quantised and encoded, the kept threshold keeping the same share of
+  // their entries. The error budget's search measures kept fractions on such
+  // a sample, whose light error estimates the whole matrix's at a fraction of
+  // the encoding. Empty: every block row.
+  std::vector<std::uint32_t> block_rows;
 };
 
 struct CompressedMatrix {
@@ -98,6 +105,15 @@ struct CompressedMatrix {
   // compression's light error (bake/matrix_storage.h).
   bool lights_rebalanced = false;
   double seconds_split = 0.0, seconds_ordering = 0.0, seconds_encoding = 0.0;
+  // Empty: `blocks` holds every block row of the image. Otherwise the block
+  // rows it holds, in this order (CodecSettings::block_rows): the matrix is
+  // then known on rows() only, an estimate that is never stored.
+  std::vector<std::uint32_t> block_rows;
+
+  bool sampled() const { return !block_rows.empty(); }
+  // The patches whose rows the blocks hold, ascending: every patch unless
+  // sampled.
+  std::vector<std::uint32_t> rows() const;
 
   std::size_t sparse_bytes() const;
   std::size_t block_bytes() const { return blocks.size(); }
@@ -167,12 +183,18 @@ CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std:
                                  const CodecSettings& settings, Progress* progress = nullptr,
                                  CompressionExecutor* executor = nullptr);
 
-// Stored channel c back to a dense n x n matrix in patch order (kept entries
-// exact, the rest decoded from the blocks, the permutation undone).
+// Stored channel c back to dense rows in patch order (kept entries exact, the
+// rest decoded from the blocks, the permutation undone): m.rows().size() x n
+// values, row k for patch m.rows()[k] (n x n in patch order unless sampled).
 void decompress_channel(const CompressedMatrix& m, int c, float* out);
 // The same without the kept entries: what the blocks hold everywhere, holes
 // included.
 void decode_blocks_of_channel(const CompressedMatrix& m, int c, float* out);
+
+// The permutation compress_matrix would compute for `settings` (its split and
+// ordering, no encoding), for reuse through CodecSettings::permutation.
+Permutation compute_permutation(const std::vector<const float*>& matrices, std::size_t n,
+                                const CodecSettings& settings, Progress* progress = nullptr);
 
 const char* codec_name(CodecKind kind);
 const char* ordering_name(OrderingMethod method);

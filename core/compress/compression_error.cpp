@@ -9,16 +9,19 @@ namespace bounce {
 
 namespace {
 
-// y = A x for an n x n row-major A, accumulated in double: a row of 16k
-// products in float loses ~3 digits, more than the errors being measured.
-void multiply(const float* a, std::size_t n, const std::vector<double>& x, std::vector<double>& y) {
-  y.assign(n, 0.0);
+// y_k = (A x)_(rows[k]) for the k < count rows of a row-major A with n
+// columns (row k itself when `rows` is empty), accumulated in double: a row
+// of 16k products in float loses ~3 digits, more than the errors being
+// measured.
+void multiply(const float* a, std::size_t n, std::size_t count, std::span<const std::uint32_t> rows,
+              const std::vector<double>& x, std::vector<double>& y) {
+  y.assign(count, 0.0);
 #pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < n; ++i) {
-    const float* row = a + i * n;
+  for (std::size_t k = 0; k < count; ++k) {
+    const float* row = a + (rows.empty() ? k : rows[k]) * n;
     double s = 0.0;
     for (std::size_t j = 0; j < n; ++j) s += static_cast<double>(row[j]) * x[j];
-    y[i] = s;
+    y[k] = s;
   }
 }
 
@@ -50,6 +53,13 @@ void IndirectLightError::add_light(double err2, double ref2) {
 IndirectLightError indirect_light_error(const std::vector<const float*>& exact,
                                         const std::vector<const float*>& approx, std::size_t n,
                                         const IndirectLightProbe& probe) {
+  return indirect_light_error_on_rows(exact, approx, n, {}, probe);
+}
+
+IndirectLightError indirect_light_error_on_rows(const std::vector<const float*>& exact,
+                                                const std::vector<const float*>& approx,
+                                                std::size_t n, std::span<const std::uint32_t> rows,
+                                                const IndirectLightProbe& probe) {
   check_probe(probe, n, exact.size());
   IndirectLightError e;
   std::vector<double> b(n), y_exact, y_approx;
@@ -58,12 +68,13 @@ IndirectLightError indirect_light_error(const std::vector<const float*>& exact,
     for (int k = 0; k < 3; ++k) {
       for (std::size_t p = 0; p < n; ++p) b[p] = light[p][k];
       const auto c = static_cast<std::size_t>(probe.channel_of_rgb[static_cast<std::size_t>(k)]);
-      multiply(exact[c], n, b, y_exact);
-      multiply(approx[c], n, b, y_approx);
-      for (std::size_t p = 0; p < n; ++p) {
-        const double w = probe.area[p], d = y_approx[p] - y_exact[p];
+      const std::size_t count = rows.empty() ? n : rows.size();
+      multiply(exact[c], n, count, rows, b, y_exact);
+      multiply(approx[c], n, count, {}, b, y_approx);
+      for (std::size_t r = 0; r < y_exact.size(); ++r) {
+        const double w = probe.area[rows.empty() ? r : rows[r]], d = y_approx[r] - y_exact[r];
         err2 += w * d * d;
-        ref2 += w * y_exact[p] * y_exact[p];
+        ref2 += w * y_exact[r] * y_exact[r];
       }
     }
     e.add_light(err2, ref2);
@@ -78,16 +89,31 @@ CompressionErrors measure_compression(const std::vector<const float*>& exact,
   const std::size_t n = compressed.n;
   if (exact.size() != static_cast<std::size_t>(compressed.channels))
     throw Error("compression error", "exact and compressed matrices differ in channel count");
+  if (abs_error_sum && compressed.sampled())
+    throw Error("compression error", "a sample of rows has no error map of the whole matrix");
   CompressionErrors e;
   if (abs_error_sum) abs_error_sum->assign(n * n, 0.0f);
-  std::vector<std::vector<float>> decoded(exact.size(), std::vector<float>(n * n));
+  // The rows the compression holds (every one unless sampled), and the exact
+  // matrix's on them.
+  const std::vector<std::uint32_t> rows =
+      compressed.sampled() ? compressed.rows() : std::vector<std::uint32_t>{};
+  const std::size_t count = compressed.sampled() ? rows.size() : n;
+  std::vector<std::vector<float>> decoded(exact.size(), std::vector<float>(count * n));
   MatrixErrorAccumulator all;
   if (progress) progress->begin_stage("compress: measure errors", exact.size() + 1);
   for (std::size_t c = 0; c < exact.size(); ++c) {
     decompress_channel(compressed, static_cast<int>(c), decoded[c].data());
+    std::vector<float> exact_rows;
+    const float* exact_c = exact[c];
+    if (!rows.empty()) {
+      exact_rows.resize(count * n);
+      for (std::size_t k = 0; k < count; ++k)
+        std::copy_n(exact[c] + std::size_t{rows[k]} * n, n, exact_rows.data() + k * n);
+      exact_c = exact_rows.data();
+    }
     MatrixErrorAccumulator one;
-    one.add(exact[c], decoded[c].data(), n * n);
-    all.add(exact[c], decoded[c].data(), n * n);
+    one.add(exact_c, decoded[c].data(), count * n);
+    all.add(exact_c, decoded[c].data(), count * n);
     e.channels.push_back(one.result());
     if (abs_error_sum)
       for (std::size_t k = 0; k < n * n; ++k)
@@ -97,7 +123,7 @@ CompressionErrors measure_compression(const std::vector<const float*>& exact,
   e.matrix = all.result();
   std::vector<const float*> approx;
   for (const auto& d : decoded) approx.push_back(d.data());
-  e.indirect = indirect_light_error(exact, approx, n, probe);
+  e.indirect = indirect_light_error_on_rows(exact, approx, n, rows, probe);
   if (progress) {
     progress->advance();
     progress->end_stage();

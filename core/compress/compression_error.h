@@ -11,6 +11,8 @@
 // reported as mean and max over the lights.
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -52,8 +54,8 @@ struct IndirectLightProbe {
 };
 
 // `exact[c]`: stored channel c of the exact matrix (n x n, row-major, patch
-// order). With `abs_error_sum`, also returns the sum over stored channels of
-// |T~ - T| per entry (n x n, patch order) for error pictures.
+// order). A sampled compression is measured on its rows only. With `abs_error_sum`, also returns
+// the sum over stored channels of |T~ - T| per entry (n x n, patch order) for error pictures.
 CompressionErrors measure_compression(const std::vector<const float*>& exact,
                                       const CompressedMatrix& compressed,
                                       const IndirectLightProbe& probe,
@@ -65,5 +67,12 @@ CompressionErrors measure_compression(const std::vector<const float*>& exact,
 IndirectLightError indirect_light_error(const std::vector<const float*>& exact,
                                         const std::vector<const float*>& approx, std::size_t n,
                                         const IndirectLightProbe& probe);
+// The same on the patches `rows` only (ascending; empty: every patch), with
+// `approx` holding just those rows (rows.size() x n each): the figure of a
+// sample of rows, as the error budget's search measures it.
+IndirectLightError indirect_light_error_on_rows(const std::vector<const float*>& exact,
+                                                const std::vector<const float*>& approx,
+                                                std::size_t n, std::span<const std::uint32_t> rows,
+                                                const IndirectLightProbe& probe);
 
 }  // namespace bounce

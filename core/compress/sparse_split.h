@@ -3,6 +3,7 @@
 // kept as float32 in CSR form and removed ("holes") from the dense remainder
 // that is log-quantised and block-compressed.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace bounce {
@@ -27,5 +28,15 @@ float kept_threshold(const float* matrix, std::size_t n, double fraction);
 // whose key is >= threshold and > 0, zeros of the matrix included.
 CsrMatrix extract_kept(const float* matrix, std::size_t n, float threshold,
                        const float* key = nullptr);
+
+// The same over the rows `rows` of the matrix only (ascending patch indices):
+// the threshold keeps `fraction` of their n entries each, and the CSR holds
+// those rows' kept entries (every other row empty). With every row, the same
+// threshold and entries as above. The error budget's search splits a sample
+// of the rows this way.
+float kept_threshold(const float* matrix, std::size_t n, std::span<const std::uint32_t> rows,
+                     double fraction);
+CsrMatrix extract_kept(const float* matrix, std::size_t n, float threshold, const float* key,
+                       std::span<const std::uint32_t> rows);
 
 }  // namespace bounce
