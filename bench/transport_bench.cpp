@@ -63,6 +63,11 @@ BenchEntry time_plain(std::size_t n, int repeats) {
 
 }  // namespace
 
+GemmTiming time_openblas_sgemm(std::size_t n, int repeats) {
+  OpenBlasGemm openblas;
+  return time_gemm(openblas, n, repeats);
+}
+
 TransportBench run_transport_bench(std::size_t n, int repeats, bool with_lu, bool with_plain) {
   TransportBench b;
   b.n = n;

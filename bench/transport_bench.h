@@ -38,4 +38,8 @@ inline constexpr std::size_t kPlainGemmMaxN = 2048;
 TransportBench run_transport_bench(std::size_t n, int repeats, bool with_lu = false,
                                    bool with_plain = false);
 
+// One n x n OpenBLAS sgemm, best of `repeats` after a warm-up: the machine's
+// dense float32 rate, which `bench bake` sets the transport stage against.
+GemmTiming time_openblas_sgemm(std::size_t n, int repeats);
+
 }  // namespace bounce
