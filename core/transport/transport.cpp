@@ -372,6 +372,11 @@ void solve_exactly(ChannelTransport& ct, MatrixValues& m, const ChannelPlan& pla
                      inv.asymmetry)});
   else if (!inv.lu_reason.empty())
     decisions.push_back({who + ": K = infinity by LU, not Cholesky", inv.lu_reason});
+  else
+    decisions.push_back({who + ": K = infinity by LU, not Cholesky",
+                         executor ? "the distributed solve (ScaLAPACK) factorises by LU"
+                                  : "F was not balanced (--closure-rays 0): no patch areas make "
+                                    "A F symmetric"});
   decisions.push_back(
       {who + text_format(": K = infinity by %s in %s, condition %.3g", method_name(inv.method),
                          precision_name(inv.precision), inv.condition),
