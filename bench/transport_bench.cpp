@@ -14,33 +14,61 @@ namespace bounce {
 
 namespace {
 
-BenchEntry time_solve(std::size_t n, int repeats, TransportPrecision precision) {
-  BenchEntry e;
-  e.what = std::string("LU ") + precision_name(precision) + " (K = infinity)";
+// A balanced M = diag(rho) A^-1 G (G symmetric, rows of F summing to at most
+// 0.9), as a bake's K = infinity solves: both methods get the same matrix.
+struct BalancedM {
+  std::vector<float> m, area, albedo;
+};
+
+BalancedM balanced_m(std::size_t n) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  std::vector<float> m(n * n);
+  BalancedM b;
+  b.area.resize(n);
+  b.albedo.resize(n);
   for (std::size_t p = 0; p < n; ++p) {
-    float sum = 0.0f;
-    for (std::size_t q = 0; q < n; ++q) sum += m[p * n + q] = u(rng);
-    for (std::size_t q = 0; q < n; ++q) m[p * n + q] *= 0.9f / sum;
+    b.area[p] = 0.5f + u(rng);
+    b.albedo[p] = 0.3f + 0.6f * u(rng);
   }
+  b.m.resize(n * n);
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::size_t q = p; q < n; ++q) b.m[p * n + q] = b.m[q * n + p] = u(rng);
+  double worst = 0.0;
+  for (std::size_t p = 0; p < n; ++p) {
+    double row = 0.0;
+    for (std::size_t q = 0; q < n; ++q) row += b.m[p * n + q];
+    worst = std::max(worst, row / b.area[p]);
+  }
+  for (std::size_t p = 0; p < n; ++p)
+    for (std::size_t q = 0; q < n; ++q)
+      b.m[p * n + q] = static_cast<float>(b.albedo[p] * 0.9 / worst * b.m[p * n + q] / b.area[p]);
+  return b;
+}
+
+BenchEntry time_solve(const BalancedM& b, std::size_t n, int repeats, InverseMethod method,
+                      TransportPrecision precision) {
+  BenchEntry e;
+  e.what = std::string(method_name(method)) + " " + precision_name(precision) + " (K = infinity)";
   InverseOptions options;
   options.force = precision;
+  if (method == InverseMethod::Cholesky) {
+    options.area = b.area;
+    options.albedo = b.albedo;
+  }
   std::vector<double> seconds;
+  double flops = 0.0;
   for (int i = 0; i < repeats; ++i) {
     const auto start = std::chrono::steady_clock::now();
-    solve_infinite_bounces(m, n, 0.9, options);
+    flops = solve_infinite_bounces(b.m, n, -1.0, options).flops;
     seconds.push_back(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   std::sort(seconds.begin(), seconds.end());
-  const double d = static_cast<double>(n);
   e.timing.n = n;
   e.timing.repeats = repeats;
   e.timing.best_seconds = seconds.front();
   e.timing.median_seconds = seconds[seconds.size() / 2];
-  e.timing.gflops = (2.0 + 2.0 / 3.0) * d * d * d / e.timing.best_seconds * 1e-9;
+  e.timing.gflops = flops / e.timing.best_seconds * 1e-9;
   return e;
 }
 
@@ -63,6 +91,11 @@ BenchEntry time_plain(std::size_t n, int repeats) {
 
 }  // namespace
 
+GemmTiming time_openblas_sgemm(std::size_t n, int repeats) {
+  OpenBlasGemm openblas;
+  return time_gemm(openblas, n, repeats);
+}
+
 TransportBench run_transport_bench(std::size_t n, int repeats, bool with_lu, bool with_plain) {
   TransportBench b;
   b.n = n;
@@ -80,8 +113,10 @@ TransportBench run_transport_bench(std::size_t n, int repeats, bool with_lu, boo
   }
   if (with_plain) b.entries.push_back(time_plain(n, b.repeats));
   if (with_lu) {
-    b.entries.push_back(time_solve(n, b.repeats, TransportPrecision::Float32));
-    b.entries.push_back(time_solve(n, b.repeats, TransportPrecision::Float64));
+    const BalancedM m = balanced_m(n);
+    for (const InverseMethod method : {InverseMethod::Cholesky, InverseMethod::LU})
+      for (const TransportPrecision p : {TransportPrecision::Float32, TransportPrecision::Float64})
+        b.entries.push_back(time_solve(m, n, b.repeats, method, p));
   }
   return b;
 }

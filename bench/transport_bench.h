@@ -15,7 +15,7 @@ struct BenchEntry {
   std::string what;       // "OpenBLAS sgemm", "CLBlast sgemm (<device>)", "LU float32", ...
   bool available = true;  // false: could not run, `error` says why
   std::string error;
-  GemmTiming timing;  // for LU: the full solve of (I - M) T = M; gflops counts 2 n^3 + 2/3 n^3
+  GemmTiming timing;  // for a solve: all of (I - M) T = M; gflops counts the flops it reports
 };
 
 struct TransportBench {
@@ -30,12 +30,17 @@ struct TransportBench {
 inline constexpr std::size_t kPlainGemmMaxN = 2048;
 
 // One n x n sgemm on OpenBLAS and on CLBlast (best and median of `repeats`
-// after one warm-up); with `with_lu`, also the K = infinity solve in float32
-// and float64 on a random substochastic M (rows summing to 0.9); with
+// after one warm-up); with `with_lu`, also the K = infinity solve by
+// Cholesky and by LU in float32 and float64 on one random balanced M
+// (A F symmetric, rows of F summing to at most 0.9); with
 // `with_plain`, also the plain loop: `repeats` runs after a warm-up below
 // n = kPlainGemmMaxN, one run without warm-up at it, skipped (available =
 // false, with the reason) above it.
 TransportBench run_transport_bench(std::size_t n, int repeats, bool with_lu = false,
                                    bool with_plain = false);
+
+// One n x n OpenBLAS sgemm, best of `repeats` after a warm-up: the machine's
+// dense float32 rate, which `bench bake` sets the transport stage against.
+GemmTiming time_openblas_sgemm(std::size_t n, int repeats);
 
 }  // namespace bounce

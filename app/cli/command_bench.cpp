@@ -9,10 +9,40 @@
 #include "bounce/scene.h"
 #include "commands.h"
 #include "console_progress.h"
+#include "transport_bench.h"
 
 namespace bounce::cli {
 
 namespace {
+
+// The transport stage's rate against OpenBLAS sgemm at the bake's n, measured
+// in the same run: how close the stage gets to the machine's dense speed.
+struct TransportRate {
+  double gflop = 0.0;
+  double seconds = 0.0;
+  double gflops = 0.0;
+  double sgemm_gflops = 0.0;
+  std::string methods;
+};
+
+TransportRate transport_rate(const BakeResult& r) {
+  TransportRate t;
+  t.gflop = r.transport.flops * 1e-9;
+  t.seconds = r.transport.seconds;
+  t.gflops = t.seconds > 0.0 ? t.gflop / t.seconds : 0.0;
+  for (const ChannelTransport& c : r.transport.channels)
+    t.methods += (t.methods.empty() ? "" : ", ") + c.method;
+  if (r.transport.n > 0) t.sgemm_gflops = time_openblas_sgemm(r.transport.n, 3).gflops;
+  return t;
+}
+
+void print_transport_rate(const TransportRate& t, std::size_t n) {
+  std::printf(
+      "  transport: %.1f GFLOP in %.3f s = %.1f GFLOP/s (%s); OpenBLAS sgemm %zux%zu "
+      "(best of 3, this run): %.1f GFLOP/s; transport at %.0f%% of sgemm\n",
+      t.gflop, t.seconds, t.gflops, t.methods.c_str(), n, n, t.sgemm_gflops,
+      t.sgemm_gflops > 0.0 ? 100.0 * t.gflops / t.sgemm_gflops : 0.0);
+}
 
 void run_bench_bake(const BakeOptions& opt) {
   ConsoleProgress console(opt.quiet || opt.json);
@@ -30,12 +60,19 @@ void run_bench_bake(const BakeOptions& opt) {
     Diagnostics baseline_diagnostics;
     const BakeResult base = Baker(scene, other, baseline_diagnostics).run(console.progress());
     const nlohmann::json b = make_manifest(scene, base, baseline_diagnostics);
+    const TransportRate rate = transport_rate(ours);
     if (opt.json) {
       all.push_back({{"scene", scene.name},
                      {"settings", m["settings"]},
                      {"counts", m["counts"]},
                      {"stages", m["stages"]},
                      {"total_seconds", m["total_seconds"]},
+                     {"transport_rate",
+                      {{"gflop", rate.gflop},
+                       {"seconds", rate.seconds},
+                       {"gflops", rate.gflops},
+                       {"sgemm_gflops", rate.sgemm_gflops},
+                       {"methods", rate.methods}}},
                      {"baseline",
                       {{"settings", b["settings"]},
                        {"counts", b["counts"]},
@@ -67,6 +104,7 @@ void run_bench_bake(const BakeOptions& opt) {
                 base.checks.row_sum_max);
     std::printf("  %-24s %14.2e %14.2e\n", "reciprocity (matrix)",
                 ours.checks.reciprocity_error_rel, base.checks.reciprocity_error_rel);
+    print_transport_rate(rate, ours.transport.n);
   }
   if (opt.json) std::cout << all.dump(2) << '\n';
 }

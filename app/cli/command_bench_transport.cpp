@@ -43,7 +43,10 @@ void print_table(const TransportBench& b) {
       "\nbench transport: n = %zu, float32, best and median of the runs after one "
       "warm-up\n",
       b.n);
-  std::printf("  (ratio = best time / OpenBLAS sgemm's best time; LU GFLOP/s count 8/3 n^3)\n");
+  std::printf(
+      "  (ratio = best time / OpenBLAS sgemm's best time; solve GFLOP/s count the solve's own "
+      "flops: "
+      "Cholesky 7/3 n^3, LU 8/3 n^3)\n");
   std::printf("  %-*s %5s %12s %12s %10s %9s\n", w, "what", "runs", "best (s)", "median (s)",
               "GFLOP/s", "ratio");
   for (const BenchEntry& e : b.entries) {
@@ -87,7 +90,8 @@ void run(const TransportBenchOptions& opt) {
   for (std::size_t n : opt.sizes) {
     if (!opt.quiet && !opt.json)
       std::fprintf(stderr, "  timing n = %zu: OpenBLAS, CLBlast%s%s ...\n", n,
-                   opt.no_plain ? "" : ", plain loop", opt.lu ? ", LU float32 and float64" : "");
+                   opt.no_plain ? "" : ", plain loop",
+                   opt.lu ? ", Cholesky and LU in float32 and float64" : "");
     const TransportBench b = run_transport_bench(n, opt.repeats, opt.lu, !opt.no_plain);
     if (opt.json) {
       all.push_back(to_json(b));
@@ -123,7 +127,8 @@ void register_bench_transport(CLI::App& bench) {
                   "are reported")
       ->capture_default_str();
   cmd->add_flag("--lu", opt->lu,
-                "Also time the K = infinity solve (I - M) T = M by LU in float32 and float64");
+                "Also time the K = infinity solve (I - M) T = M by Cholesky and by LU, in float32 "
+                "and float64, on one random balanced M");
   cmd->add_flag("--no-plain", opt->no_plain, "Leave out the plain triple-loop baseline");
   cmd->add_flag("--json", opt->json, "Print the timings as JSON on stdout instead of tables");
   cmd->add_flag("--quiet,-q", opt->quiet, "No progress lines on stderr");

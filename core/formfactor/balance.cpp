@@ -148,6 +148,7 @@ BalanceStats balance_form_factors(FormFactorMatrix& f, const std::vector<float>&
     progress->advance();
     progress->end_stage();
   }
+  f.area = area;  // A F is symmetric now: the transport may use Cholesky
   return stats;
 }
 

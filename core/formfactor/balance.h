@@ -59,7 +59,8 @@ struct BalanceStats {
   std::size_t limited_targets = 0;
 };
 
-// Scales `f` in place. `area` and `closure` are per patch (closure in [0, 1]).
+// Scales `f` in place and records `area` in it (f.area). `area` and
+// `closure` are per patch (closure in [0, 1]).
 BalanceStats balance_form_factors(FormFactorMatrix& f, const std::vector<float>& area,
                                   const std::vector<float>& closure,
                                   const BalanceSettings& settings = {},

@@ -58,6 +58,11 @@ struct FormFactorMatrix {
   // where each receiver piece refines the source its own way) and 1 is closer
   // to the exact value. Reported in the manifest (checks.form_factors).
   std::size_t clamped_to_one = 0;
+  // The patch areas A with which balance_form_factors made A F symmetric
+  // (docs/method.md 5a); empty when F was not balanced (--closure-rays 0).
+  // The transport's K = infinity solve uses them for its Cholesky
+  // factorisation (transport/inverse_transport.h).
+  std::vector<float> area;
   float operator()(std::size_t p, std::size_t q) const { return values[p * n + q]; }
 };
 

@@ -11,6 +11,7 @@
 
 #include "base/error.h"
 #include "transport/blas_int.h"
+#include "transport/symmetric_transport.h"
 #include "transport/text_format.h"
 
 static_assert(sizeof(lapack_int) == sizeof(int), "LAPACKE built with 64-bit integers");
@@ -18,9 +19,6 @@ static_assert(sizeof(lapack_int) == sizeof(int), "LAPACKE built with 64-bit inte
 namespace bounce {
 
 namespace {
-
-// float64 results with fewer than two correct digits are refused, not shipped.
-constexpr double kFloat64ErrorLimit = 1e-2;
 
 template <class Real>
 struct Lapack;
@@ -136,6 +134,7 @@ double inf_norm_of_identity_minus(const float* m, std::size_t n) {
 }  // namespace
 
 double condition_lower_bound(const float* m, std::size_t n, double spectral_radius) {
+  if (spectral_radius < 0.0) return 0.0;  // not known
   if (!(spectral_radius < 1.0)) return std::numeric_limits<double>::infinity();
   return inf_norm_of_identity_minus(m, n) / (1.0 - spectral_radius);
 }
@@ -162,12 +161,18 @@ TransportPrecision predicted_precision(double condition_lower_bound,
   return precision_before_factorising(condition_lower_bound, options).precision;
 }
 
-double lu_cost_in_gemms(TransportPrecision precision) {
+double solve_cost_in_gemms(InverseMethod method, TransportPrecision precision) {
+  if (method == InverseMethod::Cholesky)
+    return precision == TransportPrecision::Float64 ? 2.5 : 1.2;
   return precision == TransportPrecision::Float64 ? 3.5 : 1.5;
 }
 
 const char* precision_name(TransportPrecision p) {
   return p == TransportPrecision::Float64 ? "float64" : "float32";
+}
+
+const char* method_name(InverseMethod m) {
+  return m == InverseMethod::Cholesky ? "Cholesky" : "LU";
 }
 
 InverseTransport solve_infinite_bounces(std::vector<float> m, std::size_t n, double spectral_radius,
@@ -178,14 +183,23 @@ InverseTransport solve_infinite_bounces(std::vector<float> m, std::size_t n, dou
   return r;
 }
 
-InverseTransport solve_infinite_bounces_in_place(float* m, std::size_t n, double spectral_radius,
-                                                 const InverseOptions& options) {
+namespace {
+
+double lu_flops(std::size_t n) {
+  const double d = static_cast<double>(n);
+  return 2.0 * d * d * d / 3.0;  // ?getrf; ?getrs adds 2 n^3 for n right-hand sides
+}
+
+InverseTransport solve_by_lu(float* m, std::size_t n, double spectral_radius,
+                             const InverseOptions& options) {
   InverseTransport r;
-  if (n == 0) return r;
+  r.method = InverseMethod::LU;
+  const double nn = static_cast<double>(n);
   // ||I - M||_inf, also the anorm ?gecon needs for the column-major I - M^T.
   const double anorm = inf_norm_of_identity_minus(m, n);
-  r.condition_lower_bound = spectral_radius < 1.0 ? anorm / (1.0 - spectral_radius)
-                                                  : std::numeric_limits<double>::infinity();
+  if (spectral_radius >= 0.0)
+    r.condition_lower_bound = spectral_radius < 1.0 ? anorm / (1.0 - spectral_radius)
+                                                    : std::numeric_limits<double>::infinity();
   const double limit = options.float32_error_limit;
 
   PrecisionChoice choice = precision_before_factorising(r.condition_lower_bound, options);
@@ -194,6 +208,7 @@ InverseTransport solve_infinite_bounces_in_place(float* m, std::size_t n, double
 
   if (!use_float64) {
     Factorisation<float> f = factorise<float>(m, n, anorm);
+    r.flops += lu_flops(n);
     r.condition = f.condition;
     if (!options.force && f.condition * FLT_EPSILON > limit) {
       use_float64 = true;
@@ -208,6 +223,7 @@ InverseTransport solve_infinite_bounces_in_place(float* m, std::size_t n, double
                             f.condition, f.condition * FLT_EPSILON, limit);
       if (options.tick) options.tick();
       solve(f, m, n, options);
+      r.flops += 2.0 * nn * nn * nn;
       r.precision = TransportPrecision::Float32;
       return r;
     }
@@ -216,14 +232,28 @@ InverseTransport solve_infinite_bounces_in_place(float* m, std::size_t n, double
   // float64: the factorisation from the float M (exact in double), the
   // right-hand side converted block by block in solve().
   Factorisation<double> f = factorise<double>(m, n, anorm);
+  r.flops += lu_flops(n);
   r.condition = f.condition;
-  if (f.condition * DBL_EPSILON > kFloat64ErrorLimit)
-    throw Error("transport", text_format("I - diag(albedo) F is numerically singular (condition "
-                                         "%.3g): check form-factor row sums and albedo",
-                                         f.condition));
+  check_float64_condition(f.condition);
   if (options.tick) options.tick();
   solve(f, m, n, options);
+  r.flops += 2.0 * nn * nn * nn;
   r.precision = TransportPrecision::Float64;
+  return r;
+}
+
+}  // namespace
+
+InverseTransport solve_infinite_bounces_in_place(float* m, std::size_t n, double spectral_radius,
+                                                 const InverseOptions& options) {
+  if (n == 0) return {};
+  if (options.area.empty() && options.albedo.empty())
+    return solve_by_lu(m, n, spectral_radius, options);
+  CholeskyAttempt attempt = solve_by_cholesky(m, n, spectral_radius, options);
+  if (attempt.result) return std::move(*attempt.result);
+  InverseTransport r = solve_by_lu(m, n, spectral_radius, options);
+  r.lu_reason = std::move(attempt.why_not);
+  r.flops += attempt.flops;
   return r;
 }
 

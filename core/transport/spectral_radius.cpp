@@ -88,4 +88,52 @@ SpectralRadius estimate_spectral_radius(const float* m, std::size_t n, int max_i
   return r;
 }
 
+SpectralRadius spectral_radius_from_transport(const float* t, std::size_t n, int max_iterations,
+                                              double tolerance) {
+  SpectralRadius r;
+  if (n == 0) return r;
+  const int k = blas_dim(n, "cblas_sgemv");
+  std::vector<float> v(n, 1.0f), w(n);
+  double previous_upper = -1.0;
+  for (int it = 1; it <= std::max(max_iterations, 1); ++it) {
+    cblas_sgemv(CblasRowMajor, CblasNoTrans, k, k, 1.0f, t, k, v.data(), 1, 0.0f, w.data(), 1);
+    double uu = 0.0, mm = 0.0, lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double u = static_cast<double>(v[i]) + static_cast<double>(w[i]);  // (I - M)^-1 v
+      if (!(u > 0.0) || !std::isfinite(u)) {
+        r.iterations = it;
+        r.estimate = r.upper = std::numeric_limits<double>::infinity();
+        return r;
+      }
+      const double q = static_cast<double>(w[i]) / u;  // (M u)_i / u_i
+      lo = std::min(lo, q);
+      hi = std::max(hi, q);
+      uu += u * u;
+      mm += static_cast<double>(w[i]) * w[i];
+    }
+    r.iterations = it;
+    r.estimate = std::sqrt(mm / uu);
+    r.lower = lo;
+    r.upper = hi;
+    // Rows of zero albedo hold the lower bound at 0 for good: stop also when
+    // the upper bound has settled.
+    if (hi - lo <= tolerance * hi || std::abs(hi - previous_upper) <= 1e-3 * tolerance * hi) {
+      r.converged = true;
+      break;
+    }
+    previous_upper = hi;
+    // The next v is T v: power iteration on T, whose eigenvalues
+    // lambda / (1 - lambda) spread the Perron root further from the rest
+    // than M's do.
+    float w_max = 0.0f;
+    for (std::size_t i = 0; i < n; ++i) w_max = std::max(w_max, w[i]);
+    if (!(w_max > 0.0f)) {
+      r.converged = true;  // T v = 0 for v > 0: T = 0, rho = 0
+      break;
+    }
+    for (std::size_t i = 0; i < n; ++i) v[i] = std::max(w[i], 0.0f) / w_max + kFloor;
+  }
+  return r;
+}
+
 }  // namespace bounce

@@ -32,4 +32,16 @@ struct SpectralRadius {
 SpectralRadius estimate_spectral_radius(const float* m, std::size_t n, int max_iterations = 100,
                                         double tolerance = 1e-4);
 
+// The same bounds read off a solved T = (I - M)^-1 - I (t: row-major n x n),
+// for K = infinity, where no power iteration on M is run. For any v > 0,
+// u = (I - M)^-1 v = v + T v satisfies M u = u - v exactly, so the
+// Collatz-Wielandt quotients of M at u are (T v)_i / (v + T v)_i, all below 1
+// while v + T v > 0: a solution with a non-positive or non-finite entry there
+// makes the upper bound infinite (the light does not settle). v is iterated
+// as v <- T v, power iteration on T, whose eigenvalues lambda / (1 - lambda)
+// converge faster than M's (ratio (lambda_2 / rho) (1 - rho) / (1 - lambda_2)
+// against lambda_2 / rho). One sgemv on T per step.
+SpectralRadius spectral_radius_from_transport(const float* t, std::size_t n,
+                                              int max_iterations = 16, double tolerance = 1e-4);
+
 }  // namespace bounce

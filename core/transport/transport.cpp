@@ -132,16 +132,71 @@ MatrixValues scaled_rows(const FormFactorMatrix& f, const std::vector<glm::vec3>
 struct ChannelPlan {
   std::vector<int> rgb;
   std::string label;
-  SpectralRadius radius;
+  SpectralRadius radius;  // finite K only; K = infinity reads it off T
   bool infinite = false;
   SeriesPlan series;     // finite K
   int auto_bounces = 0;  // auto: where the series converged (0: not auto / not converged)
   double auto_next_fraction = 0.0;
-  TransportPrecision lu_precision = TransportPrecision::Float32;  // predicted, for costs
+  InverseMethod solve_method = InverseMethod::LU;  // expected for K = infinity, for costs
 };
 
-// Spectral radius and K for one channel; finite auto K may still become
-// infinity in resolve_auto once the cost of a product is known.
+// F is known to float32 rounding (~1e-7 per row), so a radius this close to 1
+// is 1 as far as the data can tell: the light would never settle, and a solve
+// of the (numerically) singular I - M would return noise, not an error.
+// Albedo 1 in a closed room lands here.
+constexpr double kSettleMargin = 1e-6;
+
+std::string divergence(const SpectralRadius& r, const std::vector<glm::vec3>& albedo, int c,
+                       double max_row_sum) {
+  float max_albedo = 0.0f;
+  for (const glm::vec3& a : albedo) max_albedo = std::max(max_albedo, a[c]);
+  return text_format(
+      "spectral radius %.7f is 1 or more to the precision of F: no bounce returns less light "
+      "than the one before (form-factor rows sum up to %.4f, albedo up to %.4f), so energy is "
+      "not conserved",
+      r.upper, max_row_sum, static_cast<double>(max_albedo));
+}
+
+// Auto: K where the series converges, or infinity. The series is a candidate
+// only when its products, at one OpenBLAS product each, cost less than the
+// exact solve; otherwise K = infinity is taken without timing any backend.
+void plan_auto(ChannelPlan& plan, const float* m, std::size_t n, const TransportSettings& settings,
+               std::vector<TransportDecision>& decisions) {
+  const std::string who = "channel " + plan.label;
+  const AutoBounces a =
+      choose_auto_bounces(m, n, settings.auto_tolerance, settings.max_auto_bounces);
+  if (!a.converged) {
+    plan.infinite = true;
+    decisions.push_back(
+        {who + ": K = infinity (auto)",
+         text_format("bounce %d still adds %.2e of the light so far (>= %.0e): the series "
+                     "converges too slowly to truncate, solved exactly instead",
+                     a.bounces + 1, a.next_fraction, settings.auto_tolerance)});
+    return;
+  }
+  plan.auto_bounces = a.bounces;
+  plan.auto_next_fraction = a.next_fraction;
+  plan.series = plan_series(a.bounces);
+  decisions.push_back(
+      {who + text_format(": the series converges at K = %d (auto)", a.bounces),
+       text_format("bounce %d adds %.2e of the light so far (< %.0e; light summed over "
+                   "patches for unit light leaving each)",
+                   a.bounces + 1, a.next_fraction, settings.auto_tolerance)});
+  const double solve_cost = solve_cost_in_gemms(plan.solve_method, TransportPrecision::Float32);
+  if (plan.series.gemms >= solve_cost) {
+    plan.infinite = true;
+    decisions.push_back(
+        {who + ": K = infinity (auto)",
+         text_format("the series to K = %d needs %d products, the float32 %s solve costs ~%.2g "
+                     "OpenBLAS products; a product backend is timed only when the series could "
+                     "win on OpenBLAS; the exact sum leaves nothing out",
+                     a.bounces, plan.series.gemms, method_name(plan.solve_method), solve_cost)});
+  }
+}
+
+// K for one channel, and for a finite K the spectral radius of M (its bound
+// on what the omitted bounces add). K = infinity needs no power iteration:
+// the radius is read off the solved T (spectral_radius_from_transport).
 ChannelPlan plan_channel(const FormFactorMatrix& f, const std::vector<glm::vec3>& albedo,
                          std::vector<int> rgb, const TransportSettings& settings,
                          double max_row_sum, Diagnostics& diagnostics,
@@ -149,8 +204,18 @@ ChannelPlan plan_channel(const FormFactorMatrix& f, const std::vector<glm::vec3>
   ChannelPlan plan;
   plan.rgb = std::move(rgb);
   plan.label = channel_label(plan.rgb);
+  plan.solve_method = f.area.empty() ? InverseMethod::LU : InverseMethod::Cholesky;
   const std::string who = "channel " + plan.label;
+  if (settings.bounces == TransportSettings::kInfiniteBounces) {
+    plan.infinite = true;
+    decisions.push_back({who + ": K = infinity", "requested"});
+    return plan;
+  }
   const MatrixValues m = scaled_rows(f, albedo, plan.rgb.front());
+  if (settings.bounces == TransportSettings::kAutoBounces) {
+    plan_auto(plan, m.data(), f.n, settings, decisions);
+    if (plan.infinite) return plan;
+  }
   plan.radius = estimate_spectral_radius(m.data(), f.n);
   plan.radius.weights = {};
   const SpectralRadius& r = plan.radius;
@@ -158,91 +223,51 @@ ChannelPlan plan_channel(const FormFactorMatrix& f, const std::vector<glm::vec3>
       {who + text_format(": spectral radius of diag(albedo) F = %.4f", r.estimate),
        text_format("power iteration, %d sgemv%s; Collatz-Wielandt bounds [%.4f, %.4f]",
                    r.iterations, r.converged ? "" : " (not converged)", r.lower, r.upper)});
-  plan.lu_precision = predicted_precision(condition_lower_bound(m.data(), f.n, r.estimate));
-
-  float max_albedo = 0.0f;
-  for (const glm::vec3& a : albedo) max_albedo = std::max(max_albedo, a[plan.rgb.front()]);
-  const std::string divergence = text_format(
-      "spectral radius %.7f is 1 or more to the precision of F: no bounce returns less light "
-      "than the one before (form-"
-      "factor rows sum up to %.4f, albedo up to %.4f), so energy is not conserved",
-      r.estimate, max_row_sum, static_cast<double>(max_albedo));
-  // F is known to float32 rounding (~1e-7 per row), so a radius this close
-  // to 1 is 1 as far as the data can tell: the light would never settle, and
-  // an LU of the (numerically) singular I - M would return noise, not an
-  // error. Albedo 1 in a closed room lands here.
-  constexpr double kSettleMargin = 1e-6;
-  const bool diverges = r.estimate >= 1.0 - kSettleMargin;
-
-  if (settings.bounces == TransportSettings::kInfiniteBounces) {
-    if (diverges)
-      throw Error("transport.bounces",
-                  who + ": K = infinity is impossible: " + divergence +
-                      "; fix the form factors or ask for an explicit bounce count");
-    plan.infinite = true;
-    decisions.push_back({who + ": K = infinity", "requested"});
-  } else if (settings.bounces == TransportSettings::kAutoBounces) {
-    if (diverges)
-      throw Error("transport.bounces",
-                  who + ": auto bounces cannot converge: " + divergence +
-                      "; fix the form factors or ask for an explicit bounce count");
-    const AutoBounces a =
-        choose_auto_bounces(m.data(), f.n, settings.auto_tolerance, settings.max_auto_bounces);
-    if (a.converged) {
-      plan.auto_bounces = a.bounces;
-      plan.auto_next_fraction = a.next_fraction;
-      plan.series = plan_series(a.bounces);
-      decisions.push_back(
-          {who + text_format(": the series converges at K = %d (auto)", a.bounces),
-           text_format("bounce %d adds %.2e of the light so far (< %.0e; light summed over "
-                       "patches for unit light leaving each)",
-                       a.bounces + 1, a.next_fraction, settings.auto_tolerance)});
-    } else {
-      plan.infinite = true;
-      decisions.push_back(
-          {who + ": K = infinity (auto)",
-           text_format("bounce %d still adds %.2e of the light so far (>= %.0e): the series "
-                       "converges too slowly to truncate, solved exactly by LU instead",
-                       a.bounces + 1, a.next_fraction, settings.auto_tolerance)});
-    }
-  } else {
-    if (diverges)
-      diagnostics.warn("transport.bounces", who + ": " + divergence +
-                                                text_format("; the %d-bounce sum is finite but "
-                                                            "not physical",
-                                                            settings.bounces));
+  if (settings.bounces != TransportSettings::kAutoBounces)
     plan.series = plan_series(settings.bounces);
-    decisions.push_back({who + text_format(": K = %d", settings.bounces), "requested"});
+  if (r.estimate < 1.0 - kSettleMargin) {
+    if (settings.bounces != TransportSettings::kAutoBounces)
+      decisions.push_back({who + text_format(": K = %d", settings.bounces), "requested"});
+    return plan;
   }
+  const std::string why = divergence(r, albedo, plan.rgb.front(), max_row_sum);
+  if (settings.bounces == TransportSettings::kAutoBounces)
+    throw Error("transport.bounces",
+                who + ": auto bounces cannot converge: " + why +
+                    "; fix the form factors or ask for an explicit bounce count");
+  diagnostics.warn(
+      "transport.bounces",
+      who + ": " + why +
+          text_format("; the %d-bounce sum is finite but not physical", settings.bounces));
+  decisions.push_back({who + text_format(": K = %d", settings.bounces), "requested"});
   return plan;
 }
 
-// Auto: the truncated series or the exact K = infinity, whichever costs less.
-// The LU is often the cheaper (on 2 CPU cores one float32 solve costs ~1.5
-// products, and a series converging at K = 11 needs 7), and it leaves out
-// nothing; a fast GEMM backend (a GPU) or a small K favours the series.
+// Auto with a series candidate: the truncated series or the exact K =
+// infinity, whichever costs less at the measured product rate.
 void resolve_auto(ChannelPlan& plan, double gemm_cost, const std::string& gemm_name,
                   const TransportSettings& settings, Diagnostics& diagnostics,
                   std::vector<TransportDecision>& decisions) {
   if (plan.infinite || plan.auto_bounces == 0) return;
   const std::string who = "channel " + plan.label;
   const double series_cost = plan.series.gemms * gemm_cost;
-  const double lu_cost = lu_cost_in_gemms(plan.lu_precision);
-  if (lu_cost < series_cost) {
+  const double solve_cost = solve_cost_in_gemms(plan.solve_method, TransportPrecision::Float32);
+  const char* method = method_name(plan.solve_method);
+  if (solve_cost < series_cost) {
     plan.infinite = true;
     decisions.push_back(
         {who + ": K = infinity (auto)",
          text_format("cheaper than the series to K = %d: %d products on %s ~ %.2g OpenBLAS "
-                     "products, the %s LU ~ %.2g; the exact sum leaves nothing out",
-                     plan.auto_bounces, plan.series.gemms, gemm_name.c_str(), series_cost,
-                     precision_name(plan.lu_precision), lu_cost)});
+                     "products, the float32 %s solve ~ %.2g; the exact sum leaves nothing out",
+                     plan.auto_bounces, plan.series.gemms, gemm_name.c_str(), series_cost, method,
+                     solve_cost)});
     return;
   }
   decisions.push_back(
       {who + text_format(": K = %d (auto)", plan.auto_bounces),
-       text_format("%d products on %s ~ %.2g OpenBLAS products, cheaper than the %s LU ~ %.2g",
-                   plan.series.gemms, gemm_name.c_str(), series_cost,
-                   precision_name(plan.lu_precision), lu_cost)});
+       text_format("%d products on %s ~ %.2g OpenBLAS products, cheaper than the float32 %s "
+                   "solve ~ %.2g",
+                   plan.series.gemms, gemm_name.c_str(), series_cost, method, solve_cost)});
   diagnostics.left_out(
       "transport",
       who + text_format(": bounces after %d (the next adds %.2e of the light so "
@@ -285,6 +310,77 @@ void check_finite(const MatrixValues& t, std::size_t n, const std::string& label
     throw Error("transport", text_format("channel %s: the transport matrix has %zu NaN/Inf "
                                          "entries (first T[%zu][%zu]); it is not written",
                                          label.c_str(), bad, first / n, first % n));
+}
+
+// K = infinity for one channel: m (M) becomes T. The spectral radius and the
+// divergence check come from T itself, no power iteration on M.
+void solve_exactly(ChannelTransport& ct, MatrixValues& m, const ChannelPlan& plan,
+                   const FormFactorMatrix& f, const std::vector<glm::vec3>& albedo,
+                   double max_row_sum, Progress* progress, TransportExecutor* executor,
+                   std::vector<TransportDecision>& decisions) {
+  const std::size_t n = f.n;
+  const int c = plan.rgb.front();
+  std::vector<float> channel_albedo(n);
+  for (std::size_t p = 0; p < n; ++p) channel_albedo[p] = albedo[p][c];
+  InverseOptions options;
+  options.solve_blocks = kSolveBlocks;
+  options.area = f.area;
+  if (!f.area.empty()) options.albedo = channel_albedo;
+  bool factorised = false;
+  options.tick = [&] {
+    if (!progress) return;
+    progress->advance(factorised ? 1 : kFactorUnits);
+    factorised = true;
+  };
+  constexpr double kRadiusNotKnown = -1.0;
+  InverseTransport inv;
+  if (executor) {
+    // The executor's interface takes and returns heap vectors.
+    inv = executor->solve_infinite(std::vector<float>(m.begin(), m.end()), n, kRadiusNotKnown,
+                                   options);
+    m.assign(inv.t.begin(), inv.t.end());
+    inv.t = {};
+  } else {
+    inv = solve_infinite_bounces_in_place(m.data(), n, kRadiusNotKnown, options);
+  }
+  const std::string who = "channel " + plan.label;
+  const SpectralRadius r = spectral_radius_from_transport(m.data(), n);
+  if (!(r.upper < 1.0 - kSettleMargin))
+    throw Error("transport.bounces",
+                who + ": K = infinity is impossible: " + divergence(r, albedo, c, max_row_sum) +
+                    "; fix the form factors or ask for an explicit bounce count");
+  ct.spectral_radius = r.estimate;
+  ct.spectral_radius_lower = r.lower;
+  ct.spectral_radius_upper = r.upper;
+  ct.t = std::move(m);
+  ct.bounces = TransportSettings::kInfiniteBounces;
+  ct.auto_bounces = plan.auto_bounces;
+  ct.precision = inv.precision;
+  ct.condition_number = inv.condition;
+  ct.flops = inv.flops;
+  ct.method = std::string(method_name(inv.method)) + " " + precision_name(inv.precision);
+  decisions.push_back(
+      {who + text_format(": spectral radius of diag(albedo) F = %.4f", r.estimate),
+       text_format("power iteration on the solved T, %d sgemv%s; Collatz-Wielandt bounds "
+                   "[%.4f, %.4f]",
+                   r.iterations, r.converged ? "" : " (not converged)", r.lower, r.upper)});
+  if (inv.method == InverseMethod::Cholesky)
+    decisions.push_back(
+        {who + ": K = infinity by Cholesky of the symmetrised I - M",
+         text_format("A F symmetric to %.2g (relative, largest entry); S positive definite, so "
+                     "the spectral radius is below 1",
+                     inv.asymmetry)});
+  else if (!inv.lu_reason.empty())
+    decisions.push_back({who + ": K = infinity by LU, not Cholesky", inv.lu_reason});
+  else
+    decisions.push_back({who + ": K = infinity by LU, not Cholesky",
+                         executor ? "the distributed solve (ScaLAPACK) factorises by LU"
+                                  : "F was not balanced (--closure-rays 0): no patch areas make "
+                                    "A F symmetric"});
+  decisions.push_back(
+      {who + text_format(": K = infinity by %s in %s, condition %.3g", method_name(inv.method),
+                         precision_name(inv.precision), inv.condition),
+       inv.why});
 }
 
 }  // namespace
@@ -395,42 +491,18 @@ TransportResult compute_transport(const FormFactorMatrix& form_factors,
     if (progress) progress->check();
     ChannelTransport ct;
     ct.rgb = plan.rgb;
-    ct.spectral_radius = plan.radius.estimate;
-    ct.spectral_radius_lower = plan.radius.lower;
-    ct.spectral_radius_upper = plan.radius.upper;
     MatrixValues m = scaled_rows(form_factors, albedo, plan.rgb.front());
     if (plan.infinite) {
-      InverseOptions options;
-      options.solve_blocks = kSolveBlocks;
-      bool factorised = false;
-      options.tick = [&] {
-        if (!progress) return;
-        progress->advance(factorised ? 1 : kFactorUnits);
-        factorised = true;
-      };
-      InverseTransport inv;
-      if (executor) {
-        // The executor's interface takes and returns heap vectors.
-        inv = executor->solve_infinite(std::vector<float>(m.begin(), m.end()), n,
-                                       plan.radius.estimate, options);
-        m.assign(inv.t.begin(), inv.t.end());
-        inv.t = {};
-      } else {
-        inv = solve_infinite_bounces_in_place(m.data(), n, plan.radius.estimate, options);
-      }
-      ct.t = std::move(m);
-      ct.bounces = TransportSettings::kInfiniteBounces;
-      ct.auto_bounces = plan.auto_bounces;
-      ct.precision = inv.precision;
-      ct.condition_number = inv.condition;
-      ct.method = std::string("LU ") + precision_name(inv.precision);
-      result.decisions.push_back({"channel " + plan.label +
-                                      text_format(": K = infinity by LU in %s, condition %.3g",
-                                                  precision_name(inv.precision), inv.condition),
-                                  inv.why});
+      solve_exactly(ct, m, plan, form_factors, albedo, max_row_sum, progress, executor,
+                    result.decisions);
     } else {
+      ct.spectral_radius = plan.radius.estimate;
+      ct.spectral_radius_lower = plan.radius.lower;
+      ct.spectral_radius_upper = plan.radius.upper;
       ct.bounces = plan.series.bounces;
       ct.gemms = plan.series.gemms;
+      ct.flops = plan.series.gemms * 2.0 * static_cast<double>(n) * static_cast<double>(n) *
+                 static_cast<double>(n);
       ct.auto_bounces = plan.auto_bounces;
       ct.method = plan.series.scheme == SeriesScheme::Doubling ? "doubling" : "Horner";
       ct.truncation_bound = truncation_bound(plan.radius.upper, ct.bounces);
@@ -448,6 +520,7 @@ TransportResult compute_transport(const FormFactorMatrix& form_factors,
     // memory.
     if (out_of_core) ct.t = spill_to_file(std::move(ct.t), *out_of_core);
     ct.seconds = seconds_since(channel_start);
+    result.flops += ct.flops;
     result.channels.push_back(std::move(ct));
   }
   if (gemm) result.backend = gemm->name();

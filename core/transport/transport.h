@@ -10,14 +10,16 @@
 // Diagnostics):
 //  * channels: one matrix for a grey scene (every albedo has r = g = b within
 //    1e-6), a matrix shared by two channels whose albedos agree, else three;
-//  * K: explicit, infinity (LU), or auto (bounce_series.h): the series
-//    truncated where the next bounce adds less than the tolerance, or the
-//    exact K = infinity when that is cheaper (it often is: one LU costs about
-//    1.5 products) or the series converges too slowly; with the spectral
-//    radius of M (spectral_radius.h) and a bound on what omitted bounces add;
+//  * K: explicit, infinity (Cholesky, else LU), or auto (bounce_series.h):
+//    the series truncated where the next bounce adds less than the
+//    tolerance, or the exact K = infinity when that is cheaper (it usually
+//    is: one Cholesky solve costs about 1.2 products) or the series converges
+//    too slowly; with the spectral radius of M (spectral_radius.h) and, for
+//    finite K, a bound on what omitted bounces add;
 //  * the series scheme (Horner or doubling, fewer products wins);
-//  * the LU precision (inverse_transport.h);
-//  * the GEMM backend (gemm_selection.h).
+//  * the solve's method and precision (inverse_transport.h);
+//  * the GEMM backend (gemm_selection.h), timed only when a series is
+//    summed: K = infinity needs no product.
 // Nothing non-finite leaves the stage: bad input and bad output both throw
 // bounce::Error naming what is wrong.
 #include <cstddef>
@@ -45,10 +47,16 @@ struct ChannelTransport {
   // Auto: the K at which the series converged (also when the exact K =
   // infinity was computed because it was cheaper); 0 otherwise.
   int auto_bounces = 0;
-  std::string method;  // "Horner", "doubling", "LU float32", "LU float64"
-  int gemms = 0;       // matrix products used
-  // Spectral radius of M = diag(rho_c) F by power iteration, with its
-  // Collatz-Wielandt bounds.
+  // "Horner", "doubling", "Cholesky float32", "Cholesky float64", "LU float32", "LU float64"
+  std::string method;
+  int gemms = 0;  // matrix products used
+  // Floating-point operations of the products or of the factorisations and
+  // solves (2 n^3 per product, n^3 / 3 per Cholesky, 2 n^3 per solve of n
+  // right-hand sides, ...), for GFLOP/s.
+  double flops = 0.0;
+  // Spectral radius of M = diag(rho_c) F with its Collatz-Wielandt bounds: by
+  // power iteration on M for finite K, read off the solved T for K = infinity
+  // (spectral_radius_from_transport).
   double spectral_radius = 0.0;
   double spectral_radius_lower = 0.0;
   double spectral_radius_upper = 0.0;
@@ -57,8 +65,9 @@ struct ChannelTransport {
   // c^(K+1) / (1 - c), c = spectral_radius_upper (bounce_series.h). 0 for
   // K = infinity; infinite when c >= 1.
   double truncation_bound = 0.0;
-  // K = infinity: kappa_inf(I - M) estimated by LAPACKE_?gecon (1-norm of the
-  // transposed system LAPACK factorises). 0 for finite K.
+  // K = infinity: the condition number of the matrix factorised, kappa_1(S)
+  // by LAPACKE_?pocon for Cholesky, kappa_inf(I - M) by LAPACKE_?gecon for LU
+  // (inverse_transport.h). 0 for finite K.
   double condition_number = 0.0;
   TransportPrecision precision = TransportPrecision::Float32;
   double seconds = 0.0;
@@ -74,6 +83,7 @@ struct TransportResult {
   double probe_openblas_seconds = 0.0;
   double probe_clblast_seconds = 0.0;
   double seconds = 0.0;
+  double flops = 0.0;  // of every channel's products or solve
   std::vector<TransportDecision> decisions;
 
   // The matrix standing for channel rgb (0 = R, 1 = G, 2 = B).

@@ -95,9 +95,17 @@ void expect_same_up_to_transport(const fs::path& one, const fs::path& many, int 
     const json& y = b["transport"]["channels"][c];
     EXPECT_EQ(x["rgb"], y["rgb"]);
     EXPECT_EQ(x["bounces"], y["bounces"]);
-    EXPECT_EQ(x["method"], y["method"]);
     EXPECT_EQ(x["precision"], y["precision"]);
-    EXPECT_EQ(x["spectral_radius"], y["spectral_radius"]);  // computed from F alone
+    // K = infinity: Cholesky here, LU on ScaLAPACK, and the spectral radius
+    // read off each T, equal to the solve's rounding. A series: both from F.
+    const std::string method = x["method"];
+    if (method.starts_with("Cholesky") || method.starts_with("LU")) {
+      EXPECT_NEAR(x["spectral_radius"].get<double>(), y["spectral_radius"].get<double>(),
+                  1e-5 * x["spectral_radius"].get<double>());
+    } else {
+      EXPECT_EQ(x["method"], y["method"]);
+      EXPECT_EQ(x["spectral_radius"], y["spectral_radius"]);  // computed from F alone
+    }
   }
   const std::string decisions = b["transport"]["decisions"].dump();
   EXPECT_TRUE(contains(decisions, "ScaLAPACK")) << decisions;
