@@ -183,14 +183,18 @@ TEST_F(DistributedBake, FourRanksEqualOneProcessWithInfiniteBounces) {
     for (const json& channel : (*manifest)["transport"]["channels"])
       kappa = std::max(kappa, channel["condition_number"].get<double>());
   ASSERT_GT(kappa, 0.0);
-  // The distributed bake computes kappa exactly ((I - M)^-1 = I + T), the
-  // single process estimates it with LAPACK's ?gecon, a lower bound.
+  // The distributed bake computes kappa_inf(I - M) exactly ((I - M)^-1 =
+  // I + T); a single process solving by LU estimates the same number with
+  // LAPACK's ?gecon, a lower bound. By Cholesky it estimates the condition of
+  // another matrix (the symmetrised S, 1-norm), which bounds nothing here.
   const json& many = m["transport"]["channels"];
   const json& one = single_manifest["transport"]["channels"];
   ASSERT_EQ(many.size(), one.size());
   for (std::size_t c = 0; c < many.size(); ++c)
-    EXPECT_GE(many[c]["condition_number"].get<double>(),
-              (1.0 - 1e-3) * one[c]["condition_number"].get<double>());
+    if (one[c]["method"].get<std::string>().rfind("LU", 0) == 0) {
+      EXPECT_GE(many[c]["condition_number"].get<double>(),
+                (1.0 - 1e-3) * one[c]["condition_number"].get<double>());
+    }
   const double tolerance = 2.0 * kappa * 2.0 * gamma3n;
   const Difference d = difference(reference("inf") / "T.npy", out / "T.npy");
   EXPECT_LE(d.frobenius, tolerance) << "n = " << n << ", kappa = " << kappa;
