@@ -4,6 +4,8 @@
 // storage (dense or compressed, with errors). The CLI and the
 // studio both call Baker::run.
 #include <array>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "bake/bake_distribution.h"
@@ -64,7 +66,17 @@ struct BakeResult {
   // The warnings and left-out notes each stage raised (indexed by BakeStage),
   // repeated into the diagnostics of a re-bake that reuses the stage.
   std::array<std::vector<Diagnostic>, kBakeStageCount> stage_diagnostics;
+  // The content key of the scene's files and these settings (bake/bake_key.h),
+  // written to the manifest so a bake of the same inputs can be reused;
+  // empty for a scene not read from files (built in memory).
+  std::string key;
 };
+
+// Called by Baker::run once a stage's results are in the BakeResult (run, or
+// taken from the previous bake), on the thread that runs the bake, before the
+// next stage starts: a front end can show partial results (the patches while
+// the form factors run). Copy what is needed: `partial` changes afterwards.
+using StageDone = std::function<void(BakeStage stage, const BakeResult& partial)>;
 
 class Baker {
  public:
@@ -90,12 +102,21 @@ class Baker {
   // after the transport stage with the geometry only; the root's result is
   // the bake.
   void set_distribution(BakeDistribution* distribution) { distribution_ = distribution; }
+  // See StageDone; null (the default): nobody is told.
+  void set_stage_done(StageDone stage_done) { stage_done_ = std::move(stage_done); }
+
+  // The voxel grid a bake with `settings` (scene defaults applied) starts
+  // from, the first step of its geometry stage: fills in
+  // settings.voxel_resolution as resolved (from patches_total, else the
+  // default). Cheap next to the rest: front ends show it before the bake.
+  static Voxelization voxel_grid(const Scene& scene, BakeSettings& settings, Progress* progress);
 
  private:
   const Scene& scene_;
   BakeSettings settings_;
   Diagnostics& diagnostics_;
   BakeDistribution* distribution_ = nullptr;
+  StageDone stage_done_;
 };
 
 }  // namespace bounce
