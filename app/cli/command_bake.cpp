@@ -57,10 +57,10 @@ struct Distributed {
 // Whether `target` already holds this bake (same content key, complete and
 // readable): then it is kept as it is. A folder that holds something else
 // than a usable bake is baked again, and the warning says why.
-bool up_to_date(const Scene& scene, const BakeSettings& settings, const fs::path& target,
-                Diagnostics& diagnostics) {
-  const std::optional<std::string> key = bake_key(scene, settings);
-  if (!key) return false;
+bool up_to_date(const std::optional<std::string>& content, const Scene& scene,
+                const BakeSettings& settings, const fs::path& target, Diagnostics& diagnostics) {
+  if (!content) return false;
+  const std::string key = bake_key(*content, scene, settings);
   std::string why;
   const std::optional<std::string> stored = stored_bake_key(target, &why);
   if (!why.empty()) diagnostics.warn(target.string(), "not reused, baking again: " + why);
@@ -75,8 +75,8 @@ Outcome reused_outcome(Outcome o, const fs::path& target, const BakeOptions& opt
     std::fprintf(stderr, "%s is up to date (key %s): reused, not baked; --force bakes again\n",
                  target.string().c_str(), o.manifest.at("key").get<std::string>().c_str());
   o.ok = true;
-  o.detail = "up to date, " + std::to_string(o.manifest.at("counts").value("patches", 0)) +
-             " patches, reused";
+  const json counts = o.manifest.value("counts", json::object());
+  o.detail = "up to date, " + std::to_string(counts.value("patches", 0)) + " patches, reused";
   return o;
 }
 
@@ -105,10 +105,12 @@ Outcome bake_one(const std::string& path, const fs::path& out, bool nest, const 
                                "': baked into '" + folder + "'");
   taken.insert(folder);
   const fs::path target = nest ? out / folder : out.empty() ? fs::path("bakes") / scene.name : out;
+  // The files hashed once, as loaded: the check and the bake's key agree.
+  const std::optional<std::string> content = scene_content_hash(scene);
   // A distributed bake's ranks would each have to agree on the folder, and
   // --reference checks the bake in memory: both always bake.
   if (!opt.force && !opt.reference && !distributed.distribution &&
-      up_to_date(scene, opt.settings(), target, diagnostics)) {
+      up_to_date(content, scene, opt.settings(), target, diagnostics)) {
     Outcome reused = reused_outcome(std::move(o), target, opt);
     if (opt.export_glb) {
       const fs::path glb = glb_beside(target);
@@ -122,6 +124,7 @@ Outcome bake_one(const std::string& path, const fs::path& out, bool nest, const 
                  scene.triangle_count(), target.string().c_str());
   Baker baker(scene, opt.settings(), diagnostics);
   baker.set_distribution(distributed.distribution);
+  baker.set_scene_content(content);
   const BakeResult result = baker.run(console.progress());
   if (!root) {
     o.ok = true;  // this rank's share is done; the root writes the bake

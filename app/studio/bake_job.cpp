@@ -24,9 +24,11 @@ void take_scene(BakeJobResult& job, const fs::path& scene_path, const BakeJobRes
         job.diagnostics->left_out(d.where, d.message);
     }
     job.scene = previous->scene;
+    job.scene_content = previous->scene_content;
   } else {
     job.scene = std::make_shared<const Scene>(SceneLoader(*job.diagnostics).load(scene_path));
     job.load_diagnostics = job.diagnostics->all();
+    job.scene_content = scene_content_hash(*job.scene);
   }
 }
 
@@ -55,7 +57,9 @@ void apply_densities(BakeJobResult& job, const fs::path& scene_path,
 // is there to show. A folder that cannot be shown is baked again, and
 // job.cache_note says why.
 bool find_in_cache(BakeJobResult& job, const BakeSettings& settings, const fs::path& cache) {
-  const std::optional<std::string> key = bake_key(*job.scene, settings);
+  const std::optional<std::string> key =
+      job.scene_content ? std::optional(bake_key(*job.scene_content, *job.scene, settings))
+                        : std::nullopt;
   // Without a key (a file of the scene unreadable since it was loaded) the
   // bake is not reusable: a folder of the scene's name, replaced each time.
   job.folder = cache / (key ? *key : job.scene->name + "-unkeyed");
@@ -94,6 +98,7 @@ BakeJobResult run_bake_job(const fs::path& scene_path, const BakeSettings& setti
   if (!job.cache_note.empty())
     job.diagnostics->warn(job.folder.string(), "cached bake not reused: " + job.cache_note);
   Baker baker(*job.scene, settings, *job.diagnostics);
+  baker.set_scene_content(job.scene_content);
   if (options.partial) {
     if (!rebake) {
       // The first picture: the grid is the cheap first step of the bake.

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,10 @@ namespace bounce::studio {
 struct BakeJobResult {
   std::filesystem::path scene_path;  // as given to run_bake_job
   std::shared_ptr<const Scene> scene;
+  // The scene's files hashed when it was loaded (core scene_content_hash;
+  // none when unreadable): a re-bake of this scene keys its bake by them,
+  // not by the files as they are by then.
+  std::optional<std::string> scene_content;
   // The last bake of this scene made in memory, what a re-bake starts from:
   // this job's, or with `reused` the previous job's (null if none).
   std::shared_ptr<const BakeResult> result;

@@ -186,7 +186,8 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
                .distribution = distribution_,
                .progress = progress,
                .result = r};
-  r.key = bake_key(scene_, settings_).value_or("");
+  const std::optional<std::string> content = content_given_ ? content_ : scene_content_hash(scene_);
+  r.key = content ? bake_key(*content, scene_, settings_) : std::string();
   // Each stage, then tells the listener its results are in (run, or reused).
   const auto stage = [&](BakeStage s) {
     run_stage(s, bake);

@@ -5,6 +5,7 @@
 // studio both call Baker::run.
 #include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -102,6 +103,14 @@ class Baker {
   // after the transport stage with the geometry only; the root's result is
   // the bake.
   void set_distribution(BakeDistribution* distribution) { distribution_ = distribution; }
+  // The scene's content hash as taken when it was loaded
+  // (scene_content_hash, bake/bake_key.h), for BakeResult::key; without it
+  // run() hashes the scene's files as they are then. nullopt: none (a scene
+  // whose files could not be read when loaded), the bake gets no key.
+  void set_scene_content(std::optional<std::string> content) {
+    content_ = std::move(content);
+    content_given_ = true;
+  }
   // See StageDone; null (the default): nobody is told.
   void set_stage_done(StageDone stage_done) { stage_done_ = std::move(stage_done); }
 
@@ -117,6 +126,8 @@ class Baker {
   Diagnostics& diagnostics_;
   BakeDistribution* distribution_ = nullptr;
   StageDone stage_done_;
+  std::optional<std::string> content_;
+  bool content_given_ = false;
 };
 
 }  // namespace bounce

@@ -72,18 +72,30 @@ void hash_bake_settings(ContentHash& h, const Scene& scene, const BakeSettings& 
 
 }  // namespace
 
-std::optional<std::string> bake_key(const Scene& scene, const BakeSettings& settings) {
+std::optional<std::string> scene_content_hash(const Scene& scene) {
   const std::vector<fs::path> files = scene_source_files(scene);
   if (files.empty()) return std::nullopt;
   ContentHash h;
-  h.text(kBakeFormatName).integer(kKeyVersion).integer(kBakeFormatVersion);
   h.integer(files.size());
   for (const fs::path& file : files)
     if (!hash_file(h, file)) return std::nullopt;
+  return h.hex();
+}
+
+std::string bake_key(const std::string& content, const Scene& scene, const BakeSettings& settings) {
+  ContentHash h;
+  h.text(kBakeFormatName).integer(kKeyVersion).integer(kBakeFormatVersion);
+  h.text(content);
   const std::vector<float> densities = patch_densities(scene);
   h.integer(densities.size()).bytes(densities.data(), densities.size() * sizeof(float));
   hash_bake_settings(h, scene, settings);
   return h.hex();
+}
+
+std::optional<std::string> bake_key(const Scene& scene, const BakeSettings& settings) {
+  const std::optional<std::string> content = scene_content_hash(scene);
+  if (!content) return std::nullopt;
+  return bake_key(*content, scene, settings);
 }
 
 std::optional<std::string> stored_bake_key(const fs::path& dir, std::string* why) {

@@ -18,10 +18,19 @@
 
 namespace bounce {
 
-// 16 hex digits (64-bit FNV-1a, reference/reference_cache.h's ContentHash).
+// The scene's part of the key: the bytes of its files as they are now, 16
+// hex digits (64-bit FNV-1a, reference/reference_cache.h's ContentHash).
 // nullopt for a scene not read from files (Scene::path empty) or when one of
-// its files cannot be read now (moved since it was loaded): such a bake gets
-// no key and is never reused.
+// its files cannot be read (moved since it was loaded): such a bake gets no
+// key and is never reused. Hash it when the scene is loaded: a file edited
+// later must not lend its key to a bake of the scene as loaded before.
+std::optional<std::string> scene_content_hash(const Scene& scene);
+
+// The key of a bake of `scene` (read from files that hashed to `content`)
+// with `settings`: 16 hex digits.
+std::string bake_key(const std::string& content, const Scene& scene, const BakeSettings& settings);
+
+// Both at once, the files hashed now.
 std::optional<std::string> bake_key(const Scene& scene, const BakeSettings& settings);
 
 // The key in `dir`'s manifest.json when `dir` holds a complete bake that

@@ -153,6 +153,23 @@ TEST(BakeKey, StoredOnlyForACompleteReadableBake) {
   EXPECT_FALSE(why.empty());
 }
 
+TEST(BakeKey, ABakeIsKeyedByItsFilesAsLoadedNotAsEditedSince) {
+  test::ScratchDir dir;
+  const fs::path copy = dir.path() / "scene";
+  fs::copy(kCornellBox, copy, fs::copy_options::recursive);
+  const Scene scene = load(copy);
+  const std::optional<std::string> content = scene_content_hash(scene);
+  ASSERT_TRUE(content.has_value());
+  flip_byte(copy / "CornellBox-Original.obj", 2);  // edited while the studio holds the scene
+  Diagnostics d;
+  Progress quiet;
+  Baker baker(scene, small_settings(), d);
+  baker.set_scene_content(content);
+  const BakeResult r = baker.run(quiet);
+  EXPECT_EQ(r.key, bake_key(*content, scene, small_settings()));
+  EXPECT_NE(r.key, *bake_key(scene, small_settings())) << "keyed by the edited file";
+}
+
 TEST(BakerStageDone, EachStageInOrderWithItsResults) {
   const Scene scene = load(kCornellBox);
   Diagnostics d;
