@@ -28,6 +28,11 @@ void BakeOptions::add_to(CLI::App& cmd, bool with_output) {
                  "glTF beside the bake folder (bakes/box -> bakes/box.glb): vertex colours, the "
                  "scene's materials with their textures embedded, texture coordinates; Blender "
                  "and glTF viewers open it (docs/export.md)");
+  if (with_output)
+    cmd.add_flag("--force", force,
+                 "Bake even when the output folder already holds a complete bake of the same "
+                 "scene contents and settings (same content key in its manifest.json, "
+                 "docs/bake-format.md); without it such a folder is reused as it is");
   for (const SettingRow& row : settings_table()) {
     if (row.writer_only && !with_output) continue;
     CLI::Option* o = nullptr;

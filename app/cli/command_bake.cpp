@@ -9,6 +9,7 @@
 
 #include "bake_report.h"
 #include "bounce/bake.h"
+#include "bounce/bake_folder.h"
 #include "bounce/error.h"
 #include "bounce/scene.h"
 #include "commands.h"
@@ -53,6 +54,32 @@ struct Distributed {
   bool root() const { return !distribution || distribution->is_root(); }
 };
 
+// Whether `target` already holds this bake (same content key, complete and
+// readable): then it is kept as it is. A folder that holds something else
+// than a usable bake is baked again, and the warning says why.
+bool up_to_date(const std::optional<std::string>& content, const Scene& scene,
+                const BakeSettings& settings, const fs::path& target, Diagnostics& diagnostics) {
+  if (!content) return false;
+  const std::string key = bake_key(*content, scene, settings);
+  std::string why;
+  const std::optional<std::string> stored = stored_bake_key(target, &why);
+  if (!why.empty()) diagnostics.warn(target.string(), "not reused, baking again: " + why);
+  return stored == key;
+}
+
+// The outcome of a reused bake folder: its manifest, as a bake would print it.
+Outcome reused_outcome(Outcome o, const fs::path& target, const BakeOptions& opt) {
+  o.manifest = read_manifest_json(target / bake_file::kManifest);
+  o.manifest["reused"] = true;
+  if (!opt.quiet)
+    std::fprintf(stderr, "%s is up to date (key %s): reused, not baked; --force bakes again\n",
+                 target.string().c_str(), o.manifest.at("key").get<std::string>().c_str());
+  o.ok = true;
+  const json counts = o.manifest.value("counts", json::object());
+  o.detail = "up to date, " + std::to_string(counts.value("patches", 0)) + " patches, reused";
+  return o;
+}
+
 // `out` is the bake folder itself, or with `nest` the parent of one folder
 // per scene (batch mode); `taken` holds the folder names a batch has used.
 Outcome bake_one(const std::string& path, const fs::path& out, bool nest, const BakeOptions& opt,
@@ -78,11 +105,26 @@ Outcome bake_one(const std::string& path, const fs::path& out, bool nest, const 
                                "': baked into '" + folder + "'");
   taken.insert(folder);
   const fs::path target = nest ? out / folder : out.empty() ? fs::path("bakes") / scene.name : out;
+  // The files hashed once, as loaded: the check and the bake's key agree.
+  const std::optional<std::string> content = scene_content_hash(scene);
+  // A distributed bake's ranks would each have to agree on the folder, and
+  // --reference checks the bake in memory: both always bake.
+  if (!opt.force && !opt.reference && !distributed.distribution &&
+      up_to_date(content, scene, opt.settings(), target, diagnostics)) {
+    Outcome reused = reused_outcome(std::move(o), target, opt);
+    if (opt.export_glb) {
+      const fs::path glb = glb_beside(target);
+      export_bake_glb(target, scene, glb, console.progress());
+      reused.glb = glb.string();
+    }
+    return reused;
+  }
   if (!opt.quiet && root)
     std::fprintf(stderr, "Baking %s (%zu triangles) into %s\n", path.c_str(),
                  scene.triangle_count(), target.string().c_str());
   Baker baker(scene, opt.settings(), diagnostics);
   baker.set_distribution(distributed.distribution);
+  baker.set_scene_content(content);
   const BakeResult result = baker.run(console.progress());
   if (!root) {
     o.ok = true;  // this rank's share is done; the root writes the bake

@@ -29,6 +29,9 @@ struct BakeOptions {
   bool export_glb = false;
   bool json = false;
   bool quiet = false;
+  // bake: bake even when the output folder holds an up-to-date bake (one
+  // whose content key equals this bake's, core/bake/bake_key.h).
+  bool force = false;
   // Each setting's text as given on the command line, and its option.
   std::map<std::string, std::string, std::less<>> texts;
   std::map<std::string, bool, std::less<>> flags;

@@ -7,6 +7,8 @@ namespace bounce::studio {
 BakeController::BakeController(views::ViewJobs& jobs, QObject* parent)
     : QObject(parent), jobs_(&jobs) {
   qRegisterMetaType<std::shared_ptr<const BakeJobResult>>("std::shared_ptr<const BakeJobResult>");
+  qRegisterMetaType<std::shared_ptr<const views::BakeViewData>>(
+      "std::shared_ptr<const views::BakeViewData>");
 }
 
 BakeController::~BakeController() {
@@ -19,7 +21,7 @@ void BakeController::cancel() {
 
 void BakeController::start(const QString& scene_path, const BakeSettings& settings,
                            const QString& folder, std::shared_ptr<const BakeJobResult> previous,
-                           std::vector<float> patch_density) {
+                           std::vector<float> patch_density, bool cache) {
   if (busy_ || !jobs_) return;
   busy_ = true;
   const std::string scene = scene_path.toStdString(), out = folder.toStdString();
@@ -29,8 +31,8 @@ void BakeController::start(const QString& scene_path, const BakeSettings& settin
   using Outcome = std::shared_ptr<const BakeJobResult>;
   jobs_->run_task<Outcome>(
       this,
-      [this, scene, settings, out, previous,
-       patch_density](const views::ViewJobs::Task& task) -> Outcome {
+      [this, scene, settings, out, previous, patch_density,
+       cache](const views::ViewJobs::Task& task) -> Outcome {
         std::string stage;
         auto stage_start = std::chrono::steady_clock::now();
         Progress progress([&](const std::string& name, double fraction) {
@@ -47,9 +49,14 @@ void BakeController::start(const QString& scene_path, const BakeSettings& settin
           });
           return task.keep_going();
         });
+        BakeJobOptions options;
+        options.cache = cache;
+        options.partial = [this, &task](std::shared_ptr<const views::BakeViewData> data) {
+          task.on_ui_thread([this, data = std::move(data)] { emit partial(data); });
+        };
         try {
           return std::make_shared<const BakeJobResult>(
-              run_bake_job(scene, settings, out, progress, previous, patch_density));
+              run_bake_job(scene, settings, out, progress, previous, patch_density, options));
         } catch (const Cancelled&) {
           return nullptr;
         }

@@ -35,9 +35,11 @@ class BakeController : public QObject {
   // nothing while busy. With `previous` (an earlier job of the same scene),
   // only the stages the settings change affects run (run_bake_job).
   // `patch_density`: the meshes' densities (empty: the scene's own).
+  // With `cache`, `folder` is the bake cache (BakeJobOptions::cache): a bake
+  // of the same contents and settings there is shown instead of baking.
   void start(const QString& scene_path, const BakeSettings& settings, const QString& folder,
              std::shared_ptr<const BakeJobResult> previous = {},
-             std::vector<float> patch_density = {});
+             std::vector<float> patch_density = {}, bool cache = false);
   // Stops the bake at its next poll (or before it starts, if it waits for
   // the jobs queued before it); cancelled() follows.
   void cancel();
@@ -45,6 +47,8 @@ class BakeController : public QObject {
  signals:
   // fraction in [0,1]; eta_seconds < 0 while unknown.
   void stage_progress(const QString& stage, double fraction, double eta_seconds);
+  // What the running bake has made so far (BakeJobOptions::partial).
+  void partial(std::shared_ptr<const views::BakeViewData> data);
   void finished(std::shared_ptr<const BakeJobResult> job);
   void failed(const QString& message);
   void cancelled();

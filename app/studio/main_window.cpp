@@ -16,7 +16,6 @@
 #include <QPushButton>
 #include <QScrollArea>
 #include <QSettings>
-#include <QStandardPaths>
 #include <QStatusBar>
 #include <QTabWidget>
 #include <QUrl>
@@ -110,25 +109,8 @@ MainWindow::MainWindow(QWidget* parent)
     statusBar()->showMessage(tr("Cancelling..."));
   });
   connect(controller_, &BakeController::stage_progress, this, &MainWindow::on_stage_progress);
-  connect(controller_, &BakeController::finished, this,
-          [this](std::shared_ptr<const BakeJobResult> job) {
-            set_busy(false);
-            last_job_ = job;
-            export_action_->setEnabled(true);
-            const RebakePlan& plan = job->result->plan;
-            const QString rerun = plan.first == BakeStage::Geometry ? QString()
-                                  : plan.first == BakeStage::None
-                                      ? tr(" (no stage affected: bake reused)")
-                                      : tr(" (re-ran from %1: %2)")
-                                            .arg(QString::fromUtf8(to_string(plan.first)),
-                                                 QString::fromStdString(plan.reasons.front()));
-            statusBar()->showMessage(tr("Baked %1 patches in %2 s%3")
-                                         .arg(job->data->patch_count())
-                                         .arg(job->result->total_seconds, 0, 'f', 2)
-                                         .arg(rerun));
-            show_data(job->data);
-            show_meshes(*job->data, true);
-          });
+  connect(controller_, &BakeController::finished, this, &MainWindow::on_bake_finished);
+  connect(controller_, &BakeController::partial, this, &MainWindow::show_partial);
   connect(controller_, &BakeController::failed, this, [this](const QString& message) {
     set_busy(false);
     show_error(tr("Bake failed"), message);
@@ -275,7 +257,7 @@ void MainWindow::open(const QString& path) {
   scene_label_->setText(tr("Scene %1").arg(scene_path_));
   bake_button_->setEnabled(!controller_->busy());
   // Opening reads the scene afresh (it may have changed on disk): a full
-  // bake, with the scene's own densities.
+  // bake with the scene's own densities, unless the cache holds one.
   if (!controller_->busy()) {
     last_job_.reset();
     meshes_->clear();
@@ -295,11 +277,48 @@ void MainWindow::show_data(std::shared_ptr<const views::BakeViewData> bake) {
 
 void MainWindow::show_tab(Tab tab) { tabs_->setCurrentIndex(static_cast<int>(tab)); }
 
-QString MainWindow::session_folder() const {
-  // Each bake goes to a folder of its own: the views read it back.
-  const QString root = QStandardPaths::writableLocation(QStandardPaths::CacheLocation);
-  QDir().mkpath(root);
-  return root + "/" + QFileInfo(scene_path_).completeBaseName() + "-bake";
+void MainWindow::on_bake_finished(std::shared_ptr<const BakeJobResult> job) {
+  set_busy(false);
+  last_job_ = job;
+  export_action_->setEnabled(true);
+  show_data(job->data);
+  show_meshes(*job->data, true);
+  if (job->reused) {
+    statusBar()->showMessage(
+        tr("Opened the cached bake %1: same scene contents and settings, nothing baked")
+            .arg(QString::fromStdString(job->folder.string())));
+    return;
+  }
+  const RebakePlan& plan = job->result->plan;
+  const QString rerun = plan.first == BakeStage::Geometry ? QString()
+                        : plan.first == BakeStage::None
+                            ? tr(" (no stage affected: bake reused)")
+                            : tr(" (re-ran from %1: %2)")
+                                  .arg(QString::fromUtf8(to_string(plan.first)),
+                                       QString::fromStdString(plan.reasons.front()));
+  const QString note =
+      job->cache_note.empty()
+          ? QString()
+          : tr("; cached bake not reused: %1").arg(QString::fromStdString(job->cache_note));
+  statusBar()->showMessage(tr("Baked %1 patches in %2 s%3%4")
+                               .arg(job->data->patch_count())
+                               .arg(job->result->total_seconds, 0, 'f', 2)
+                               .arg(rerun, note));
+}
+
+void MainWindow::show_partial(std::shared_ptr<const views::BakeViewData> bake) {
+  // The views that can draw a bake in progress; the others keep what they
+  // show until the bake ends.
+  voxel_view_->set_data(bake);
+  if (bake->patch_count() > 0) patch_view_->set_data(bake);
+  statusBar()->showMessage(
+      bake->patch_count() > 0
+          ? tr("Baking %1: %2 patches shown, form factors and transport running...")
+                .arg(scene_path_)
+                .arg(bake->patch_count())
+          : tr("Baking %1: voxel grid shown (%2 voxels)...")
+                .arg(scene_path_)
+                .arg(bake->voxels.size()));
 }
 
 void MainWindow::start_bake() {
@@ -337,7 +356,11 @@ void MainWindow::start_bake() {
     if (static_cast<std::size_t>(meshes_->mesh_count()) == previous->scene->meshes.size())
       densities = meshes_->densities();
   }
-  controller_->start(scene_path_, settings, session_folder(), previous, densities);
+  // Every bake goes to the cache, a folder per content key, which the views
+  // read back; a bake of the same contents and settings there is shown.
+  const QString cache = QString::fromStdString(user_cache_dir("bakes").string());
+  QDir().mkpath(cache);
+  controller_->start(scene_path_, settings, cache, previous, densities, true);
 }
 
 void MainWindow::on_stage_progress(const QString& stage, double fraction, double eta) {

@@ -74,7 +74,10 @@ class MainWindow : public QMainWindow {
   void on_stage_progress(const QString& stage, double fraction, double eta);
   void set_busy(bool busy);
   void show_error(const QString& what, const QString& message);
-  QString session_folder() const;
+  // Shows the finished bake (or the cached one) and says what was run.
+  void on_bake_finished(std::shared_ptr<const BakeJobResult> job);
+  // Shows a bake in progress (BakeController::partial).
+  void show_partial(std::shared_ptr<const views::BakeViewData> bake);
 
   // The one background thread of the studio: the views' computations, the
   // bake and the report sweep. Made before the views and the controllers

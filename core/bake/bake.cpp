@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 
+#include "bake/bake_key.h"
 #include "bake/bake_steps.h"
 
 namespace bounce {
@@ -185,8 +186,15 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
                .distribution = distribution_,
                .progress = progress,
                .result = r};
-  run_stage(BakeStage::Geometry, bake);
-  run_stage(BakeStage::Patches, bake);
+  const std::optional<std::string> content = content_given_ ? content_ : scene_content_hash(scene_);
+  r.key = content ? bake_key(*content, scene_, settings_) : std::string();
+  // Each stage, then tells the listener its results are in (run, or reused).
+  const auto stage = [&](BakeStage s) {
+    run_stage(s, bake);
+    if (stage_done_ && !bake.finished) stage_done_(s, r);
+  };
+  stage(BakeStage::Geometry);
+  stage(BakeStage::Patches);
   // Out of core: F is computed on the heap and moved to a mapped file once
   // final (after the checks), the transport maps each finished T (see
   // spill_to_file: matrices being written stay on the heap).
@@ -194,10 +202,10 @@ BakeResult Baker::run(Progress& progress, const BakeResult* previous) const {
   bake.out_of_core = policy_of(r.out_of_core);
   if (distribution_ && !plan.runs(BakeStage::FormFactors))
     throw Error("bake", "a distributed bake cannot reuse an earlier bake's form factors");
-  run_stage(BakeStage::FormFactors, bake);
+  stage(BakeStage::FormFactors);
   if (bake.finished) return r;  // a distributed bake's other process: the root holds the bake
-  run_stage(BakeStage::Transport, bake);
-  run_stage(BakeStage::Compress, bake);
+  stage(BakeStage::Transport);
+  stage(BakeStage::Compress);
   if (distribution_) {
     bake.compressor.reset();  // the other processes are done, and send their stages' peaks
     distribution_->add_other_ranks_peaks(r.stages);

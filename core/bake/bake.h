@@ -4,6 +4,9 @@
 // storage (dense or compressed, with errors). The CLI and the
 // studio both call Baker::run.
 #include <array>
+#include <functional>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "bake/bake_distribution.h"
@@ -64,7 +67,17 @@ struct BakeResult {
   // The warnings and left-out notes each stage raised (indexed by BakeStage),
   // repeated into the diagnostics of a re-bake that reuses the stage.
   std::array<std::vector<Diagnostic>, kBakeStageCount> stage_diagnostics;
+  // The content key of the scene's files and these settings (bake/bake_key.h),
+  // written to the manifest so a bake of the same inputs can be reused;
+  // empty for a scene not read from files (built in memory).
+  std::string key;
 };
+
+// Called by Baker::run once a stage's results are in the BakeResult (run, or
+// taken from the previous bake), on the thread that runs the bake, before the
+// next stage starts: a front end can show partial results (the patches while
+// the form factors run). Copy what is needed: `partial` changes afterwards.
+using StageDone = std::function<void(BakeStage stage, const BakeResult& partial)>;
 
 class Baker {
  public:
@@ -90,12 +103,31 @@ class Baker {
   // after the transport stage with the geometry only; the root's result is
   // the bake.
   void set_distribution(BakeDistribution* distribution) { distribution_ = distribution; }
+  // The scene's content hash as taken when it was loaded
+  // (scene_content_hash, bake/bake_key.h), for BakeResult::key; without it
+  // run() hashes the scene's files as they are then. nullopt: none (a scene
+  // whose files could not be read when loaded), the bake gets no key.
+  void set_scene_content(std::optional<std::string> content) {
+    content_ = std::move(content);
+    content_given_ = true;
+  }
+  // See StageDone; null (the default): nobody is told.
+  void set_stage_done(StageDone stage_done) { stage_done_ = std::move(stage_done); }
+
+  // The voxel grid a bake with `settings` (scene defaults applied) starts
+  // from, the first step of its geometry stage: fills in
+  // settings.voxel_resolution as resolved (from patches_total, else the
+  // default). Cheap next to the rest: front ends show it before the bake.
+  static Voxelization voxel_grid(const Scene& scene, BakeSettings& settings, Progress* progress);
 
  private:
   const Scene& scene_;
   BakeSettings settings_;
   Diagnostics& diagnostics_;
   BakeDistribution* distribution_ = nullptr;
+  StageDone stage_done_;
+  std::optional<std::string> content_;
+  bool content_given_ = false;
 };
 
 }  // namespace bounce

@@ -267,6 +267,9 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
   json m;
   m["format"] = kBakeFormatName;
   m["format_version"] = kBakeFormatVersion;
+  // What the bake's inputs hash to (bake/bake_key.h): a bake of the same
+  // inputs finds this folder up to date.
+  if (!r.key.empty()) m["key"] = r.key;
   json lights = json::array();
   for (const Light& l : scene.lights)
     lights.push_back({{"name", l.name},

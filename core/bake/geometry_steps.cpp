@@ -10,17 +10,7 @@ namespace {
 
 void voxelize_step(BakeRun& run) {
   BakeResult& r = run.result;
-  int resolution = BakeSettings::kDefaultVoxelResolution;
-  if (r.settings.voxel_resolution) {
-    resolution = *r.settings.voxel_resolution;
-  } else if (r.settings.patches_total) {
-    run.progress.begin_stage("choose grid resolution", 1);
-    resolution = Baker::resolution_for_patch_count(
-        run.scene, *r.settings.patches_total, *r.settings.patches_per_voxel, r.settings.patch_mode);
-    run.progress.end_stage();
-  }
-  r.settings.voxel_resolution = resolution;
-  r.voxels = voxelize(run.scene, VoxelGrid(run.scene.bounds(), resolution), &run.progress);
+  r.voxels = Baker::voxel_grid(run.scene, r.settings, &run.progress);
   const auto empty = r.voxels.grid.cell_count() - r.voxels.voxels.size();
   if (empty > 0)
     run.diagnostics.left_out("voxelize", std::to_string(empty) + " of " +
@@ -57,6 +47,20 @@ constexpr BakeStep kGeometrySteps[] = {
 };
 
 }  // namespace
+
+Voxelization Baker::voxel_grid(const Scene& scene, BakeSettings& settings, Progress* progress) {
+  int resolution = BakeSettings::kDefaultVoxelResolution;
+  if (settings.voxel_resolution) {
+    resolution = *settings.voxel_resolution;
+  } else if (settings.patches_total) {
+    if (progress) progress->begin_stage("choose grid resolution", 1);
+    resolution = resolution_for_patch_count(scene, *settings.patches_total,
+                                            *settings.patches_per_voxel, settings.patch_mode);
+    if (progress) progress->end_stage();
+  }
+  settings.voxel_resolution = resolution;
+  return voxelize(scene, VoxelGrid(scene.bounds(), resolution), progress);
+}
 
 void build_tracer(BakeRun& run) { run.tracer.emplace(run.scene); }
 

@@ -11,10 +11,17 @@
 // stops the bake at its next check with bounce::Cancelled; a cancelled or
 // failed write leaves no folder behind.
 // Baker::run with a previous result re-runs only the stages the changed
-// settings affect (bake/rebake_plan.h).
+// settings affect (bake/rebake_plan.h); Baker::set_stage_done hears each
+// stage's partial results, Baker::voxel_grid gives the grid before a bake.
+// bake_key(scene, settings) is the content key a manifest records, and
+// stored_bake_key(folder) the key of a complete bake in a folder: equal keys,
+// the same bake (bake/bake_key.h); user_cache_dir("bakes") is where a front
+// end keeps its bakes.
 #include "bake/bake.h"
+#include "bake/bake_key.h"
 #include "bake/bake_settings.h"
 #include "bake/bake_writer.h"
 #include "base/diagnostics.h"
 #include "base/error.h"
 #include "base/progress.h"
+#include "io/cache_dir.h"

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "io/atomic_file.h"
+#include "io/cache_dir.h"
 #include "scene/alpha_mask.h"
 #include "scene/texture.h"
 
@@ -131,13 +132,7 @@ void hash_settings(ContentHash& h, const ReferenceSettings& s) {
 
 ReferenceCache::ReferenceCache(fs::path dir) : dir_(std::move(dir)) {}
 
-fs::path ReferenceCache::default_dir() {
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
-    return fs::path(xdg) / "bounce" / "reference";
-  if (const char* home = std::getenv("HOME"); home && *home)
-    return fs::path(home) / ".cache" / "bounce" / "reference";
-  return fs::temp_directory_path() / "bounce-reference";
-}
+fs::path ReferenceCache::default_dir() { return user_cache_dir("reference"); }
 
 fs::path ReferenceCache::file_of(const std::string& kind, std::uint64_t key) const {
   char name[17];

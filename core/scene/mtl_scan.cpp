@@ -51,15 +51,18 @@ MtlScan scan_obj_materials(const std::filesystem::path& obj) {
   std::string_view rest;
   while (std::getline(in, line)) {
     if (!keyword(trim(line), "mtllib", rest) || rest.empty()) continue;
-    std::ifstream mtl(obj.parent_path() / std::string(rest), std::ios::binary);
+    std::filesystem::path file = obj.parent_path() / std::string(rest);
+    std::ifstream mtl(file, std::ios::binary);
     if (!mtl) {
       // Assimp's fallback: the OBJ's own name with "mtl" for its extension.
       const std::string name = obj.string();
-      mtl.open(name.substr(0, name.size() >= 3 ? name.size() - 3 : 0) + "mtl", std::ios::binary);
+      file = name.substr(0, name.size() >= 3 ? name.size() - 3 : 0) + "mtl";
+      mtl.open(file, std::ios::binary);
     }
-    if (mtl)
+    if (mtl) {
       scan_mtl(mtl, scan);
-    else
+      scan.libraries.push_back(file);
+    } else
       scan.missing_libraries.emplace_back(rest);
   }
   return scan;

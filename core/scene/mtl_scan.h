@@ -15,9 +15,10 @@
 namespace bounce::scene_internal {
 
 struct MtlScan {
-  std::set<std::string> with_diffuse;          // material names that have a Kd line
-  std::set<std::string> with_emissive;         // material names that have a Ke line
-  std::vector<std::string> missing_libraries;  // `mtllib` names that could not be opened
+  std::set<std::string> with_diffuse;            // material names that have a Kd line
+  std::set<std::string> with_emissive;           // material names that have a Ke line
+  std::vector<std::string> missing_libraries;    // `mtllib` names that could not be opened
+  std::vector<std::filesystem::path> libraries;  // the MTL files read, in `mtllib` order
 };
 
 // Reads the `mtllib` lines of `obj` and the MTL files they name, resolving

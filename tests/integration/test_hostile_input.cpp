@@ -399,12 +399,14 @@ class ExportFailure : public HostileInput {
     return why_nobody_cannot_run(copy);
   }
 
-  RunResult bake_confined(const fs::path& target, const RunOptions& c) {
+  // `force`: bake even onto an up-to-date bake of the same scene and settings.
+  RunResult bake_confined(const fs::path& target, const RunOptions& c, bool force = false) {
     // Quiet: the file size limit of the full-disk case applies to the
     // child's captured stderr too, and progress lines would fill it first.
-    return run_confined(
-        {"bake", scene_dir.string(), "--voxel", "4", "--quiet", "--out", target.string()},
-        tmp.path(), c);
+    std::vector<std::string> args = {"bake",  scene_dir.string(), "--voxel", "4", "--quiet",
+                                     "--out", target.string()};
+    if (force) args.push_back("--force");
+    return run_confined(args, tmp.path(), c);
   }
 
   // One error line naming the bake folder `target`, holding `why`.
@@ -462,7 +464,8 @@ TEST_F(ExportFailure, PreviousBakeInAReadOnlyFolderStaysIntact) {
   RunOptions c;
   const std::string why_not = run_as_nobody(c);
   if (!why_not.empty()) GTEST_SKIP() << "cannot run the bake without root's rights: " << why_not;
-  const RunResult r = bake_confined(target, c);
+  // Forced: the first bake is up to date and would be kept without a write.
+  const RunResult r = bake_confined(target, c, true);
   expect_export_error(r, target, "Permission denied");
   EXPECT_EQ(entries(target), files_before);
   EXPECT_EQ(read_text(target / "manifest.json"), manifest_before);
