@@ -18,9 +18,11 @@ using Clock = std::chrono::steady_clock;
 using Trial = MeasuredCompression;
 
 // The kept-fraction search's state: one ordering and one sample of rows for
-// every trial, the lights' weights decided by the first trial (the plain
-// importance, or the one rebalanced by that trial's per-light errors:
-// compress_for_light), each rung's light error on the sample measured once.
+// every trial, each rung's light error on the sample measured once. The
+// sample is compressed with the importance as given; each whole compression
+// also tries the lights rebalanced by its own per-light errors
+// (compress_for_light): a sample does not see the few rows where one light's
+// error concentrates, so weights taken from it can make that light worse.
 class KeptFractionSearch {
  public:
   // `codec`: with its permutation, sample of block rows and kept storage.
@@ -34,27 +36,20 @@ class KeptFractionSearch {
         s_(s),
         progress_(progress),
         executor_(executor) {}
-  KeptFractionSearch(const KeptFractionSearch&) = delete;
-  KeptFractionSearch& operator=(const KeptFractionSearch&) = delete;
 
   // The light error (what the budget bounds) of `rung` on the sample.
   double sampled_error(int rung) {
     if (const auto it = sampled_.find(rung); it != sampled_.end()) return it->second;
     CodecSettings codec = codec_;
     codec.kept_fraction = kKeptFractionLadder[rung];
-    MeasuredCompression t;
-    if (!weights_decided_) {
-      t = compress_for_light(exact_, n_, codec, probe_, nullptr, progress_);
-      decide_weights(t.light_factor);
-    } else {
-      t.compressed = compress_matrix(exact_, n_, codec, progress_);
-      t.errors = measure_compression(exact_, t.compressed, probe_, nullptr, progress_);
-    }
-    record(codec.kept_fraction, t.errors, predicted_bytes(codec.kept_fraction),
-           t.compressed.rows().size());
-    return sampled_[rung] = budgeted_light_error(t.errors.indirect);
+    const CompressedMatrix m = compress_matrix(exact_, n_, codec, progress_);
+    const CompressionErrors e = measure_compression(exact_, m, probe_, nullptr, progress_);
+    record(codec.kept_fraction, e,
+           predicted_total_bytes(n_, static_cast<int>(exact_.size()), codec.kept_fraction,
+                                 *codec_.kept_storage),
+           m.rows().size());
+    return sampled_[rung] = budgeted_light_error(e.indirect);
   }
-
   std::size_t sampled_count() const { return sampled_.size(); }
 
   // The whole matrix compressed at `rung` and measured (`error_map`: the
@@ -63,26 +58,12 @@ class KeptFractionSearch {
     CodecSettings codec = codec_;
     codec.block_rows.clear();
     codec.kept_fraction = kKeptFractionLadder[rung];
-    Trial t;
-    t.compressed = compress_matrix(exact_, n_, codec, progress_, executor_);
-    t.compressed.lights_rebalanced = rebalanced_.has_value();
-    t.errors = measure_compression(exact_, t.compressed, probe_, &error_map, progress_);
+    Trial t = compress_for_light(exact_, n_, codec, probe_, &error_map, progress_, executor_);
     record(codec.kept_fraction, t.errors, t.compressed.total_bytes(), n_);
     return t;
   }
 
  private:
-  void decide_weights(const std::vector<double>& light_factor) {
-    weights_decided_ = true;
-    if (light_factor.empty()) return;
-    rebalanced_ = light_importance(exact_, n_, probe_.first_hit, probe_.channel_of_rgb, probe_.area,
-                                   light_factor);
-    codec_.importance = &*rebalanced_;
-  }
-  std::size_t predicted_bytes(double kept_fraction) const {
-    return predicted_total_bytes(n_, static_cast<int>(exact_.size()), kept_fraction,
-                                 *codec_.kept_storage);
-  }
   void record(double kept_fraction, const CompressionErrors& e, std::size_t bytes,
               std::size_t rows) {
     s_.trials.push_back({kept_fraction, e.matrix.rel_frobenius, e.indirect, bytes, rows});
@@ -95,8 +76,6 @@ class KeptFractionSearch {
   MatrixStorage& s_;
   Progress* progress_;
   CompressionExecutor* executor_;
-  bool weights_decided_ = false;
-  std::optional<EntryImportance> rebalanced_;
   std::map<int, double> sampled_;
 };
 
@@ -116,22 +95,35 @@ int search_on_sample(KeptFractionSearch& search, int top, double budget) {
   return found;
 }
 
-// The whole matrix from the rung the sample found: up the ladder while it
-// misses the budget; when it meets it, one rung down if the sample, scaled by
-// how far it was from the whole matrix at this rung (the same rows, so the
-// same bias), says that one meets it too. Returns the rung kept.
+// The sample's error at `rung` scaled by how far the sample was from the
+// whole matrix at `measured` (the same rows, so much the same bias): what the
+// whole matrix is predicted to give at `rung`.
+double predicted_whole_error(KeptFractionSearch& search, int rung, int measured,
+                             double whole_error) {
+  const double sampled = search.sampled_error(measured);
+  if (!(sampled > 0.0)) return search.sampled_error(rung);
+  return search.sampled_error(rung) * whole_error / sampled;
+}
+
+// The whole matrix from the rung the sample found. While it misses the
+// budget, up the ladder to the first rung predicted to meet it (or the top).
+// When it meets it, one rung down if that one is predicted to meet it too.
+// Returns the rung kept.
 int compress_whole_from(KeptFractionSearch& search, int rung, int top, double budget, Trial& kept,
                         std::vector<float>& error_map) {
-  kept = search.compress_whole(rung, error_map);
   const auto error = [](const Trial& t) { return budgeted_light_error(t.errors.indirect); };
-  if (error(kept) > budget) {
-    while (error(kept) > budget && rung < top) kept = search.compress_whole(++rung, error_map);
-    return rung;
+  kept = search.compress_whole(rung, error_map);
+  const bool missed = error(kept) > budget;
+  while (error(kept) > budget && rung < top) {
+    const int measured = rung;
+    do {
+      ++rung;
+    } while (rung < top && predicted_whole_error(search, rung, measured, error(kept)) > budget);
+    kept = search.compress_whole(rung, error_map);
   }
-  const double sampled = search.sampled_error(rung);
-  if (rung == 0 || !(sampled > 0.0)) return rung;
-  const double scale = error(kept) / sampled;
-  if (search.sampled_error(rung - 1) * scale > budget) return rung;
+  // After a climb the rung below is known to miss, or predicted to.
+  if (missed || rung == 0 || predicted_whole_error(search, rung - 1, rung, error(kept)) > budget)
+    return rung;
   std::vector<float> lower_map;
   Trial lower = search.compress_whole(rung - 1, lower_map);
   if (error(lower) > budget) return rung;
@@ -144,9 +136,9 @@ int compress_whole_from(KeptFractionSearch& search, int rung, int top, double bu
 // budget within the size limit; when none does, the largest that fits (the
 // smallest light error the limit allows), said plainly. The ladder is
 // searched on a sample of the rows with one ordering; the whole matrix is
-// then compressed at the fraction found, measured, and moved up a rung while
-// it misses the budget (the sample's estimate can be off), so the stored
-// matrix's own error is what meets the budget.
+// then compressed at the fraction found, measured, and moved up the ladder
+// while it misses the budget (the sample's estimate can be off), so the
+// stored matrix's own error is what meets the budget.
 Trial search_kept_fraction(const std::vector<const float*>& exact, std::size_t n,
                            const IndirectLightProbe& probe, const BakeSettings& settings,
                            CodecSettings codec, MatrixStorage& s, Progress* progress,
