@@ -18,7 +18,7 @@ using Clock = std::chrono::steady_clock;
 using Trial = MeasuredCompression;
 
 // The kept-fraction search's state: one ordering and one sample of rows for
-// every trial, each rung's light error on the sample measured once. The
+// every sampled trial, each rung's light error on the sample measured once. The
 // sample is compressed with the importance as given; each whole compression
 // also tries the lights rebalanced by its own per-light errors
 // (compress_for_light): a sample does not see the few rows where one light's
@@ -56,7 +56,11 @@ class KeptFractionSearch {
   // error picture's |T~ - T| sums).
   Trial compress_whole(int rung, std::vector<float>& error_map) {
     CodecSettings codec = codec_;
+    // Its own ordering, as a bake given this kept fraction computes it: the
+    // stored matrix is the one that bake (or the studio's re-compression at
+    // the bake's kept fraction) makes, byte for byte.
     codec.block_rows.clear();
+    codec.permutation.reset();
     codec.kept_fraction = kKeptFractionLadder[rung];
     Trial t = compress_for_light(exact_, n_, codec, probe_, &error_map, progress_, executor_);
     record(codec.kept_fraction, t.errors, t.compressed.total_bytes(), n_);
@@ -166,19 +170,15 @@ Trial search_kept_fraction(const std::vector<const float*>& exact, std::size_t n
     ++top;
   const bool nothing_fits = top < 0;
   if (nothing_fits) top = 0;
-  // One ordering for every trial, computed at the middle of the rungs.
-  const auto ordering_start = Clock::now();
+  // One ordering for every sampled trial, computed at the middle of the rungs.
   codec.kept_fraction = kKeptFractionLadder[top / 2];
   codec.permutation = compute_permutation(exact, n, codec, progress);
-  const double seconds_ordering =
-      std::chrono::duration<double>(Clock::now() - ordering_start).count();
   codec.block_rows = search_sample_block_rows(n);
   KeptFractionSearch search(exact, n, codec, probe, s, progress, executor);
   const int found = search_on_sample(search, top, budget);
   Trial passed;
   std::vector<float> map;
   const int best = compress_whole_from(search, found, top, budget, passed, map);
-  passed.compressed.seconds_ordering = seconds_ordering;
   s.error_budget_met = budgeted_light_error(passed.errors.indirect) <= budget;
   const double mib = 1.0 / (1 << 20);
   const auto bytes_text = [&](std::size_t bytes) {
