@@ -34,7 +34,7 @@ void require_shape(const fs::path& file, const std::vector<std::size_t>& shape,
 }
 
 // The polygons each sample carries (carried_*.npy), when the bake has them
-// (bakes before session 8 do not: their point lights are then evaluated at
+// (older bakes without carried_*.npy do not: their point lights are then evaluated at
 // the samples). Only what the direct light reads comes back: the polygons and
 // their areas and the triangle and side each lies on, not the voxelization's
 // triangle parts they came from.

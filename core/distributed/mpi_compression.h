@@ -1,6 +1,6 @@
 #pragma once
-// The compression stage's block encoding on every rank of the MPI job (issue
-// 9: compression by row blocks, the ordering computed once).
+// The compression stage's block encoding on every rank of the MPI job
+// (compression by row blocks, the ordering computed once).
 //
 // The root runs compress_matrix as one process does: the kept split and the
 // quantisers (global: a quantile per channel over the whole matrix) and the

@@ -36,7 +36,7 @@ __attribute__((target("avx512f"))) inline void add_rows(__m512 rows, float (*acc
 // ~30 scalar instructions per block (3 keys of shifts, masks and a compare)
 // in a pass over the block row before its loop: 2.4 ms of the 11.5 ms
 // float32 product at one thread on this machine (docs/benchmarks.md,
-// runtime, session 6).
+// `bounce bench runtime`).
 //
 // The palette at `units` of 8 bytes into `tables` (Bc1BlockPair::palette):
 // one scaled-index address, no shift.
@@ -71,7 +71,7 @@ __attribute__((target("avx512f,avx2,fma"))) inline void bc1_block_avx512(
 // a tile of b that stays in L1. The records are stored in this order
 // (pair_record), else the loop reads 8 short streams of blocks and is slower
 // than row by row. At one thread on this machine, bfloat16 7.3 -> 5.5 ms,
-// float32 8.8 -> 8.2 ms (docs/benchmarks.md, runtime, session 6). The row
+// float32 8.8 -> 8.2 ms (docs/benchmarks.md, `bounce bench runtime`). The row
 // sums of the band wait in memory (3 registers per row) between tiles.
 // kBandRows is above, with BlockBandFn.
 
@@ -136,7 +136,7 @@ __attribute__((target("avx512f,avx2,fma"))) inline void avx512_bc1_pairs(const B
 // Row r's sum is the sum of its register's 16 lanes. Rounding: palettes and
 // b to 8-bit mantissas (relative 2^-9 each), sums in float32.
 //
-// Why this layout (docs/benchmarks.md, runtime, session 7): this CPU
+// Why this layout (docs/benchmarks.md, `bounce bench runtime`): this CPU
 // (Zen 5) runs 512-bit operations at full width but at most 2 vector loads
 // per cycle; the earlier loop (two blocks per register) needed 10 vector
 // loads per two blocks (index word, 6 palettes, 3 broadcasts of b), this

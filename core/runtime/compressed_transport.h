@@ -15,7 +15,7 @@
 // the corrections of the kept entries are added and the rows scattered back
 // to patch order. The corrections run as a pass of their own after the
 // block loop: run between its bands, their random reads of b evicted the
-// band's working set (docs/benchmarks.md, runtime, session 7). With AVX2 (checked
+// band's working set (docs/benchmarks.md, `bounce bench runtime`). With AVX2 (checked
 // at run time), one block is a few vector permutes and FMAs: the indices of
 // two block rows become the control of one permute of the palette, 8 texels
 // at once; without it a portable loop does the same one texel at a time.
