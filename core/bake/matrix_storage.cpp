@@ -99,6 +99,31 @@ int search_on_sample(KeptFractionSearch& search, int top, double budget) {
   return found;
 }
 
+// Bisection on rungs [0, top] with the whole matrix compressed at each, for a
+// matrix whose sample would be every row: the smallest rung that meets the
+// budget, else the top one, its compression in `kept`.
+int search_whole(KeptFractionSearch& search, int top, double budget, Trial& kept,
+                 std::vector<float>& error_map) {
+  int lo = 0, hi = top, found = -1;
+  std::vector<float> map;
+  while (lo <= hi) {
+    const int mid = (lo + hi) / 2;
+    Trial t = search.compress_whole(mid, map);
+    const bool meets = budgeted_light_error(t.errors.indirect) <= budget;
+    // A bisection that never meets the budget ends on the top rung.
+    if (meets || (found < 0 && mid == top)) {
+      found = mid;
+      kept = std::move(t);
+      error_map.swap(map);
+    }
+    if (meets)
+      hi = mid - 1;
+    else
+      lo = mid + 1;
+  }
+  return found;
+}
+
 // The sample's error at `rung` scaled by how far the sample was from the
 // whole matrix at `measured` (the same rows, so much the same bias): what the
 // whole matrix is predicted to give at `rung`.
@@ -170,15 +195,21 @@ Trial search_kept_fraction(const std::vector<const float*>& exact, std::size_t n
     ++top;
   const bool nothing_fits = top < 0;
   if (nothing_fits) top = 0;
-  // One ordering for every sampled trial, computed at the middle of the rungs.
-  codec.kept_fraction = kKeptFractionLadder[top / 2];
-  codec.permutation = compute_permutation(exact, n, codec, progress);
-  codec.block_rows = search_sample_block_rows(n);
+  std::vector<std::uint32_t> sample = search_sample_block_rows(n);
+  const bool sample_is_whole = sample.size() == (n + 3) / 4;
+  if (!sample_is_whole) {
+    // One ordering for every sampled trial, computed at the middle of the rungs.
+    codec.kept_fraction = kKeptFractionLadder[top / 2];
+    codec.permutation = compute_permutation(exact, n, codec, progress);
+    codec.block_rows = std::move(sample);
+  }
   KeptFractionSearch search(exact, n, codec, probe, s, progress, executor);
-  const int found = search_on_sample(search, top, budget);
   Trial passed;
   std::vector<float> map;
-  const int best = compress_whole_from(search, found, top, budget, passed, map);
+  const int best = sample_is_whole
+                       ? search_whole(search, top, budget, passed, map)
+                       : compress_whole_from(search, search_on_sample(search, top, budget), top,
+                                             budget, passed, map);
   s.error_budget_met = budgeted_light_error(passed.errors.indirect) <= budget;
   const double mib = 1.0 / (1 << 20);
   const auto bytes_text = [&](std::size_t bytes) {
@@ -213,13 +244,18 @@ Trial search_kept_fraction(const std::vector<const float*>& exact, std::size_t n
                      "error is zero whatever is kept and the budget chose the smallest kept "
                      "fraction");
   s.abs_error_sum = std::move(map);
-  s.decisions.push_back(
-      {text_format("kept fraction: %g", kKeptFractionLadder[best]),
-       text_format("error budget %g on the indirect light (%zu of the %d kept fractions that fit "
-                   "measured on a sample of %zu of the %zu patch rows, then the whole matrix "
-                   "compressed at %zu of them): %s",
-                   budget, search.sampled_count(), top + 1, s.trials.front().rows, n,
-                   s.trials.size() - search.sampled_count(), s.error_budget_outcome.c_str())});
+  const std::string tried =
+      sample_is_whole
+          ? text_format("%zu of the %d kept fractions that fit, each on the whole matrix",
+                        s.trials.size(), top + 1)
+          : text_format(
+                "%zu of the %d kept fractions that fit measured on a sample of %zu of the "
+                "%zu patch rows, then the whole matrix compressed at %zu of them",
+                search.sampled_count(), top + 1, s.trials.front().rows, n,
+                s.trials.size() - search.sampled_count());
+  s.decisions.push_back({text_format("kept fraction: %g", kKeptFractionLadder[best]),
+                         text_format("error budget %g on the indirect light (%s): %s", budget,
+                                     tried.c_str(), s.error_budget_outcome.c_str())});
   return passed;
 }
 

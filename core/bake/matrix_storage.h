@@ -68,8 +68,9 @@ inline constexpr double kKeptFractionLadder[] = {0.0025, 0.005, 0.01, 0.015, 0.0
 
 // The search measures each kept fraction on every kSearchSampleStride-th
 // block row of the ordered matrix (at least kSearchSampleMinBlockRows of
-// them, all when there are fewer), then compresses the whole matrix once at
-// the fraction found and measures that.
+// them), then compresses the whole matrix once at the fraction found and
+// measures that. A matrix whose sample would be every block row is searched
+// on whole compressions.
 inline constexpr std::size_t kSearchSampleStride = 8;
 inline constexpr std::size_t kSearchSampleMinBlockRows = 128;
 
