@@ -96,7 +96,7 @@ class RowRunner {
         rebalance ? compress_for_light(exact_.matrices(), exact_.n, settings, exact_.probe, nullptr,
                                        &progress_)
                   : MeasuredCompression{
-                        compress_matrix(exact_.matrices(), exact_.n, settings, &progress_), {}, {}};
+                        compress_matrix(exact_.matrices(), exact_.n, settings, &progress_), {}};
     const CompressedMatrix& m = measured.compressed;
     if (cache && !reuse) {
       cache->permutation[ordering] = m.permutation;

@@ -307,12 +307,6 @@ ImageLayout image_layout(const CodecSettings& settings, std::size_t stored_chann
   return l;
 }
 
-std::vector<std::uint32_t> all_rows(std::size_t n) {
-  std::vector<std::uint32_t> r(n);
-  for (std::size_t i = 0; i < n; ++i) r[i] = static_cast<std::uint32_t>(i);
-  return r;
-}
-
 void check_sample(const CodecSettings& settings, std::size_t n) {
   if (settings.block_rows.empty()) return;
   if (!settings.permutation)
@@ -400,7 +394,7 @@ CompressedMatrix compress_once(const std::vector<const float*>& matrices, std::s
   }
   if (progress) progress->begin_stage("compress: split and quantise", 1);
   auto t = Clock::now();
-  const std::vector<std::uint32_t> rows = m.sampled() ? m.rows() : all_rows(n);
+  const std::vector<std::uint32_t> rows = m.rows();
   const SplitTexels texels =
       split_and_quantise(matrices, n, settings, keys, rows, layout.channels, m);
   m.seconds_split = since(t);
@@ -449,7 +443,7 @@ Permutation compute_permutation(const std::vector<const float*>& matrices, std::
   m.n = n;
   const ImageLayout layout = image_layout(whole, matrices.size());
   const SplitTexels texels =
-      split_and_quantise(matrices, n, whole, nullptr, all_rows(n), layout.channels, m);
+      split_and_quantise(matrices, n, whole, nullptr, m.rows(), layout.channels, m);
   order_rows(whole, texels, progress, m);
   return m.permutation;
 }

@@ -17,8 +17,9 @@ MeasuredCompression compress_and_measure(const std::vector<const float*>& exact,
   return t;
 }
 
-}  // namespace
-
+// Each light counted by its share of the squared light error `e`, mean 1 over
+// the lights with indirect light (the others count 0); empty when no light
+// has an error.
 std::vector<double> rebalanced_light_factor(const IndirectLightError& e) {
   double sum2 = 0.0;
   for (double v : e.per_light) sum2 += v * v;
@@ -28,6 +29,8 @@ std::vector<double> rebalanced_light_factor(const IndirectLightError& e) {
   return factor;
 }
 
+}  // namespace
+
 MeasuredCompression compress_for_light(const std::vector<const float*>& exact, std::size_t n,
                                        const CodecSettings& codec, const IndirectLightProbe& probe,
                                        std::vector<float>* abs_error_sum, Progress* progress,
@@ -35,7 +38,7 @@ MeasuredCompression compress_for_light(const std::vector<const float*>& exact, s
   MeasuredCompression t =
       compress_and_measure(exact, n, codec, probe, abs_error_sum, progress, executor);
   if (!codec.importance || t.errors.indirect.lights < 2) return t;
-  std::vector<double> factor = rebalanced_light_factor(t.errors.indirect);
+  const std::vector<double> factor = rebalanced_light_factor(t.errors.indirect);
   if (factor.empty()) return t;
   const EntryImportance rebalanced =
       light_importance(exact, n, probe.first_hit, probe.channel_of_rgb, probe.area, factor);
@@ -50,7 +53,6 @@ MeasuredCompression compress_for_light(const std::vector<const float*>& exact, s
     t2.compressed.seconds_ordering = t.compressed.seconds_ordering;
     t = std::move(t2);
     t.compressed.lights_rebalanced = true;
-    t.light_factor = std::move(factor);
     if (abs_error_sum) abs_error_sum->swap(map);
   }
   return t;

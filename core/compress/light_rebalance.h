@@ -15,16 +15,7 @@ namespace bounce {
 struct MeasuredCompression {
   CompressedMatrix compressed;
   CompressionErrors errors;
-  // How much each evaluation light counted in the importance the kept
-  // compression was made with (rebalanced_light_factor); empty: the
-  // importance as given.
-  std::vector<double> light_factor;
 };
-
-// Each light counted by its share of the squared light error `e`, mean 1 over
-// the lights with indirect light (the others count 0); empty when no light
-// has an error.
-std::vector<double> rebalanced_light_factor(const IndirectLightError& e);
 
 // The worst evaluation light's relative RMS error: what the budget bounds.
 inline double budgeted_light_error(const IndirectLightError& e) { return e.rel_rms_max; }
