@@ -34,8 +34,7 @@ std::shared_ptr<const BakeViewData> load_bake_view_data(const fs::path& dir,
                                                         std::shared_ptr<const Scene> scene) {
   auto data = std::make_shared<BakeViewData>();
   data->bake = BakeReader::read(dir, true);
-  const nlohmann::json& m = data->bake.manifest;
-  data->cell_size = m.at("grid").at("cell_size").get<float>();
+  data->cell_size = data->bake.description.grid.cell_size;
 
   namespace vc = voxel_column;
   const fs::path voxel_file = dir / bake_file::kVoxels;
@@ -75,7 +74,7 @@ std::shared_ptr<const BakeViewData> load_bake_view_data(const fs::path& dir,
 
   if (!scene) {
     // A bake folder names its scene; show the mesh when it is still there.
-    const std::string path = m.at("scene").value("path", std::string());
+    const fs::path& path = data->bake.description.scene_path;
     if (!path.empty() && fs::exists(path)) {
       Diagnostics quiet;
       scene = std::make_shared<const Scene>(SceneLoader(quiet).load(path));

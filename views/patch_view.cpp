@@ -389,10 +389,9 @@ void PatchView::colour_by_radiosity() {
         for (std::size_t p = 0; p < n; ++p) colours_[p] = srgb(r.radiosity[p] * exposure);
         const QString what =
             r.lit ? tr("radiosity under %1")
-                        .arg(QString::fromStdString(
-                            b.manifest.at("scene").at("lights").empty()
-                                ? std::string("the first evaluation light")
-                                : b.manifest.at("scene").at("lights")[0].value("name", "light 1")))
+                        .arg(QString::fromStdString(b.description.scene_lights.empty()
+                                                        ? std::string("the first evaluation light")
+                                                        : b.description.scene_lights.front().name))
                   : tr("no exact T in this bake: emission only");
         show_colours(what);
       },

@@ -1,10 +1,10 @@
 #pragma once
-// The light transport behind the live preview (view 5), all of it core
-// functions, the ones `bounce solve` runs: the runtime frame graph
-// (runtime/runtime_frame.h: direct light on the patches, b = albedo * E,
-// the bake's T b through the compressed C++ product or the dense one) and
-// the transfer of the patches' indirect light to the vertices of the
-// refined scene mesh (runtime/mesh_transfer.h, runtime/patch_gather.h).
+// The light transport behind the live preview (view 5): a LightingSession
+// (bounce/relight.h), the one `bounce solve` and the Python module open,
+// over the bake and scene the studio holds. It lights the patches (direct
+// light, b = albedo * E, the bake's T b through the compressed C++ product
+// or the dense one) and takes their light to the vertices of the refined
+// scene mesh by the session's one rule.
 // The preview draws the direct light itself per pixel (shadow map), so
 // what it takes from here per frame is the indirect irradiance on the
 // vertices: the preview reflects it with the albedo under each pixel (the
@@ -57,28 +57,19 @@ class PreviewLighting {
 
   // The refined mesh (positions, normals, triangles, source triangle); its
   // radiosity is not kept up to date (solve() returns the light).
-  const LitMesh& mesh() const { return geometry_; }
+  const LitMesh& mesh() const { return *geometry_; }
   const Scene& scene() const { return *data_->scene; }
   const Light& light() const { return light_; }  // at its scene position
-  const std::string& multiply_name() const { return relighter_->multiply_name(); }
+  const std::string& multiply_name() const { return session_->relighter().multiply_name(); }
   std::size_t patch_count() const { return data_->patch_count(); }
 
  private:
   std::shared_ptr<const BakeViewData> data_;
-  std::unique_ptr<RayTracer> tracer_;
-  std::unique_ptr<Relighter> relighter_;
-  TransferGrid grid_;
-  LitMesh geometry_;  // read by the UI thread, never written after construction
-  LitMesh work_;      // relit by solve()
-  // The bake's final gather of these vertices, when it stored one.
-  std::optional<FinalGather> gather_;
-  // Without it, one over the mean albedo of each vertex's material: the
-  // nearest patches' T b is light they reflected with their mean albedo,
-  // and this turns it back into the irradiance they received (0 where a
-  // channel reflects nothing).
-  std::vector<glm::vec3> vertex_inverse_albedo_;
-  Light light_;
-  std::vector<Light> lights_;  // the one light, moved per solve
+  std::unique_ptr<LightingSession> session_;
+  // The session's mesh geometry: read by the UI thread, built before the
+  // first solve() and never written after.
+  const LitMesh* geometry_ = nullptr;
+  Light light_;  // at its scene position
 };
 
 }  // namespace bounce::views

@@ -182,10 +182,9 @@ void VoxelView::update_slice() {
   slice_slider_->setEnabled(slice_box_->isChecked());
   if (enabled) {
     const int axis = axis_box_->currentIndex();
-    const nlohmann::json& grid = data_->bake.manifest.at("grid");
-    const double lo = grid.at("origin").at(static_cast<std::size_t>(axis)).get<double>();
-    const double extent = grid.at("dims").at(static_cast<std::size_t>(axis)).get<double>() *
-                          static_cast<double>(data_->cell_size);
+    const TransferGrid& grid = data_->bake.description.grid;
+    const double lo = grid.origin[axis];
+    const double extent = grid.dims[axis] * static_cast<double>(grid.cell_size);
     const double t = slice_slider_->value() / static_cast<double>(slice_slider_->maximum());
     double origin[3] = {0, 0, 0}, normal[3] = {0, 0, 0};
     origin[axis] = lo + t * extent;

@@ -73,7 +73,7 @@ Outcome reused_outcome(Outcome o, const fs::path& target, const BakeOptions& opt
   o.manifest["reused"] = true;
   if (!opt.quiet)
     std::fprintf(stderr, "%s is up to date (key %s): reused, not baked; --force bakes again\n",
-                 target.string().c_str(), o.manifest.at("key").get<std::string>().c_str());
+                 target.string().c_str(), o.manifest.value("key", std::string()).c_str());
   o.ok = true;
   const json counts = o.manifest.value("counts", json::object());
   o.detail = "up to date, " + std::to_string(counts.value("patches", 0)) + " patches, reused";

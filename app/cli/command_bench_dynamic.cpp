@@ -61,12 +61,9 @@ std::vector<std::vector<glm::vec3>> moving_point_light(const LoadedBake& b, cons
                                                        const RayTracer& tracer, int frames) {
   Light light;
   bool found = false;
-  for (const auto& l : b.manifest.at("scene").value("lights", nlohmann::json::array()))
-    if (l.value("type", "") == "point") {
-      const auto p = l.at("position"), c = l.at("color");
-      light.position = glm::vec3(p[0].get<float>(), p[1].get<float>(), p[2].get<float>());
-      light.color = glm::vec3(c[0].get<float>(), c[1].get<float>(), c[2].get<float>());
-      light.intensity = l.at("intensity").get<float>();
+  for (const Light& l : b.description.scene_lights)
+    if (l.type == Light::Type::Point) {
+      light = l;
       found = true;
       break;
     }
@@ -145,24 +142,10 @@ void run(const DynamicBenchOptions& opt) {
   ConsoleProgress console(opt.quiet || opt.json);
   bool reference_cached = false;
   if (!opt.no_images) {
-    const std::filesystem::path scene_path =
-        opt.scene.empty()
-            ? std::filesystem::path(b.manifest.at("scene").at("path").get<std::string>())
-            : std::filesystem::path(opt.scene);
-    if (!std::filesystem::exists(scene_path))
-      throw Error(scene_path.string(),
-                  "the baked scene is not there any more (give it with --scene PATH, or "
-                  "--no-images)");
     Diagnostics diag;
-    scene = std::make_unique<Scene>(SceneLoader(diag).load(scene_path));
-    const auto baked_triangles = b.manifest.at("scene").at("triangles").get<std::size_t>();
-    if (scene->triangle_count() != baked_triangles)
-      throw Error(scene_path.string(), "has " + std::to_string(scene->triangle_count()) +
-                                           " triangles, the bake was made from " +
-                                           std::to_string(baked_triangles) +
-                                           ": not the same scene");
+    scene = std::make_unique<Scene>(load_baked_scene(b, opt.scene, diag));
     tracer = std::make_unique<RayTracer>(*scene);
-    const TransferGrid grid = TransferGrid::from_manifest(b.manifest);
+    const TransferGrid grid = b.description.grid;
     CameraImageSettings cs;
     cs.width = opt.width;
     cs.height = opt.height;
@@ -197,7 +180,7 @@ void run(const DynamicBenchOptions& opt) {
     }
     if (!lit) in.scene_light.clear();
     if (std::none_of(in.image_mask.begin(), in.image_mask.end(), [](std::uint8_t m) { return m; }))
-      throw Error(scene_path.string(),
+      throw Error(scene->path,
                   "the scene camera sees no geometry: nothing to compare "
                   "(use --no-images)");
   }
@@ -276,8 +259,8 @@ void run(const DynamicBenchOptions& opt) {
   std::printf(
       "\nbench dynamic: %s (%s), %zu patches, %d samples per patch, w = %.3g, light %d "
       "-> %d\n",
-      opt.bake.c_str(), b.manifest.at("scene").at("name").get<std::string>().c_str(), bench.n,
-      opt.samples, static_cast<double>(opt.weight), opt.light, opt.jump_to);
+      opt.bake.c_str(), b.description.scene_name.c_str(), bench.n, opt.samples,
+      static_cast<double>(opt.weight), opt.light, opt.jump_to);
   std::printf("%s", dynamic_bench_table(bench).c_str());
   std::printf(
       "err@f: area-weighted relative RMS of the indirect light against the full product after f "

@@ -26,14 +26,8 @@ struct RuntimeBenchOptions {
 
 // K for the classic baseline: the bake's K, or where its auto series
 // converged when it computed K = infinity.
-int bake_bounces(const nlohmann::json& manifest) {
-  int k = 0;
-  for (const auto& c : manifest.at("transport").at("channels")) {
-    const int auto_k = c.value("auto_bounces", 0);
-    const int fixed = c.at("bounces").is_number() ? c.at("bounces").get<int>() : 0;
-    k = std::max(k, fixed > 0 ? fixed : auto_k);
-  }
-  return k > 0 ? k : 16;
+int bake_bounces(const LoadedBake& bake) {
+  return bake.description.bounces > 0 ? bake.description.bounces : 16;
 }
 
 void run(const RuntimeBenchOptions& opt) {
@@ -45,7 +39,7 @@ void run(const RuntimeBenchOptions& opt) {
   std::vector<const float*> dense;
   for (const auto& t : b.dense) dense.push_back(t.data());
   std::unique_ptr<ClassicRadiosity> classic;
-  const int k = opt.bounces > 0 ? opt.bounces : bake_bounces(b.manifest);
+  const int k = opt.bounces > 0 ? opt.bounces : bake_bounces(b);
   if (std::optional<std::vector<float>> f = read_form_factors(opt.bake, b.size())) {
     std::vector<glm::vec3> albedo;
     for (const Patch& p : b.patches.patches) albedo.push_back(p.albedo);
@@ -96,8 +90,7 @@ void run(const RuntimeBenchOptions& opt) {
               << '\n';
     return;
   }
-  std::printf("\nbench runtime: %s (%s)\n", opt.bake.c_str(),
-              b.manifest.at("scene").at("name").get<std::string>().c_str());
+  std::printf("\nbench runtime: %s (%s)\n", opt.bake.c_str(), b.description.scene_name.c_str());
   std::printf("  %s", runtime_bench_table(bench).c_str());
   if (dense.empty())
     std::printf("  (no dense row: the bake has no T.npy; bake with --dump-matrices)\n");

@@ -31,9 +31,7 @@ ExactTransport read_bake_folder(const fs::path& folder) {
     throw Error((folder / bake_file::kDenseTransport).string(),
                 "missing: this bake stored its transport matrix compressed only; bake the scene "
                 "again with --dump-matrices (or --codec dense) to keep the exact matrix");
-  const nlohmann::json& scene = bake.manifest.at("scene");
-  if (scene.is_object() && scene.contains("name") && scene["name"].is_string())
-    x.name = scene["name"].get<std::string>();
+  x.name = bake.description.scene_name;
   x.n = bake.size();
   x.probe = std::move(bake.probe);
   x.channels = std::move(bake.dense);

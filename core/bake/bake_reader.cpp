@@ -417,6 +417,11 @@ LoadedBake BakeReader::read_checked(const fs::path& dir, Dense dense) {
   // would hold no data and bound nothing.
   const auto n = b.manifest.at("counts").at("patches").get<std::size_t>();
   if (n == 0) throw ReadError(manifest_path.string(), "counts.patches is 0");
+  try {
+    b.description = describe_bake(b.manifest, manifest_path);
+  } catch (const Error& e) {
+    throw ReadError(manifest_path.string(), std::string(e.what()).substr(e.where().size() + 2));
+  }
   read_patches(dir, n, b);
   read_seen_weights(dir, b);
   read_carried_polygons(dir, b.samples);

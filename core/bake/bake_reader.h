@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bake/bake_description.h"
 #include "bake/bake_format.h"
 #include "compress/codec.h"
 #include "compress/compression_error.h"
@@ -21,6 +22,8 @@ namespace bounce {
 struct LoadedBake {
   std::filesystem::path dir;
   nlohmann::json manifest;
+  // The manifest's scene, grid, key and bounces, typed: what front ends read.
+  BakeDescription description;
   // Patches with their member samples (position, normal, area, albedo,
   // voxel, triangle): enough to compute direct light on the patches.
   PatchSet patches;

@@ -65,6 +65,7 @@ CameraImages trace_camera(const RayTracer& tracer, const CameraImageSettings& se
   const Scene& scene = tracer.scene();
   const CameraFrame frame = frame_of(scene.camera, settings.width, settings.height);
   const std::vector<AreaLight> area = area_lights(scene);
+  const std::vector<Light>& lights = settings.lights ? *settings.lights : scene.lights;
   const int n = settings.samples_per_side;
   const float inv_samples = 1.0f / static_cast<float>(n * n);
 
@@ -108,10 +109,10 @@ CameraImages trace_camera(const RayTracer& tracer, const CameraImageSettings& se
           const glm::vec3 p = scene.camera.position + hit.t * dir;
           // The texel under the pixel's ray: the picture shows the texture.
           const glm::vec3 albedo = scene.albedo_at(hit.triangle, p);
-          direct += albedo * irradiance_at(tracer, p, normal, scene.lights, area,
-                                           settings.area_light_strata,
-                                           pixel * static_cast<std::uint64_t>(n * n) +
-                                               static_cast<std::uint64_t>(sy * n + sx));
+          direct +=
+              albedo * irradiance_at(tracer, p, normal, lights, area, settings.area_light_strata,
+                                     pixel * static_cast<std::uint64_t>(n * n) +
+                                         static_cast<std::uint64_t>(sy * n + sx));
           if (settings.show_emission) direct += scene.emission_at(hit.triangle, p);
           const glm::vec3 g = gather(p, normal, albedo, pixel);
           if (g.r < 0.0f)

@@ -15,6 +15,7 @@
 // the first hit is what the direct image computes exactly per pixel.
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@ struct CameraImageSettings {
   int area_light_strata = 4;  // as the bake's direct light of emissive triangles
   bool show_emission = true;  // emitters seen by the camera show their exitance (direct image)
   std::uint64_t seed = 1;     // jitter of pixels and area-light samples
+  // The point, spot and directional lights of the direct image; unset: the
+  // scene's own. A lighting session that moved its lights passes them here.
+  std::optional<std::vector<Light>> lights;
 };
 
 struct CameraImages {

@@ -60,9 +60,11 @@ class Relighter {
   // Seconds the last gather spent lighting its near sources.
   double near_seconds() const { return near_seconds_; }
 
- private:
+  // The last frame's b and T b per patch, from its published buffers or its
+  // record. Throws bounce::Error when the frame keeps neither.
   void first_hit_and_indirect(std::vector<glm::vec3>& b, std::vector<glm::vec3>& tb) const;
 
+ private:
   double multiply_seconds_ = 0.0, compile_seconds_ = 0.0;
   TransportMultiplier multiplier_;
   std::chrono::steady_clock::time_point compile_start_;

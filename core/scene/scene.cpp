@@ -247,6 +247,12 @@ const char* light_type_name(Light::Type type) {
   return "unknown";
 }
 
+std::optional<Light::Type> light_type_from_name(const std::string& name) {
+  for (const Light::Type t : {Light::Type::Point, Light::Type::Spot, Light::Type::Directional})
+    if (name == light_type_name(t)) return t;
+  return std::nullopt;
+}
+
 Bounds Scene::bounds() const {
   Bounds b;
   for (const auto& t : triangles)

@@ -101,6 +101,8 @@ struct Light {
 
 // "point", "spot" or "directional", as scene.json spells them.
 const char* light_type_name(Light::Type type);
+// The type a name of light_type_name() stands for; nullopt for any other.
+std::optional<Light::Type> light_type_from_name(const std::string& name);
 
 struct Camera {
   glm::vec3 position{0.0f, 0.0f, 5.0f};

@@ -204,12 +204,8 @@ Light read_light(const JsonReader& r, const Json& value, const std::string& path
   if (const Json* n = find(value, "name")) light.name = r.string(*n, join_key(path, "name"));
   std::string type = "point";
   if (const Json* t = find(value, "type")) type = r.string(*t, join_key(path, "type"));
-  if (type == "point")
-    light.type = Light::Type::Point;
-  else if (type == "spot")
-    light.type = Light::Type::Spot;
-  else if (type == "directional")
-    light.type = Light::Type::Directional;
+  if (const std::optional<Light::Type> t = light_type_from_name(type))
+    light.type = *t;
   else
     r.fail(join_key(path, "type"),
            "expected \"point\", \"spot\" or \"directional\", got \"" + type + "\"");
