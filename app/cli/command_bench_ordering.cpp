@@ -1,6 +1,6 @@
 // `bounce bench ordering`: our ordering (compress/ordering.h) on a large
 // synthetic transport image (bench/synthetic_codes.h), to check the
-// issue's target "ordering of N = 16384 in under 60 s on this machine" at a
+// target "ordering of N = 16384 in under 60 s on this machine" at a
 // size no bake here reaches, and how close it comes to the structure the
 // shuffle hid (block-spread cost, compress/ordering_cost.h).
 #include <chrono>

@@ -3,7 +3,7 @@
 // by normal, colour and position the two are the cheapest merge in their
 // voxels, and a patch holding both sends the quad's light out as if from the
 // whole patch, most of which (the ceiling above the quad) sees only the
-// quad's back (docs/benchmarks.md, report, session 9: rows of 0.35-0.47
+// quad's back (docs/benchmarks.md, "What the figures are made of": rows of 0.35-0.47
 // instead of ~0.8, 9% of the indirect light lost at 150 patches). With every
 // voxel merged as far as merging goes (one patch per voxel asked), each patch
 // must still be all emitter or all not.

@@ -161,7 +161,7 @@ TEST(Codec, OursBeatsThePublishedPipelineAtTheSameSize) {
   const MatrixError ep = errors(mp, t), eo = errors(mo, t);
   std::printf("sum |error|: paper %.4g, ours %.4g (ratio %.3f); rel Frobenius %.4g vs %.4g\n",
               ep.sum_abs, eo.sum_abs, eo.sum_abs / ep.sum_abs, ep.rel_frobenius, eo.rel_frobenius);
-  // The target is half the paper's sum |error| at no larger size; on
+  // The codec's target is half the paper's sum |error| at no larger size; on
   // this matrix ours measures 0.26x (0.42x with float32 kept entries; the
   // fitted log range alone takes it from 0.61x).
   EXPECT_LT(eo.sum_abs, 0.5 * ep.sum_abs);
