@@ -265,9 +265,25 @@ void run_report_batch(const ReportOptions& opt, const std::vector<std::string>& 
   if (failed > 0) throw ExitCode{failed == scenes.size() ? 1 : 2};
 }
 
+// The core names a sweep setting by its field (reference_samples,
+// width/height); the user typed its option (--reference-samples,
+// --width/--height).
+void validate_sweep(const ReportSweepSettings& sweep) {
+  try {
+    sweep.validate();
+  } catch (const Error& e) {
+    std::string flags = "--" + e.where();
+    for (std::size_t i = 0; i < flags.size(); ++i) {
+      if (flags[i] == '_') flags[i] = '-';
+      if (flags[i] == '/') flags.insert(i + 1, "--");
+    }
+    throw Error(flags, std::string(e.what()).substr(e.where().size() + 2));
+  }
+}
+
 void run_report(ReportOptions opt) {
   opt.sweep.fill_defaults(opt.quick);
-  opt.sweep.validate();
+  validate_sweep(opt.sweep);
   std::vector<std::string> paths;
   if (!opt.scene.empty()) paths.push_back(opt.scene);
   for (const std::string& p : expand_globs(opt.scenes)) paths.push_back(p);

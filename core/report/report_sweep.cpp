@@ -41,9 +41,9 @@ int parse_bounces(const std::string& b) {
     used = 0;
   }
   if (used != b.size() || k < 1 || k > TransportSettings::kMaxBounces)
-    throw Error("--bounces", "each value must be auto, inf or 1.." +
-                                 std::to_string(TransportSettings::kMaxBounces) + ", got '" + b +
-                                 "'");
+    throw Error("bounces", "each value must be auto, inf or 1.." +
+                               std::to_string(TransportSettings::kMaxBounces) + ", got '" + b +
+                               "'");
   return k;
 }
 
@@ -77,16 +77,16 @@ ReportCodec ReportCodec::parse(const std::string& spec) {
   c.name = spec.substr(0, colon);
   if (c.name != "dense" && c.name != "paper" && c.name != "ours")
     throw Error(
-        "--codecs",
+        "codecs",
         "each codec must be dense, paper or ours (optionally NAME:FRACTION), got '" + spec + "'");
   if (colon != std::string::npos) {
     char* end = nullptr;
     const std::string f = spec.substr(colon + 1);
     const double v = std::strtod(f.c_str(), &end);
     if (f.empty() || *end != '\0' || !(v > 0.0 && v <= 1.0) || c.name == "dense")
-      throw Error("--codecs", "'" + spec +
-                                  "': the kept fraction must be in (0, 1] and only "
-                                  "paper or ours take one");
+      throw Error("codecs", "'" + spec +
+                                "': the kept fraction must be in (0, 1] and only "
+                                "paper or ours take one");
     c.kept_fraction = v;
   }
   return c;
@@ -110,15 +110,15 @@ void ReportSweepSettings::fill_defaults(bool quick) {
 void ReportSweepSettings::validate() const {
   for (const std::string& m : modes)
     if (m != "virtual" && m != "voxel")
-      throw Error("--modes", "each mode must be virtual or voxel, got '" + m + "'");
+      throw Error("modes", "each mode must be virtual or voxel, got '" + m + "'");
   for (int p : patches)
-    if (p < 8 || p > 100000) throw Error("--patches", "each count must be in 8..100000");
+    if (p < 8 || p > 100000) throw Error("patches", "each count must be in 8..100000");
   if (width < 16 || height < 16 || width > 4096 || height > 4096)
-    throw Error("--width/--height", "must be between 16 and 4096 (SSIM needs 11 x 11 windows)");
-  if (reference_samples < 1) throw Error("--reference-samples", "must be at least 1");
-  if (eval_grid < 1 || eval_grid > 1024) throw Error("evaluation grid", "must be in 1..1024");
+    throw Error("width/height", "must be between 16 and 4096 (SSIM needs 11 x 11 windows)");
+  if (reference_samples < 1) throw Error("reference_samples", "must be at least 1");
+  if (eval_grid < 1 || eval_grid > 1024) throw Error("eval_grid", "must be in 1..1024");
   if (transfer != "final-gather" && transfer != "nearest")
-    throw Error("--transfer", "must be final-gather or nearest, got '" + transfer + "'");
+    throw Error("transfer", "must be final-gather or nearest, got '" + transfer + "'");
   for (const std::string& b : bounces) parse_bounces(b);
   for (const std::string& c : codecs) ReportCodec::parse(c);
 }

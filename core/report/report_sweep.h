@@ -28,7 +28,7 @@ struct ReportCodec {
   std::string name;                     // dense, paper, ours
   std::optional<double> kept_fraction;  // paper, ours: a fixed kept share
   std::string label() const;
-  // "ours", "paper", "dense", optionally ":FRACTION"; throws Error("--codecs", ...).
+  // "ours", "paper", "dense", optionally ":FRACTION"; throws Error("codecs", ...).
   static ReportCodec parse(const std::string& spec);
 };
 

@@ -8,9 +8,9 @@ namespace bounce {
 
 VoxelGrid::VoxelGrid(const Bounds& scene_bounds, int resolution) : resolution_(resolution) {
   if (resolution < 1 || resolution > kMaxResolution)
-    throw SettingsError("--voxel", "voxel resolution must be between 1 and " +
-                                       std::to_string(kMaxResolution) + ", got " +
-                                       std::to_string(resolution));
+    throw SettingsError("voxel_resolution", "voxel resolution must be between 1 and " +
+                                                std::to_string(kMaxResolution) + ", got " +
+                                                std::to_string(resolution));
   if (scene_bounds.empty()) throw SettingsError("voxel grid", "the scene has no geometry");
   const glm::vec3 extent = scene_bounds.extent();
   const float longest = std::max({extent.x, extent.y, extent.z});
