@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "runtime/patch_gather.h"
+#include "runtime/transfer_grid.h"
 #include "scene/scene.h"
 
 namespace bounce {

@@ -37,28 +37,12 @@
 #include <vector>
 
 #include <glm/glm.hpp>
-#include <nlohmann/json_fwd.hpp>
 
 #include "patches/patch_set.h"
 #include "raytrace/ray_tracer.h"
-#include "voxel/voxel_grid.h"
+#include "runtime/transfer_grid.h"
 
 namespace bounce {
-
-// The bake's voxel grid, as much of it as the transfer needs: cells are cubes,
-// cell (i, j, k) spans origin + cell_size * [i, i+1] x [j, j+1] x [k, k+1].
-struct TransferGrid {
-  glm::vec3 origin{0.0f};
-  float cell_size = 1.0f;
-  glm::ivec3 dims{1};
-
-  static TransferGrid from(const VoxelGrid& grid);
-  // From a bake manifest's "grid" block (docs/bake-format.md); throws
-  // bounce::Error when it is missing or malformed.
-  static TransferGrid from_manifest(const nlohmann::json& manifest);
-
-  glm::ivec3 cell_of(const glm::vec3& p) const;
-};
 
 struct GatherSettings {
   // Kernel radius in voxel units; at most 1 (the 27 searched cells hold
