@@ -6,6 +6,7 @@
 
 #include "base/error.h"
 #include "compress/codec.h"
+#include "runtime/final_gather_settings.h"
 #include "scene/scene.h"
 #include "transport/transport_settings.h"
 
@@ -53,21 +54,22 @@ struct BakeSettings {
   // form-factor rows are then balanced (formfactor/balance.h); 0: neither,
   // the raw quadrature is kept.
   int closure_rays = 512;
+  // The final gather's defaults are its own (runtime/final_gather_settings.h).
   // Rays per vertex of the lit mesh for the final gather
   // (runtime/final_gather.h) the bake stores; 0: none, the run time spreads
   // patch light to vertices from the nearest patches instead.
-  int final_gather_rays = 256;
+  int final_gather_rays = FinalGatherSettings{}.rays;
   // Within this many voxels of a vertex its gather rays read near sources,
   // lit at their own position each frame (runtime/final_gather.h); 0: none.
-  double final_gather_near = 0.25;
+  double final_gather_near = FinalGatherSettings{}.near;
   // Near sources fewer of the gather's rays landed in go back to the sample
   // or patch the vertices read for that surface (runtime/final_gather.h):
   // each near source costs a shadow ray per light every frame.
-  int final_gather_near_min_rays = 2;
+  int final_gather_near_min_rays = FinalGatherSettings{}.near_min_rays;
   // Points per sample where the vertices' far rays landed on it, each lit
   // every frame, whose light is the sample's (runtime/final_gather.h, spots);
   // 0: samples are lit at their centres.
-  int final_gather_spots = 2;
+  int final_gather_spots = FinalGatherSettings{}.spots;
   std::uint64_t seed = 1;
   bool dump_matrices = false;
 

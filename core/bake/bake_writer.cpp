@@ -12,6 +12,7 @@
 #include "compress/dds.h"
 #include "io/atomic_file.h"
 #include "io/npy.h"
+#include "runtime/final_gather_settings.h"
 
 namespace bounce {
 

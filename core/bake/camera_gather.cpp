@@ -6,6 +6,7 @@
 
 #include "base/error.h"
 #include "patches/surface_patch_lookup.h"
+#include "runtime/final_gather_build.h"
 #include "runtime/patch_gather.h"
 #include "transport/text_format.h"
 #include "voxel/voxel_grid.h"

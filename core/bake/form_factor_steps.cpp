@@ -9,6 +9,7 @@
 
 #include "bake/bake_steps.h"
 #include "runtime/direct_light.h"
+#include "runtime/final_gather_build.h"
 #include "runtime/mesh_transfer.h"
 #include "runtime/seen_first_hit.h"
 
@@ -172,7 +173,7 @@ void final_gather_step(BakeRun& run) {
   const SurfacePatchLookup lookup(r.voxels, r.samples, r.patch_of_sample);
   FinalGatherSettings fg;
   fg.rays = r.settings.final_gather_rays;
-  fg.near_cells = static_cast<float>(r.settings.final_gather_near);
+  fg.near = static_cast<float>(r.settings.final_gather_near);
   fg.near_min_rays = r.settings.final_gather_near_min_rays;
   fg.spots = r.settings.final_gather_spots;
   fg.seed = r.settings.seed;

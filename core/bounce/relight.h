@@ -30,6 +30,7 @@
 #include "runtime/dense_transport.h"
 #include "runtime/direct_light.h"
 #include "runtime/final_gather.h"
+#include "runtime/final_gather_build.h"
 #include "runtime/mesh_transfer.h"
 #include "runtime/patch_gather.h"
 #include "runtime/patch_lighting.h"

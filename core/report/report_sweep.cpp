@@ -18,6 +18,7 @@
 #include "report/exact_patch_light.h"
 #include "runtime/camera_image.h"
 #include "runtime/final_gather.h"
+#include "runtime/final_gather_build.h"
 #include "runtime/mesh_transfer.h"
 #include "runtime/patch_lighting.h"
 

@@ -44,7 +44,7 @@
 // within centimetres of a sunlit ledge sees the part of the ledge next to
 // it, lit or shaded whatever the sample's centre is: on Sponza the 1% of
 // vertices next to sunlit ledges held 83% of the squared vertex error,
-// reading 3-40 times too little light. Rays that land within `near_cells`
+// reading 3-40 times too little light. Rays that land within `near`
 // voxels of their point therefore go to near sources instead: small cells
 // of one triangle's surface within one sample (`near_resolution` per voxel
 // edge), merged over all points, each lit every frame at its own position
@@ -97,43 +97,6 @@ namespace bounce {
 namespace gather_loops {
 struct PaddedLight;  // runtime/gather_row_loops.h
 }  // namespace gather_loops
-
-struct FinalGatherSettings {
-  int rays = 256;  // per point
-  // Patches kept exactly per point: the strongest, until they hold
-  // `coverage` of the point's landed rays, at most `kept`.
-  int kept = 64;
-  double coverage = 0.9;
-  // Samples kept exactly per point before the patches: the strongest, until
-  // they hold `sample_coverage` of the landed rays, at most `sample_kept`
-  // per 256 rays (0: patches only). The cap grows with the rays because the
-  // samples a point's rays reach do: a fixed cap would hand a growing share
-  // of the rays back to patch means as rays are added, and a patch mean
-  // weighs its surface by area where the point weighs it by how it sees it
-  // (the empty Cornell box's walls lost 1% more light at 2048 rays with the
-  // cap fixed at 64 than at 256 rays).
-  int sample_kept = 128;
-  double sample_coverage = 0.5;
-  // The cap on sample entries per point at `rays` rays.
-  std::size_t sample_cap() const;
-  // Near sources: rays landing closer than `near_cells` voxels to their
-  // point (0: none) read a near source, a cell 1 / `near_resolution` of a
-  // voxel across on the surface they hit.
-  float near_cells = 0.25f;
-  int near_resolution = 24;
-  // Near sources fewer rays than this landed in, over all points, go back to
-  // the sample (or patch, or cluster) the points read for that surface.
-  int near_min_rays = 2;
-  // Spots per sample (0: samples are lit at their centres) and the cells
-  // per voxel edge the far rays' landing points are grouped by.
-  int spots = 2;
-  int spot_resolution = 8;
-  // Cluster blocks are this many voxels along each axis.
-  int cluster_voxels = 4;
-  std::uint64_t seed = 1;
-  // Ray origins are lifted off the surface by this many RayTracer::epsilon().
-  float offset_epsilons = 10.0f;
-};
 
 // Surface cells lit on their own each frame (see near sources above): the
 // mean of the points the rays landed on (or the first of them, see above),
@@ -294,15 +257,5 @@ std::vector<glm::vec3> gather_points_of_vertices(const std::vector<glm::vec3>& p
 void light_vertices(const RayTracer& tracer, const std::vector<Light>& lights,
                     const std::vector<AreaLight>& area, const std::vector<glm::vec3>& gathered,
                     LitMesh& mesh);
-
-// Gathers for points `positions` with unit normals `normals` (the side that
-// receives). Thread-parallel; the result does not depend on the thread count.
-// `patches`: the bake's (positions, normals and areas make the clusters);
-// `grid`: its voxel grid.
-FinalGather build_final_gather(const RayTracer& tracer, const SurfacePatchLookup& lookup,
-                               const std::vector<Patch>& patches, const VoxelGrid& grid,
-                               const std::vector<glm::vec3>& positions,
-                               const std::vector<glm::vec3>& normals,
-                               const FinalGatherSettings& settings, Progress* progress = nullptr);
 
 }  // namespace bounce

@@ -1,6 +1,6 @@
 // The final gather's work per frame: the light of its sample and near
 // sources, and the sparse product from every source's light to the points
-// (building the rows is final_gather.cpp, packing them
+// (building the rows is final_gather_build.cpp, packing them
 // final_gather_compact.cpp).
 #include "runtime/final_gather.h"
 

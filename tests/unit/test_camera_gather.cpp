@@ -20,6 +20,7 @@
 #include "patches/surface_patch_lookup.h"
 #include "raytrace/ray_tracer.h"
 #include "runtime/area_lights.h"
+#include "runtime/final_gather_build.h"
 #include "runtime/relighter.h"
 #include "scene/scene_loader.h"
 #include "scratch_dir.h"

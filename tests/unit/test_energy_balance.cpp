@@ -19,6 +19,7 @@
 #include "runtime/area_lights.h"
 #include "runtime/direct_light.h"
 #include "runtime/final_gather.h"
+#include "runtime/final_gather_build.h"
 #include "scene/scene_loader.h"
 #include "test_scenes.h"
 

@@ -21,6 +21,7 @@
 #include "reference/path_tracer.h"
 #include "runtime/direct_light.h"
 #include "runtime/final_gather.h"
+#include "runtime/final_gather_build.h"
 #include "runtime/gather_row_loops.h"
 #include "runtime/mesh_transfer.h"
 #include "test_scenes.h"
@@ -156,14 +157,14 @@ TEST(FinalGather, NearSourcesFollowAShadowEdgeUnderThePoint) {
   }
   FinalGatherSettings with_near;
   with_near.rays = 4096;
-  with_near.near_cells = 1.0f;     // every ray within a voxel
+  with_near.near = 1.0f;           // every ray within a voxel
   with_near.near_resolution = 96;  // 4 mm cells: the edge blurs over one
   // Every cell kept, even one ray's: this is about the cells themselves
   // (4 mm cells take one or two of a point's rays each).
   with_near.near_min_rays = 1;
   // The samples at their centres: no near sources, no spots.
   FinalGatherSettings without_near = with_near;
-  without_near.near_cells = 0.0f;
+  without_near.near = 0.0f;
   without_near.spots = 0;
   const auto gathered = [&](const FinalGatherSettings& fs) {
     const FinalGather g = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
@@ -327,7 +328,7 @@ TEST(FinalGather, NearSourcesLieOnTheFaceTheirRaysLandedOn) {
     }
   FinalGatherSettings fs;
   fs.rays = 2048;
-  fs.near_cells = 1.0f;
+  fs.near = 1.0f;
   fs.near_min_rays = 1;  // every cell kept: this is about where the cells lie
   const FinalGather g = build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid,
                                            points, normals, fs);
@@ -419,7 +420,7 @@ TEST(FinalGather, NearSourcesAtTheFootOfABlockLieInItsLight) {
   }
   FinalGatherSettings fs;
   fs.rays = 2048;
-  fs.near_cells = 1.0f;    // every ray within a voxel
+  fs.near = 1.0f;          // every ray within a voxel
   fs.near_resolution = 4;  // cells 12.5 cm across: one holds the corner
   fs.near_min_rays = 1;    // every cell kept: this is about where the cells lie
   fs.spots = 0;
@@ -551,7 +552,7 @@ TEST(FinalGather, SampleSourcesSplitThePatchesRaysAndKeepTheirLight) {
   // differ between the two), so that only the sample entries differ.
   FinalGatherSettings with_samples;
   ASSERT_GT(with_samples.sample_kept, 0);
-  with_samples.near_cells = 0.0f;  // sample sources alone, lit at their centres
+  with_samples.near = 0.0f;  // sample sources alone, lit at their centres
   with_samples.spots = 0;
   with_samples.kept = 100000;
   with_samples.coverage = 1.0;
@@ -610,7 +611,7 @@ TEST(FinalGather, PatchEntriesCarryTheLightOfTheSamplesTheirRaysLandedOn) {
   // No clusters (their light mixes the rays of two kinds of entry) and no
   // near sources: patch and sample entries only.
   FinalGatherSettings seen;
-  seen.near_cells = 0.0f;
+  seen.near = 0.0f;
   seen.spots = 0;
   seen.kept = 100000;
   seen.coverage = 1.0;
@@ -689,7 +690,7 @@ FinalGather gather_over_the_floor(const RayTracer& tracer, const BakeResult& bak
     points.emplace_back(-0.9f + 1.8f * t, 0.03f + 0.1f * t, 0.5f - t);
     normals.emplace_back(0.0f, -1.0f, 0.0f);
   }
-  fs.near_cells = 1.0f;
+  fs.near = 1.0f;
   return build_final_gather(tracer, lookup, bake.patches.patches, bake.voxels.grid, points, normals,
                             fs);
 }

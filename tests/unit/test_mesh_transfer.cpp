@@ -32,6 +32,7 @@
 #include "runtime/camera_image.h"
 #include "runtime/direct_light.h"
 #include "runtime/final_gather.h"
+#include "runtime/final_gather_build.h"
 #include "runtime/mesh_transfer.h"
 #include "runtime/patch_gather.h"
 #include "scene/scene_loader.h"
