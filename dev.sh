@@ -36,17 +36,20 @@ install_missing_packages() {
 }
 
 # Configures build/release once (again when $1 is "require-all" and the
-# cache lacks BOUNCE_REQUIRE_ALL=ON) and builds incrementally.
+# cache lacks BOUNCE_REQUIRE_ALL=ON) and builds incrementally: the targets
+# after $1 ("require-all" or "any"), or everything when none are given.
 build() {
   install_missing_packages
-  local options=()
+  local options=() targets=()
   [[ "${1:-}" == require-all ]] && options=(-DBOUNCE_REQUIRE_ALL=ON)
+  (($# > 0)) && shift
+  (($# > 0)) && targets=(--target "$@")
   if [[ ! -f "$build_dir/build.ninja" ]] ||
     { ((${#options[@]} > 0)) && ! grep -qx 'BOUNCE_REQUIRE_ALL:BOOL=ON' "$build_dir/CMakeCache.txt"; }; then
     log "configuring Release build in build/release ${options[*]}"
     cmake --preset release "${options[@]}" >/dev/null
   fi
-  cmake --build --preset release -- -j"$(nproc)"
+  cmake --build --preset release "${targets[@]}" -- -j"$(nproc)"
 }
 
 # Tests registered per label; fails when a label has none, so that a part of
@@ -130,7 +133,9 @@ case "$cmd" in
     build
     ;;
   bake)
-    build
+    # Only what baking needs: the `bounce` program and the libraries it links
+    # (not the tests, the studio or the Python module).
+    build any bounce
     scene="resources/scenes/cornell-box"
     if [[ $# -gt 0 && "$1" != -* ]]; then
       scene=$1
