@@ -23,7 +23,8 @@ run_checked(ignored WORKING_DIRECTORY ${WORK}
             COMMAND ${bounce} bake ${PREFIX}/share/bounce/scenes/cornell-box --out bake --voxel 8
                     --final-gather-rays 64 --quiet)
 run_checked(ignored WORKING_DIRECTORY ${WORK}
-            COMMAND ${bounce} solve bake --float32 --light ${light_spec} --out solve --quiet)
+            COMMAND ${bounce} solve bake --float32 --light ${light_spec} --out solve --quiet
+                    --no-images --no-mesh)
 
 run_checked(ignored COMMAND ${CMAKE_COMMAND} -S ${CMAKE_CURRENT_LIST_DIR}/outside_project
                             -B ${WORK}/outside -G Ninja -DCMAKE_BUILD_TYPE=Release
