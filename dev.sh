@@ -4,8 +4,9 @@
 # a Release build once, and builds incrementally.
 #
 #   ./dev.sh bake [SCENE] [bake options]  bake a scene (default: the Cornell box), print the report
-#                                         and its error against the path-traced reference
-#   ./dev.sh test [ctest options]         run the whole test suite with ctest
+#                                         and its error against the path-traced reference (builds
+#                                         only the `bounce` program)
+#   ./dev.sh test [ctest options]         build everything, run the whole test suite with ctest
 #   ./dev.sh build                        set up and build only
 #   ./dev.sh sanitize [ctest options]     unit tests under ASan + UBSan (preset asan, build/asan)
 #   ./dev.sh fuzz [SECONDS|ci]            libFuzzer campaign, SECONDS per target (default 60;
@@ -171,7 +172,7 @@ case "$cmd" in
     fuzz "${1:-60}"
     ;;
   *)
-    sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'
     [[ "$cmd" == help || "$cmd" == -h || "$cmd" == --help ]] || exit 2
     ;;
 esac
