@@ -4,8 +4,9 @@
 # a Release build once, and builds incrementally.
 #
 #   ./dev.sh bake [SCENE] [bake options]  bake a scene (default: the Cornell box), print the report
-#                                         and its error against the path-traced reference
-#   ./dev.sh test [ctest options]         run the whole test suite with ctest
+#                                         and its error against the path-traced reference (builds
+#                                         only the `bounce` program)
+#   ./dev.sh test [ctest options]         build everything, run the whole test suite with ctest
 #   ./dev.sh build                        set up and build only
 #   ./dev.sh sanitize [ctest options]     unit tests under ASan + UBSan (preset asan, build/asan)
 #   ./dev.sh fuzz [SECONDS|ci]            libFuzzer campaign, SECONDS per target (default 60;
@@ -36,17 +37,20 @@ install_missing_packages() {
 }
 
 # Configures build/release once (again when $1 is "require-all" and the
-# cache lacks BOUNCE_REQUIRE_ALL=ON) and builds incrementally.
+# cache lacks BOUNCE_REQUIRE_ALL=ON) and builds incrementally: the targets
+# after $1 ("require-all" or "any"), or everything when none are given.
 build() {
   install_missing_packages
-  local options=()
+  local options=() targets=()
   [[ "${1:-}" == require-all ]] && options=(-DBOUNCE_REQUIRE_ALL=ON)
+  (($# > 0)) && shift
+  (($# > 0)) && targets=(--target "$@")
   if [[ ! -f "$build_dir/build.ninja" ]] ||
     { ((${#options[@]} > 0)) && ! grep -qx 'BOUNCE_REQUIRE_ALL:BOOL=ON' "$build_dir/CMakeCache.txt"; }; then
     log "configuring Release build in build/release ${options[*]}"
     cmake --preset release "${options[@]}" >/dev/null
   fi
-  cmake --build --preset release -- -j"$(nproc)"
+  cmake --build --preset release "${targets[@]}" -- -j"$(nproc)"
 }
 
 # Tests registered per label; fails when a label has none, so that a part of
@@ -130,7 +134,9 @@ case "$cmd" in
     build
     ;;
   bake)
-    build
+    # Only what baking needs: the `bounce` program and the libraries it links
+    # (not the tests, the studio or the Python module).
+    build any bounce
     scene="resources/scenes/cornell-box"
     if [[ $# -gt 0 && "$1" != -* ]]; then
       scene=$1
@@ -166,7 +172,7 @@ case "$cmd" in
     fuzz "${1:-60}"
     ;;
   *)
-    sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'
     [[ "$cmd" == help || "$cmd" == -h || "$cmd" == --help ]] || exit 2
     ;;
 esac

@@ -12,14 +12,4 @@ StoredTransport stored_transport(const LoadedBake& bake) {
   return t;
 }
 
-StoredTransport stored_transport(const TransportResult& transport, const MatrixStorage& storage) {
-  StoredTransport t;
-  t.n = transport.n;
-  t.channel_of_rgb = channel_of_rgb(transport);
-  t.compressed = storage.compressed ? &*storage.compressed : nullptr;
-  if (!storage.compressed) t.dense = stored_channels(transport);
-  t.where = "the bake";
-  return t;
-}
-
 }  // namespace bounce
