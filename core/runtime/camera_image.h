@@ -24,6 +24,7 @@
 #include "base/progress.h"
 #include "io/exr_writer.h"
 #include "raytrace/ray_tracer.h"
+#include "runtime/area_lights.h"
 #include "runtime/patch_gather.h"
 #include "scene/scene.h"
 
@@ -34,7 +35,7 @@ struct CameraImageSettings {
   int height = 480;
   // n x n jittered primary rays per pixel; 1 = one ray through the centre.
   int samples_per_side = 1;
-  int area_light_strata = 4;  // as the bake's direct light of emissive triangles
+  int area_light_strata = kAreaStrata;  // as the bake's direct light of emissive triangles
   bool show_emission = true;  // emitters seen by the camera show their exitance (direct image)
   std::uint64_t seed = 1;     // jitter of pixels and area-light samples
   // The point, spot and directional lights of the direct image; unset: the

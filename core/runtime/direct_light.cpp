@@ -125,6 +125,33 @@ glm::vec3 point_light_power(const RayTracer& tracer, const SampleSet& set,
   return power;
 }
 
+// Each sample's irradiance from the area lights, its shadow rays batched
+// over runs of samples (sample si seeds its jitter with si).
+void area_irradiance_per_sample(const RayTracer& tracer, const SampleSet& samples,
+                                const std::vector<AreaLight>& area_lights, int strata,
+                                std::vector<glm::vec3>& out) {
+  const std::size_t n = area_lights.empty() ? 0 : samples.samples.size();
+  out.assign(n, glm::vec3(0.0f));
+  constexpr std::size_t kRun = 256;
+#pragma omp parallel
+  {
+    std::vector<glm::vec3> p, normal;
+#pragma omp for schedule(dynamic, 1)
+    for (std::int64_t r = 0; r < static_cast<std::int64_t>((n + kRun - 1) / kRun); ++r) {
+      const std::size_t lo = static_cast<std::size_t>(r) * kRun, hi = std::min(n, lo + kRun);
+      p.clear();
+      normal.clear();
+      for (std::size_t si = lo; si < hi; ++si) {
+        p.push_back(samples.samples[si].position);
+        normal.push_back(samples.samples[si].normal);
+      }
+      for (const AreaLight& light : area_lights)
+        add_area_light_irradiance(tracer, p.data(), normal.data(), hi - lo, light, strata, lo,
+                                  &out[lo]);
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
@@ -151,7 +178,8 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const 
 void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
                        std::span<const CarriedPolygonFrame> frames, const PatchSet& patches,
                        const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights,
-                       int area_strata, std::span<glm::vec3> e, std::span<glm::vec3> sample_e) {
+                       int area_strata, std::span<glm::vec3> e, std::span<glm::vec3> sample_e,
+                       AreaLightCache* area_cache) {
   if (!sample_e.empty() && sample_e.size() != samples.samples.size())
     throw Error("direct light", "the per-sample output has " + std::to_string(sample_e.size()) +
                                     " entries for " + std::to_string(samples.samples.size()) +
@@ -173,6 +201,17 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
   // of a sample's sun light).
   std::vector<LightReach> reach;
   for (const Light& light : lights) reach.emplace_back(light);
+  // Kept with the calling thread (or the cache), so that a frame does not
+  // allocate it again; the loop's threads read it through the reference.
+  thread_local std::vector<glm::vec3> kept_area_e;
+  const auto compute_area_e = [&](std::vector<glm::vec3>& out) {
+    area_irradiance_per_sample(tracer, samples, area_lights, area_strata, out);
+  };
+  if (!area_cache) compute_area_e(kept_area_e);
+  const std::vector<glm::vec3>& area_e =
+      area_cache ? area_cache->irradiance(samples.samples.data(), samples.samples.size(),
+                                          area_lights, area_strata, compute_area_e)
+                 : kept_area_e;
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(patches.size()); ++pi) {
     const auto p = static_cast<std::size_t>(pi);
@@ -191,8 +230,7 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
         else
           es += from_light(tracer, s.position, s.normal, reach[li], eps);
       }
-      for (const AreaLight& light : area_lights)
-        es += area_light_irradiance(tracer, s.position, s.normal, light, area_strata, si);
+      if (!area_e.empty()) es += area_e[si];
       power += polygon_power + s.area * es;
       if (!sample_e.empty()) sample_e[si] = s.area > 0.0f ? es + polygon_power / s.area : es;
       area += s.area;

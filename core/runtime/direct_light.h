@@ -17,6 +17,7 @@
 
 #include "patches/patch_set.h"
 #include "raytrace/ray_tracer.h"
+#include "runtime/area_light_cache.h"
 #include "runtime/area_lights.h"
 #include "runtime/carried_polygon_frames.h"
 #include "scene/scene.h"
@@ -29,7 +30,7 @@ namespace bounce {
 std::vector<glm::vec3> direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
                                          const PatchSet& patches, const std::vector<Light>& lights,
                                          const std::vector<AreaLight>& area = {},
-                                         int area_strata = 4);
+                                         int area_strata = kAreaStrata);
 // The same into caller-owned memory (e.g. a frame graph's arena), one entry
 // per patch (throws bounce::Error otherwise). `sample_irradiance`, when not
 // empty (one entry per sample), receives each member sample's own
@@ -42,12 +43,15 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const 
 // The same with the carried polygons' frames computed beforehand
 // (carried_polygon_frames(samples), one per entry of samples.carried), for
 // callers that light the same samples every frame. Throws bounce::Error when
-// the counts differ and a point or spot light needs them.
+// the counts differ and a point or spot light needs them. `area_cache` (if
+// given) keeps the samples' light from the area lights between calls
+// (runtime/area_light_cache.h): it must be used with these samples only.
 void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
                        std::span<const CarriedPolygonFrame> frames, const PatchSet& patches,
                        const std::vector<Light>& lights, const std::vector<AreaLight>& area,
                        int area_strata, std::span<glm::vec3> irradiance,
-                       std::span<glm::vec3> sample_irradiance = {});
+                       std::span<glm::vec3> sample_irradiance = {},
+                       AreaLightCache* area_cache = nullptr);
 
 // Irradiance (per colour channel) at one surface point p with unit normal n
 // (the side that receives), shadow rays included, for callers that shade
@@ -55,7 +59,7 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
 // reproducible per point.
 glm::vec3 irradiance_at(const RayTracer& tracer, const glm::vec3& p, const glm::vec3& n,
                         const std::vector<Light>& lights, const std::vector<AreaLight>& area = {},
-                        int area_strata = 4, std::uint64_t seed = 0);
+                        int area_strata = kAreaStrata, std::uint64_t seed = 0);
 
 // A spot light's cones, for the smoothstep between them (1 for other lights).
 struct SpotCone {

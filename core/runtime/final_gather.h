@@ -89,6 +89,7 @@
 #include "patches/patch_set.h"
 #include "patches/surface_patch_lookup.h"
 #include "raytrace/ray_tracer.h"
+#include "runtime/area_light_cache.h"
 #include "runtime/area_lights.h"
 #include "runtime/mesh_transfer.h"
 
@@ -107,10 +108,10 @@ struct NearSources {
   std::vector<std::uint32_t> patch;
   // The last `spot_count` are spots (FinalGather::spot_first). Under an area
   // light a spot takes one jittered shadow ray per emissive triangle where a
-  // near source takes 4 x 4: a sample's light averages its spots, and a
-  // point's light the hundreds of samples it reads, so the jitter averages
-  // out, while 16 rays for each of the Cornell box's 48,900 spots made a
-  // light move 2.5 times as long.
+  // near source takes kAreaStrata squared: a sample's light averages its
+  // spots, and a point's light the hundreds of samples it reads, so the
+  // jitter averages out, while 16 rays for each of the Cornell box's 48,900
+  // spots made a light move 2.5 times as long.
   std::size_t spot_count = 0;
   std::size_t size() const { return position.size(); }
 };
@@ -201,13 +202,16 @@ struct FinalGather {
   // them (shadow rays from `tracer` to `lights` and `area`, plus their
   // patch's T b from `patch_indirect`), written straight into the product's
   // buffer, then E at every point as irradiance() gives it. `near_seconds`
-  // (if given): the time lighting the near sources took.
+  // (if given): the time lighting the near sources took. `area_cache` (if
+  // given) keeps the near sources' light from the area lights between
+  // frames (runtime/area_light_cache.h); use it with this gather only.
   void irradiance_lighting_near(const std::vector<glm::vec3>& patch_exitance,
                                 const std::vector<glm::vec3>& sample_exitance,
                                 const RayTracer& tracer, const std::vector<Light>& lights,
                                 const std::vector<AreaLight>& area,
                                 const std::vector<glm::vec3>& patch_indirect,
-                                std::vector<glm::vec3>& out, double* near_seconds = nullptr) const;
+                                std::vector<glm::vec3>& out, double* near_seconds = nullptr,
+                                AreaLightCache* area_cache = nullptr) const;
   // Checks the rows: monotone offsets, sources in range, finite weights in
   // [0, 1], row totals at most 1 (+ rounding), clusters' shares. Throws
   // bounce::Error naming `what` and the first bad row.

@@ -89,7 +89,7 @@ void Relighter::gather(const FinalGather& gather, std::vector<glm::vec3>& irradi
     sample_light_.clear();
   // The near sources' light goes straight into the product's buffer.
   gather.irradiance_lighting_near(reflected_, sample_light_, tracer_, lights_, area_, indirect_,
-                                  irradiance, &near_seconds_);
+                                  irradiance, &near_seconds_, &near_area_cache_);
 }
 
 }  // namespace bounce

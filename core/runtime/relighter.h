@@ -17,6 +17,7 @@
 
 #include <glm/glm.hpp>
 
+#include "runtime/area_light_cache.h"
 #include "runtime/final_gather.h"
 #include "runtime/runtime_frame.h"
 #include "runtime/transport_multiplier.h"
@@ -75,6 +76,9 @@ class Relighter {
   std::vector<Light> lights_;
   std::vector<AreaLight> area_;
   mutable double near_seconds_ = 0.0;
+  // The near sources' light from the area lights, kept while they and the
+  // gather stay the same.
+  mutable AreaLightCache near_area_cache_;
   // gather()'s buffers, kept so that a frame does not allocate them again.
   mutable std::vector<glm::vec3> first_hit_, indirect_, reflected_, sample_light_;
   RuntimeFrame frame_;

@@ -101,11 +101,11 @@ void RuntimeFrame::build() {
   if (settings_.sample_irradiance)
     direct_writes.push_back(graph_.add_imported("E per sample", sample_irradiance_.data(),
                                                 sample_irradiance_.size() * sizeof(glm::vec3)));
-  add_timed_pass("direct light", {lights}, direct_writes,
-                 [this, e, span](const FrameGraph::Context& c) {
-                   direct_irradiance(tracer_, samples_, frames_, patches_, *lights_, *area_,
-                                     settings_.area_strata, span(c, e), sample_irradiance_);
-                 });
+  add_timed_pass(
+      "direct light", {lights}, direct_writes, [this, e, span](const FrameGraph::Context& c) {
+        direct_irradiance(tracer_, samples_, frames_, patches_, *lights_, *area_,
+                          settings_.area_strata, span(c, e), sample_irradiance_, &area_cache_);
+      });
   add_timed_pass("first hit", {e}, {b}, [this, e, b, span](const FrameGraph::Context& c) {
     seen_first_hit(samples_, patches_, span(c, e), sample_irradiance_, span(c, b));
   });

@@ -36,6 +36,7 @@
 
 #include "patches/patch_set.h"
 #include "raytrace/ray_tracer.h"
+#include "runtime/area_light_cache.h"
 #include "runtime/area_lights.h"
 #include "runtime/carried_polygon_frames.h"
 #include "runtime/frame_graph.h"
@@ -50,7 +51,7 @@ struct RuntimeFrameSettings {
   // Keep E, b and T b per patch in record() (n x 3 x 3 floats, the layout of
   // `bounce solve`'s patch_light.npy); off: only b, T b and the exitance.
   bool record = true;
-  int area_strata = 4;  // as direct_irradiance()
+  int area_strata = kAreaStrata;  // as direct_irradiance()
   // Copy b and T b out of the arena for first_hit() and indirect() (two
   // persistent per-patch buffers); off: those stay empty, and b and T b are
   // in record() (when settings.record) and exitance().
@@ -118,6 +119,9 @@ class RuntimeFrame {
   // The samples' polygon frames, computed once: they depend on the geometry
   // only, and were most of a point light's cost when computed every frame.
   std::vector<CarriedPolygonFrame> frames_;
+  // The samples' light from the area lights, worked out again only when they
+  // change.
+  AreaLightCache area_cache_;
   // The current frame's lights, set by solve() for the direct-light pass.
   const std::vector<Light>* lights_ = nullptr;
   const std::vector<AreaLight>* area_ = nullptr;

@@ -3,11 +3,13 @@
 // occluder.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "raytrace/ray_tracer.h"
 #include "runtime/area_lights.h"
+#include "runtime/polygon_form_factor.h"
 #include "test_scenes.h"
 
 namespace bounce {
@@ -60,6 +62,37 @@ TEST(AreaLights, AnOccluderCastsASoftShadow) {
     e += area_light_irradiance(tracer, {0, 0, 0}, {0, 0, 1}, l, 32, 7).x;
   const double full = 4 * corner_form_factor(0.5, 0.5);
   EXPECT_NEAR(e, 0.5 * full, 0.02 * full);
+}
+
+TEST(AreaLights, TriangleFormFactorMatchesTheClosedFormAndClipsAtTheHorizon) {
+  // The unit square of the first test as two triangles: the catalogue's value.
+  const glm::vec3 down(0, 0, -1);
+  const glm::vec3 a(-0.5f, -0.5f, 1), b(0.5f, -0.5f, 1), c(0.5f, 0.5f, 1), d(-0.5f, 0.5f, 1);
+  const glm::vec3 p(0, 0, 0), up(0, 0, 1);
+  const double f = triangle_form_factor(p, up, a, c - a, b - a, down, false) +
+                   triangle_form_factor(p, up, a, d - a, c - a, down, false);
+  EXPECT_NEAR(f, 4 * corner_form_factor(0.5, 0.5), 1e-6);
+  // Behind a one-sided emitter: nothing; two-sided: the same from behind.
+  EXPECT_EQ(triangle_form_factor({0, 0, 2}, -up, a, c - a, b - a, down, false), 0.0);
+  EXPECT_NEAR(triangle_form_factor({0, 0, 2}, -up, a, c - a, b - a, down, true),
+              triangle_form_factor(p, up, a, c - a, b - a, down, false), 1e-6);
+  // A receiver tilted so that its plane cuts the square: only the part in
+  // front of it counts. Against the whole emitter sampled densely, with
+  // each sample's cosine clamped at the horizon (1024 x 1024 midpoints).
+  const glm::vec3 tilted = glm::normalize(glm::vec3(1, 0, 0.3f));
+  double sum = 0.0;
+  constexpr int kN = 1024;
+  for (int i = 0; i < kN; ++i)
+    for (int j = 0; j < kN; ++j) {
+      const glm::dvec3 q(-0.5 + (i + 0.5) / kN, -0.5 + (j + 0.5) / kN, 1.0);
+      const double r2 = glm::dot(q, q);
+      const double cos_p = std::max(0.0, glm::dot(glm::dvec3(tilted), q) / std::sqrt(r2));
+      sum += cos_p * (1.0 / std::sqrt(r2)) / r2;
+    }
+  const double expected = sum / (double(kN) * kN) / std::numbers::pi;
+  const double clipped = triangle_form_factor(p, tilted, a, c - a, b - a, down, false) +
+                         triangle_form_factor(p, tilted, a, d - a, c - a, down, false);
+  EXPECT_NEAR(clipped, expected, 1e-4 * expected);
 }
 
 }  // namespace
