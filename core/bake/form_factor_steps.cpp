@@ -213,7 +213,7 @@ void evaluation_lights_step(BakeRun& run) {
                                     const std::vector<AreaLight>& emissive) {
     std::vector<glm::vec3> e(r.patches.size()), b(r.patches.size()),
         sample_e(r.patches.member_seen_weight.empty() ? 0 : r.samples.samples.size());
-    direct_irradiance(*run.tracer, r.samples, r.patches, point, emissive, 4, e, sample_e);
+    direct_irradiance(*run.tracer, r.samples, r.patches, point, emissive, kAreaStrata, e, sample_e);
     seen_first_hit(r.samples, r.patches, e, sample_e, b);
     return b;
   };

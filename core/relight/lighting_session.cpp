@@ -97,6 +97,15 @@ void LightingSession::move_light(const std::string& name, const glm::vec3& posit
   move_named_light(lights_, name, position);
 }
 
+void LightingSession::set_light(const Light& light) {
+  for (Light& l : lights_)
+    if (l.name == light.name) {
+      l = light;
+      return;
+    }
+  move_named_light(lights_, light.name, light.position);  // throws, naming the lights
+}
+
 void LightingSession::reset_lights() {
   lights_ = scene_->lights;
   area_ = bounce::area_lights(*scene_);

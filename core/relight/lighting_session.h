@@ -94,6 +94,9 @@ class LightingSession {
   const std::vector<Light>& lights() const { return lights_; }
   const std::vector<AreaLight>& area_lights() const { return area_; }
   void move_light(const std::string& name, const glm::vec3& position);
+  // Replaces the light named light.name with `light` (a sun turned, a spot
+  // aimed); throws bounce::Error naming the lights when there is none.
+  void set_light(const Light& light);
   // Back to the scene's own lights and emitters.
   void reset_lights();
   // Only these lights, without the scene's emitters (the studio's preview

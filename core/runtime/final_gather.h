@@ -92,6 +92,7 @@
 #include "runtime/area_light_cache.h"
 #include "runtime/area_lights.h"
 #include "runtime/mesh_transfer.h"
+#include "runtime/shadow_budget.h"
 
 namespace bounce {
 
@@ -204,14 +205,17 @@ struct FinalGather {
   // buffer, then E at every point as irradiance() gives it. `near_seconds`
   // (if given): the time lighting the near sources took. `area_cache` (if
   // given) keeps the near sources' light from the area lights between
-  // frames (runtime/area_light_cache.h); use it with this gather only.
+  // frames (runtime/area_light_cache.h); `shadow_budget` (if given)
+  // spreads the shadow rays to the other lights over frames while they
+  // move (runtime/shadow_budget.h). Use each with this gather only.
   void irradiance_lighting_near(const std::vector<glm::vec3>& patch_exitance,
                                 const std::vector<glm::vec3>& sample_exitance,
                                 const RayTracer& tracer, const std::vector<Light>& lights,
                                 const std::vector<AreaLight>& area,
                                 const std::vector<glm::vec3>& patch_indirect,
                                 std::vector<glm::vec3>& out, double* near_seconds = nullptr,
-                                AreaLightCache* area_cache = nullptr) const;
+                                AreaLightCache* area_cache = nullptr,
+                                ShadowBudget* shadow_budget = nullptr) const;
   // Checks the rows: monotone offsets, sources in range, finite weights in
   // [0, 1], row totals at most 1 (+ rounding), clusters' shares. Throws
   // bounce::Error naming `what` and the first bad row.

@@ -83,7 +83,8 @@ void pad_light(const FinalGather& g, const std::vector<glm::vec3>& patch_exitanc
 void light_near_sources(const NearSources& near, const RayTracer* tracer,
                         const std::vector<Light>& lights, const std::vector<AreaLight>& area,
                         const std::vector<glm::vec3>& patch_indirect, float* out,
-                        std::size_t stride, AreaLightCache* area_cache = nullptr);
+                        std::size_t stride, AreaLightCache* area_cache = nullptr,
+                        ShadowBudget* budget = nullptr);
 
 }  // namespace
 
@@ -137,13 +138,13 @@ void FinalGather::irradiance_lighting_near(
     const std::vector<glm::vec3>& patch_exitance, const std::vector<glm::vec3>& sample_exitance,
     const RayTracer& tracer, const std::vector<Light>& lights, const std::vector<AreaLight>& area,
     const std::vector<glm::vec3>& patch_indirect, std::vector<glm::vec3>& out, double* near_seconds,
-    AreaLightCache* area_cache) const {
+    AreaLightCache* area_cache, ShadowBudget* shadow_budget) const {
   check_light(patch_exitance, sample_exitance);
   padded_light.resize(patches + clusters + samples + near.size());
   const auto start = std::chrono::steady_clock::now();
   if (near.size() > 0)
     light_near_sources(near, &tracer, lights, area, patch_indirect,
-                       padded_light[patches + clusters + samples].c, 4, area_cache);
+                       padded_light[patches + clusters + samples].c, 4, area_cache, shadow_budget);
   if (near_seconds)
     *near_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   pad_light(*this, patch_exitance, sample_exitance, nullptr, padded_light);
@@ -251,7 +252,7 @@ void near_area_irradiance(const NearSources& near, const RayTracer& tracer,
 void light_near_sources(const NearSources& near, const RayTracer* tracer,
                         const std::vector<Light>& lights, const std::vector<AreaLight>& area,
                         const std::vector<glm::vec3>& patch_indirect, float* out,
-                        std::size_t stride, AreaLightCache* area_cache) {
+                        std::size_t stride, AreaLightCache* area_cache, ShadowBudget* budget) {
   // The area lights' part, kept with the calling thread (or the cache) and
   // read by the loop's threads through the pointer.
   thread_local std::vector<glm::vec3> kept_area_e;
@@ -283,6 +284,13 @@ void light_near_sources(const NearSources& near, const RayTracer* tracer,
   const std::size_t batches = (n + kBatch - 1) / kBatch;
   std::vector<LightReach> reach;
   for (const Light& light : lights) reach.emplace_back(light);
+  // Each light's kept visibility per source, sized here, before the threads.
+  std::vector<std::uint8_t*> kept_visibility(lights.size(), nullptr);
+  if (budget && tracer) {
+    budget->begin_frame(near.position.data(), batches, lights);
+    for (std::size_t l = 0; l < lights.size(); ++l)
+      kept_visibility[l] = budget->visibility_of(l, n).data();
+  }
 #pragma omp parallel
   {
     // A batch's rays to one light, their unshadowed light and whose they
@@ -296,18 +304,31 @@ void light_near_sources(const NearSources& near, const RayTracer* tracer,
       const std::size_t lo = static_cast<std::size_t>(bi) * kBatch, hi = std::min(n, lo + kBatch);
       e.assign(hi - lo, glm::vec3(0.0f));
       if (tracer) {
-        for (const LightReach& light : reach) {
+        for (std::size_t l = 0; l < reach.size(); ++l) {
+          // Without a budget, or in a batch it traces this frame: the rays
+          // are traced (and their visibility kept); else each point keeps the
+          // visibility it was last traced with.
+          const bool trace = !budget || budget->traced(l, static_cast<std::size_t>(bi));
+          std::uint8_t* const kept = budget ? kept_visibility[l] : nullptr;
           std::size_t m = 0;
           for (std::size_t i = lo; i < hi; ++i) {
+            // A source kept in shadow gets nothing: its light is not needed.
+            if (!trace && !kept[i]) continue;
             // Lifted once here and once more by the light's own offset, as
             // irradiance_at() lifts the point it is given.
             const glm::vec3 at = near.position[i] + eps * near.normal[i];
-            if (light.at(at, near.normal[i], eps, rays[m], value[m]))
+            if (!reach[l].at(at, near.normal[i], eps, rays[m], value[m])) continue;
+            if (trace)
               who[m++] = static_cast<std::uint32_t>(i - lo);
+            else
+              e[i - lo] += value[m];
           }
+          if (!trace) continue;
           tracer->occluded(rays.data(), m, blocked.data());
-          for (std::size_t k = 0; k < m; ++k)
+          for (std::size_t k = 0; k < m; ++k) {
             if (!blocked[k]) e[who[k]] += value[k];
+            if (kept) kept[lo + who[k]] = blocked[k] ? 0 : 1;
+          }
         }
         if (area_e)
           for (std::size_t i = lo; i < hi; ++i) e[i - lo] += (*area_e)[i];

@@ -37,6 +37,7 @@ Relighter::Relighter(const RayTracer& tracer, const SampleSet& samples, const Pa
       tracer_(tracer),
       samples_(samples),
       patches_(patches),
+      near_shadows_(settings.shadow_frames),
       frame_(tracer, samples, patches, multiplier_.multiply_into(),
              with_sample_irradiance(settings.frame)) {
   compile_seconds_ = since(compile_start_);
@@ -89,7 +90,7 @@ void Relighter::gather(const FinalGather& gather, std::vector<glm::vec3>& irradi
     sample_light_.clear();
   // The near sources' light goes straight into the product's buffer.
   gather.irradiance_lighting_near(reflected_, sample_light_, tracer_, lights_, area_, indirect_,
-                                  irradiance, &near_seconds_, &near_area_cache_);
+                                  irradiance, &near_seconds_, &near_area_cache_, &near_shadows_);
 }
 
 }  // namespace bounce

@@ -28,6 +28,11 @@ struct RelighterSettings {
   MultiplyChoice multiply = MultiplyChoice::kAuto;
   CppLoop loop = CppLoop::kMeasured;
   RuntimeFrameSettings frame;
+  // The gather's near sources trace their shadow rays to a light that moved
+  // over this many frames (runtime/shadow_budget.h): 1, every ray in the
+  // frame it moved; k, a k-th of them per frame, the light exact k frames
+  // after the light stops.
+  int shadow_frames = 1;
 };
 
 class Relighter {
@@ -60,6 +65,9 @@ class Relighter {
   double compile_seconds() const { return compile_seconds_; }
   // Seconds the last gather spent lighting its near sources.
   double near_seconds() const { return near_seconds_; }
+  // Shadow-ray batches the last gather traced to its near sources (over all
+  // lights; a light that did not move traces none).
+  std::size_t near_traced_batches() const { return near_shadows_.traced_batches(); }
 
   // The last frame's b and T b per patch, from its published buffers or its
   // record. Throws bounce::Error when the frame keeps neither.
@@ -79,6 +87,7 @@ class Relighter {
   // The near sources' light from the area lights, kept while they and the
   // gather stay the same.
   mutable AreaLightCache near_area_cache_;
+  mutable ShadowBudget near_shadows_;
   // gather()'s buffers, kept so that a frame does not allocate them again.
   mutable std::vector<glm::vec3> first_hit_, indirect_, reflected_, sample_light_;
   RuntimeFrame frame_;

@@ -44,10 +44,10 @@ Fixture& fixture() {
   return f;
 }
 
-std::unique_ptr<LightingSession> open_session() {
+std::unique_ptr<LightingSession> open_session(const LightingSessionSettings& settings = {}) {
   const Fixture& f = fixture();
   auto bake = std::make_shared<const LoadedBake>(BakeReader::read(f.dir / "bake"));
-  return std::make_unique<LightingSession>(bake, f.scene);
+  return std::make_unique<LightingSession>(bake, f.scene, settings);
 }
 
 TEST(LightingSession, DescriptionSaysWhatTheSceneSays) {
@@ -124,6 +124,54 @@ TEST(LightingSession, MovedLightLightsThePatchesAsARelighterLitByHand) {
     ASSERT_EQ(b[p], expected_b[p]) << "patch " << p;
     ASSERT_EQ(tb[p], expected_tb[p]) << "patch " << p;
   }
+}
+
+// The near sources' shadow rays spread over k frames (runtime/shadow_budget.h):
+// a k-th of the batches traced per frame while the lamp moves, none while
+// nothing moves, and k frames after the lamp stops the light is, to the
+// bit, what tracing every ray gives.
+TEST(LightingSession, ShadowRaysSpreadOverFramesAreExactKFramesAfterTheLightStops) {
+  const Fixture& f = fixture();
+  constexpr int kFrames = 4;
+  LightingSessionSettings spread_settings;
+  spread_settings.relighter.shadow_frames = kFrames;
+  auto every = open_session();
+  auto spread = open_session(spread_settings);
+  ASSERT_TRUE(every->final_gather().has_value());
+  const std::size_t near = every->final_gather()->near.size();
+  ASSERT_GT(near, 256u * kFrames) << "batches of near sources to spread";
+  const std::size_t batches = (near + 255) / 256;
+  std::vector<glm::vec3> e_every, e_spread;
+  const auto frame = [&] {
+    every->light();
+    every->vertex_irradiance(e_every);
+    spread->light();
+    spread->vertex_irradiance(e_spread);
+  };
+  frame();
+  ASSERT_EQ(f.scene->lights.size(), 1u);
+  EXPECT_EQ(every->relighter().near_traced_batches(), batches) << "the first frame: all";
+  EXPECT_EQ(e_spread, e_every) << "the first frame traces every ray";
+  const Light& lamp = f.scene->lights.front();
+  ASSERT_EQ(lamp.type, Light::Type::Point);
+  bool differed = false;
+  for (int m = 1; m <= 3; ++m) {
+    const glm::vec3 moved = lamp.position + 0.15f * static_cast<float>(m) * glm::vec3(1, 0, 0);
+    every->move_light(lamp.name, moved);
+    spread->move_light(lamp.name, moved);
+    frame();
+    EXPECT_EQ(every->relighter().near_traced_batches(), batches) << "every ray of the lamp";
+    const std::size_t traced = spread->relighter().near_traced_batches();
+    EXPECT_GE(traced, batches / kFrames);
+    EXPECT_LE(traced, batches / kFrames + 1);
+    differed = differed || e_spread != e_every;
+  }
+  EXPECT_TRUE(differed) << "stale shadows while the lamp moves";
+  for (int still = 1; still <= kFrames; ++still) {
+    frame();
+    EXPECT_EQ(every->relighter().near_traced_batches(), 0u) << "nothing moved";
+  }
+  EXPECT_EQ(e_spread, e_every) << kFrames << " frames after the lamp stopped";
 }
 
 TEST(LightingSession, LitMeshThroughTheFrameEqualsLitMeshThroughItsTb) {
