@@ -21,6 +21,7 @@ LightingSessionSettings preview_settings() {
   LightingSessionSettings s;
   s.relighter.multiply = MultiplyChoice::kAutoCpu;
   s.relighter.frame.record = false;
+  s.relighter.shadow_frames = PreviewLighting::kShadowFrames;
   return s;
 }
 
@@ -50,24 +51,27 @@ PreviewLighting::PreviewLighting(std::shared_ptr<const BakeViewData> data)
 
 PreviewLighting::~PreviewLighting() = default;
 
-PreviewLighting::Solve PreviewLighting::solve(const glm::vec3& light_position) {
+PreviewLighting::Solve PreviewLighting::solve(const glm::vec3& light_position, bool settle) {
   Solve s;
   s.light_position = light_position;
   session_->move_light(light_.name, light_position);
-  auto t = Clock::now();
-  session_->light();
-  s.frame_seconds = since(t);
-  t = Clock::now();
-  // The irradiance each vertex receives: the shaders reflect it with the
-  // albedo under each pixel and add the direct light themselves.
-  session_->vertex_irradiance(s.vertex_irradiance);
-  s.transfer_seconds = since(t);
+  do {
+    auto t = Clock::now();
+    session_->light();
+    s.frame_seconds = since(t);
+    t = Clock::now();
+    // The irradiance each vertex receives: the shaders reflect it with the
+    // albedo under each pixel and add the direct light themselves.
+    session_->vertex_irradiance(s.vertex_irradiance);
+    s.transfer_seconds = since(t);
+    s.settled = session_->relighter().shadows_settled();
+  } while (settle && !s.settled);
   return s;
 }
 
 LitMesh PreviewLighting::lit_mesh(const glm::vec3& light_position) {
-  session_->move_light(light_.name, light_position);
-  session_->light();
+  // Settled first: the lit mesh gathers with the near sources' shadows.
+  solve(light_position, true);
   return session_->lit_mesh();
 }
 

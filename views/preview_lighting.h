@@ -38,7 +38,16 @@ class PreviewLighting {
     std::vector<glm::vec3> vertex_irradiance;
     double frame_seconds = 0.0;     // the frame graph: direct light, first hit, T b
     double transfer_seconds = 0.0;  // patches -> vertices (gather with occlusion rays)
+    // The near sources' shadows are exact for this light position (else
+    // more solves there make them so; see kShadowFrames).
+    bool settled = true;
   };
+
+  // A moving light's shadow rays to the final gather's near sources are
+  // spread over this many solves (runtime/shadow_budget.h): a drag costs a
+  // quarter of them per frame, and kShadowFrames solves at the position
+  // where the light stops make its light exact.
+  static constexpr int kShadowFrames = 4;
 
   // Throws bounce::Error when the bake's scene is not loaded, the scene has
   // no point or spot light, or the bake holds no matrix to multiply by.
@@ -47,7 +56,9 @@ class PreviewLighting {
   PreviewLighting(const PreviewLighting&) = delete;
   PreviewLighting& operator=(const PreviewLighting&) = delete;
 
-  Solve solve(const glm::vec3& light_position);
+  // One frame with the light at `light_position`; `settle`: as many more
+  // there as its shadows need to be exact (at most kShadowFrames in all).
+  Solve solve(const glm::vec3& light_position, bool settle = false);
 
   // The whole light leaving each vertex with the light at `light_position`:
   // emission + albedo x (direct + indirect irradiance), what `bounce solve`

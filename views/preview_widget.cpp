@@ -12,6 +12,7 @@
 #include <QOpenGLShaderProgram>
 #include <QPainter>
 #include <QSurfaceFormat>
+#include <QTimer>
 #include <QVector2D>
 #include <QVector3D>
 #include <QWheelEvent>
@@ -33,6 +34,7 @@ struct PreviewWidget::SolveResult {
   glm::vec3 light_position{0.0f};
   std::vector<glm::vec3> vertex_indirect;
   double frame_seconds = 0.0, transfer_seconds = 0.0;
+  bool settled = true;
 };
 
 namespace {
@@ -103,13 +105,17 @@ void PreviewWidget::set_data(std::shared_ptr<const BakeViewData> bake) {
   reset_camera();
   light_position_ = lighting_->light().position;
   // Solve twice to measure: the policy (UI thread or worker) follows from
-  // what this bake's solve costs here. The faster of the two counts: the
-  // first also pays one-time costs (OpenMP's threads, cold caches).
+  // what a light move costs here. The faster of the two counts: the first
+  // also pays one-time costs (OpenMP's threads, cold caches). The second
+  // moves the light a little, so that it pays what a move pays (a solve
+  // where the light already is traces no shadow rays).
   PreviewLighting::Solve s = lighting_->solve(light_position_);
   const double first = s.frame_seconds + s.transfer_seconds;
-  s = lighting_->solve(light_position_);
+  const glm::vec3 nudge(1e-3f * glm::length(lighting_->scene().bounds().extent()));
+  s = lighting_->solve(light_position_ + nudge);
   solve_on_worker_ = std::min(first, s.frame_seconds + s.transfer_seconds) > kUiSolveBudget;
-  apply({s.light_position, s.vertex_irradiance, s.frame_seconds, s.transfer_seconds});
+  s = lighting_->solve(light_position_, true);
+  apply({s.light_position, s.vertex_irradiance, s.frame_seconds, s.transfer_seconds, s.settled});
   mesh_dirty_ = true;
   update();
 }
@@ -139,10 +145,14 @@ void PreviewWidget::set_light_position(const glm::vec3& position, bool wait) {
   if (!lighting_) return;
   light_position_ = position;
   shadow_dirty_ = true;  // the direct light follows at once, the indirect when solved
+  solve_at(position, wait);
+}
+
+void PreviewWidget::solve_at(const glm::vec3& position, bool wait) {
   if (wait || !solve_on_worker_) {
     std::lock_guard<std::mutex> lock(*lighting_mutex_);
-    const PreviewLighting::Solve s = lighting_->solve(position);
-    apply({s.light_position, s.vertex_irradiance, s.frame_seconds, s.transfer_seconds});
+    const PreviewLighting::Solve s = lighting_->solve(position, wait);
+    apply({s.light_position, s.vertex_irradiance, s.frame_seconds, s.transfer_seconds, s.settled});
   } else {
     jobs_.run<SolveResult>(
         this, kSolveJob,
@@ -150,7 +160,7 @@ void PreviewWidget::set_light_position(const glm::vec3& position, bool wait) {
           std::lock_guard<std::mutex> lock(*mutex);
           const PreviewLighting::Solve s = lighting->solve(position);
           return SolveResult{s.light_position, s.vertex_irradiance, s.frame_seconds,
-                             s.transfer_seconds};
+                             s.transfer_seconds, s.settled};
         },
         [this](SolveResult r) { apply(std::move(r)); },
         [this](const QString& message) {
@@ -163,12 +173,21 @@ void PreviewWidget::set_light_position(const glm::vec3& position, bool wait) {
 
 void PreviewWidget::apply(SolveResult result) {
   solved_light_ = result.light_position;
+  solved_settled_ = result.settled;
   vertex_indirect_ = std::move(result.vertex_indirect);
   frame_seconds_ = result.frame_seconds;
   transfer_seconds_ = result.transfer_seconds;
   indirect_dirty_ = true;
   update();
   emit solved();
+  // Where the light stopped, solve again until its shadows are exact; from
+  // the event loop, so that each frame reaches the screen and a new move
+  // takes over.
+  if (!solved_settled_ && solved_light_ == light_position_)
+    QTimer::singleShot(0, this, [this] {
+      if (lighting_ && !solved_settled_ && solved_light_ == light_position_)
+        solve_at(light_position_, false);
+    });
 }
 
 // --- camera ------------------------------------------------------------------

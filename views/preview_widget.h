@@ -85,6 +85,10 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   glm::vec3 light_position() const { return light_position_; }
   // Position the indirect light on screen belongs to.
   glm::vec3 solved_light_position() const { return solved_light_; }
+  // Whether that indirect light is exact there: a moving light's shadow
+  // rays are spread over a few solves (PreviewLighting::kShadowFrames), and
+  // the preview solves again where it stopped until they are.
+  bool solved_settled() const { return solved_settled_; }
 
   // The picture as the screen shows it (grabFramebuffer).
   QImage render_image();
@@ -134,6 +138,9 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   void upload_indirect();
   void render_shadow_map();
   void apply(SolveResult result);
+  // Solves for the light at `position` (wait: now, on this thread, until
+  // settled), without touching the direct light's shadow map.
+  void solve_at(const glm::vec3& position, bool wait);
   void reset_camera();
   glm::mat4 view_matrix() const;
   glm::mat4 projection_matrix() const;
@@ -154,6 +161,7 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   Passes passes_;
   bool overlay_ = true;
   glm::vec3 light_position_{0.0f}, solved_light_{0.0f};
+  bool solved_settled_ = true;
   std::vector<glm::vec3> vertex_indirect_;  // indirect irradiance per mesh vertex
   double frame_seconds_ = 0.0, transfer_seconds_ = 0.0;
 

@@ -68,6 +68,10 @@ class Relighter {
   // Shadow-ray batches the last gather traced to its near sources (over all
   // lights; a light that did not move traces none).
   std::size_t near_traced_batches() const { return near_shadows_.traced_batches(); }
+  // The near sources' shadows are exact for the lights of the last gather
+  // (always, with shadow_frames 1; else once the gathers since a light last
+  // moved traced every batch).
+  bool shadows_settled() const { return near_shadows_.settled(); }
 
   // The last frame's b and T b per patch, from its published buffers or its
   // record. Throws bounce::Error when the frame keeps neither.

@@ -52,6 +52,10 @@ void ShadowBudget::begin_frame(const void* points, std::size_t batches,
     for (std::size_t b = 0; b < batches; ++b) traced_batches_ += traced(l, b) ? 1 : 0;
 }
 
+bool ShadowBudget::settled() const {
+  return std::all_of(pending_.begin(), pending_.end(), [](int p) { return p == 0; });
+}
+
 std::vector<std::uint8_t>& ShadowBudget::visibility_of(std::size_t l, std::size_t points) {
   std::vector<std::uint8_t>& v = visibility_[l];
   if (v.size() != points) v.assign(points, 1);

@@ -38,6 +38,9 @@ class ShadowBudget {
   std::vector<std::uint8_t>& visibility_of(std::size_t l, std::size_t points);
 
   int frames() const { return static_cast<int>(frames_); }
+  // No light has batches left to trace since it last moved: the kept
+  // visibility is exact.
+  bool settled() const;
   // Batches traced in the last frame, over all lights.
   std::size_t traced_batches() const { return traced_batches_; }
 

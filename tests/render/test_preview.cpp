@@ -127,15 +127,18 @@ TEST_F(Preview, MovingTheLightBrightensTheNearSide) {
 TEST_F(Preview, TheLatestLightPositionWins) {
   // As a drag does: several moves without waiting. Whichever thread the
   // policy picked for this bake, the indirect light on screen ends up being
-  // the last position's, and the frame equals a solve made there directly.
+  // the last position's, and once its spread shadow rays have settled there
+  // the frame equals a solve made there directly.
   const glm::vec3 last(0.3f, 0.8f, 0.2f);
   for (const float x : {-0.4f, -0.2f, 0.0f, 0.1f}) view_.set_light_position({x, 1.2f, 0.1f});
   view_.set_light_position(last);
   QElapsedTimer waited;
   waited.start();
-  while (view_.solved_light_position() != last && waited.elapsed() < 60'000)
+  while ((view_.solved_light_position() != last || !view_.solved_settled()) &&
+         waited.elapsed() < 60'000)
     QApplication::processEvents(QEventLoop::AllEvents, 50);
   ASSERT_EQ(view_.solved_light_position(), last) << "the last light position was never solved";
+  ASSERT_TRUE(view_.solved_settled()) << "the preview did not solve again where the light stopped";
   const QImage dragged = shot({});
   view_.set_light_position(last, true);
   const QImage direct = shot({});
