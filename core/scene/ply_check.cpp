@@ -399,6 +399,14 @@ void check_ply_structure(const std::filesystem::path& file) {
         fail(file, "element '" + name + "' declares " + count + " items" + on_line(line_number) +
                        ", more than the PLY reader (Assimp 5.2) can count (" +
                        std::to_string(kMaxAssimpCount) + ")");
+      // Assimp 5.2 reads every element of one name into one array sized by
+      // the first: a second, longer "element vertex" wrote past its end
+      // (fuzzing: heap corruption in the uninstrumented library).
+      for (const PlyElementLayout& earlier : elements)
+        if (earlier.name == name)
+          fail(file, "element '" + name + "' is declared twice (lines " +
+                         std::to_string(earlier.line) + " and " + std::to_string(line_number) +
+                         "): the PLY reader (Assimp 5.2) would read both into one array");
       elements.push_back({name, std::stoull(count), line_number, {}});
     } else if (keyword == "property") {
       if (elements.empty()) fail(file, "property before any element" + on_line(line_number));

@@ -129,6 +129,15 @@ TEST_F(PlyCheck, CountHiddenInAnElementNameIsRefused) {
   expect_refused(text + kVertices + "4 0 1 2 3\n", "element '99999999999999face' on line 7 is not");
 }
 
+TEST_F(PlyCheck, AnElementDeclaredTwiceIsRefused) {
+  // The fuzz input: a second, longer vertex element, which Assimp read into
+  // the first one's array, past its end.
+  std::string text = header("ascii");
+  text.insert(text.find("end_header"), "element vertex 5\nproperty float x\n");
+  expect_refused(text + kVertices + "4 0 1 2 3\n0\n0\n0\n0\n0\n",
+                 "element 'vertex' is declared twice (lines 3 and 9)");
+}
+
 TEST_F(PlyCheck, CommentsAreNotCounted) {
   // Assimp 5.2.5 skips comment lines, numbers and element names in them too.
   for (const char* comment : {"comment 4000000000 points scanned\n", "comment vertex 7\n",
