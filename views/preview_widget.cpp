@@ -106,15 +106,16 @@ void PreviewWidget::set_data(std::shared_ptr<const BakeViewData> bake) {
   light_position_ = lighting_->light().position;
   // Solve twice to measure: the policy (UI thread or worker) follows from
   // what a light move costs here. The faster of the two counts: the first
-  // also pays one-time costs (OpenMP's threads, cold caches). The second
-  // moves the light a little, so that it pays what a move pays (a solve
-  // where the light already is traces no shadow rays).
-  PreviewLighting::Solve s = lighting_->solve(light_position_);
-  const double first = s.frame_seconds + s.transfer_seconds;
+  // also pays one-time costs (OpenMP's threads, cold caches). The first is
+  // a little off the light's place, so that the second is a move, as a drag
+  // pays it (a solve where the light already is traces no shadow rays);
+  // then the light is settled there.
   const glm::vec3 nudge(1e-3f * glm::length(lighting_->scene().bounds().extent()));
-  s = lighting_->solve(light_position_ + nudge);
+  PreviewLighting::Solve s = lighting_->solve(light_position_ + nudge);
+  const double first = s.frame_seconds + s.transfer_seconds;
+  s = lighting_->solve(light_position_);
   solve_on_worker_ = std::min(first, s.frame_seconds + s.transfer_seconds) > kUiSolveBudget;
-  s = lighting_->solve(light_position_, true);
+  if (!s.settled) s = lighting_->solve(light_position_, true);
   apply({s.light_position, s.vertex_irradiance, s.frame_seconds, s.transfer_seconds, s.settled});
   mesh_dirty_ = true;
   update();

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "base/form_factor_kernel.h"
 #include "base/random.h"
-#include "runtime/polygon_form_factor.h"
 #include "scene/texture.h"
 
 namespace bounce {
@@ -106,22 +106,38 @@ void add_stratum_rays(const glm::vec3& origin, const glm::vec3& n, const AreaLig
     }
 }
 
+// The form factor from (origin, n) to the emitter, 0 from behind a
+// one-sided one.
+double emitter_form_factor(const glm::vec3& origin, const glm::vec3& n, const AreaLight& light,
+                           const glm::vec3 (&corners)[3]) {
+  const float side = glm::dot(light.normal, origin - light.v0);
+  if (!(side > 0.0f) && !(light.two_sided && side < 0.0f)) return 0.0;
+  return point_to_polygon_form_factor(origin, n, corners, 3);
+}
+
 // One point's rays: untextured, only where the emitter is in sight, and one
-// ray to the visible part's middle when no stratum point landed on it (a
-// sliver above the receiver's horizon).
+// ray to the mean of its corners above the receiver's horizon (a point of
+// the part in sight) when no stratum point landed on that part (a sliver).
 void add_point_rays(const glm::vec3& origin, const glm::vec3& n, const AreaLight& light, int strata,
                     std::uint64_t seed, StratumRays& out) {
   if (light.emission_texture) {
     add_stratum_rays(origin, n, light, strata, seed, out);
   } else {
-    glm::vec3 visible_point(0.0f);
-    const double f = triangle_form_factor(origin, n, light.v0, light.e1, light.e2, light.normal,
-                                          light.two_sided, &visible_point);
+    const glm::vec3 corners[3] = {light.v0, light.v0 + light.e1, light.v0 + light.e2};
+    const double f = emitter_form_factor(origin, n, light, corners);
     out.form_factor.push_back(f);
     if (f > 0.0) {
       add_stratum_rays(origin, n, light, strata, seed, out);
-      if (out.ray.size() == out.first.back())
-        out.add(origin, visible_point - origin, 1.0f, glm::vec3(1.0f));
+      if (out.ray.size() == out.first.back()) {
+        glm::vec3 above(0.0f);
+        float count = 0.0f;
+        for (const glm::vec3& c : corners)
+          if (glm::dot(n, c - origin) > 0.0f) {
+            above += c;
+            count += 1.0f;
+          }
+        out.add(origin, above / count - origin, 1.0f, glm::vec3(1.0f));
+      }
     }
   }
   out.first.push_back(static_cast<std::uint32_t>(out.ray.size()));
@@ -165,6 +181,24 @@ void add_area_light_irradiance(const RayTracer& tracer, const glm::vec3* p, cons
     rays.blocked.resize(rays.ray.size());
     tracer.occluded(rays.ray.data(), rays.ray.size(), rays.blocked.data());
     for (std::size_t i = lo; i < hi; ++i) e[i] += point_irradiance(rays, i - lo, light, strata);
+  }
+}
+
+void area_irradiance_at_points(const RayTracer& tracer, std::span<const glm::vec3> p,
+                               std::span<const glm::vec3> n, const std::vector<AreaLight>& area,
+                               int strata, std::size_t one_ray_from, std::vector<glm::vec3>& out) {
+  const std::size_t count = area.empty() ? 0 : p.size();
+  out.assign(count, glm::vec3(0.0f));
+  constexpr std::size_t kRun = 256;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t r = 0; r < static_cast<std::int64_t>((count + kRun - 1) / kRun); ++r) {
+    const std::size_t lo = static_cast<std::size_t>(r) * kRun, hi = std::min(count, lo + kRun);
+    const std::size_t mid = std::clamp(one_ray_from, lo, hi);
+    for (const AreaLight& light : area) {
+      add_area_light_irradiance(tracer, &p[lo], &n[lo], mid - lo, light, strata, lo, &out[lo]);
+      add_area_light_irradiance(tracer, p.data() + mid, n.data() + mid, hi - mid, light, 1, mid,
+                                out.data() + mid);
+    }
   }
 }
 

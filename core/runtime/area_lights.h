@@ -7,15 +7,17 @@
 // radiance is M / pi and the irradiance at p with normal n is
 //   E = (M / pi) * integral over the triangle of V cos_p cos_l / r^2 dA,
 // with V the visibility. An untextured emitter's integral without V is the
-// form factor, known in closed form (runtime/polygon_form_factor.h); only V
-// is sampled, as the ratio of the integrand's jittered samples that reach
-// the emitter (a ratio estimator: exact wherever the emitter is wholly seen
-// or wholly hidden, noisy only in a penumbra). A textured emitter is sampled
+// form factor, known in closed form (point_to_polygon_form_factor in
+// base/form_factor_kernel.h); only V is sampled, as the ratio of the
+// integrand's jittered samples that reach the emitter (a ratio estimator:
+// exact wherever the emitter is wholly seen or wholly hidden, noisy only in
+// a penumbra). A textured emitter is sampled
 // whole: g x g jittered strata, each weighed by its texel (stratified Monte
 // Carlo, error falling as g^-3/2 for smooth integrands).
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -62,5 +64,13 @@ glm::vec3 area_light_irradiance(const RayTracer& tracer, const glm::vec3& p, con
 void add_area_light_irradiance(const RayTracer& tracer, const glm::vec3* p, const glm::vec3* n,
                                std::size_t count, const AreaLight& light, int strata,
                                std::uint64_t first_seed, glm::vec3* e);
+
+// The irradiance from all of `area` at each point (p[i], n[i]) into out
+// (sized here; empty when there are no area lights), on the threads in runs
+// of points: point i takes seed i, `strata` squared rays per light, or one
+// from point `one_ray_from` on.
+void area_irradiance_at_points(const RayTracer& tracer, std::span<const glm::vec3> p,
+                               std::span<const glm::vec3> n, const std::vector<AreaLight>& area,
+                               int strata, std::size_t one_ray_from, std::vector<glm::vec3>& out);
 
 }  // namespace bounce

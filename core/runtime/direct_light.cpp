@@ -125,31 +125,19 @@ glm::vec3 point_light_power(const RayTracer& tracer, const SampleSet& set,
   return power;
 }
 
-// Each sample's irradiance from the area lights, its shadow rays batched
-// over runs of samples (sample si seeds its jitter with si).
+// Each sample's irradiance from the area lights (sample si seeds its jitter
+// with si).
 void area_irradiance_per_sample(const RayTracer& tracer, const SampleSet& samples,
                                 const std::vector<AreaLight>& area_lights, int strata,
                                 std::vector<glm::vec3>& out) {
-  const std::size_t n = area_lights.empty() ? 0 : samples.samples.size();
-  out.assign(n, glm::vec3(0.0f));
-  constexpr std::size_t kRun = 256;
-#pragma omp parallel
-  {
-    std::vector<glm::vec3> p, normal;
-#pragma omp for schedule(dynamic, 1)
-    for (std::int64_t r = 0; r < static_cast<std::int64_t>((n + kRun - 1) / kRun); ++r) {
-      const std::size_t lo = static_cast<std::size_t>(r) * kRun, hi = std::min(n, lo + kRun);
-      p.clear();
-      normal.clear();
-      for (std::size_t si = lo; si < hi; ++si) {
-        p.push_back(samples.samples[si].position);
-        normal.push_back(samples.samples[si].normal);
-      }
-      for (const AreaLight& light : area_lights)
-        add_area_light_irradiance(tracer, p.data(), normal.data(), hi - lo, light, strata, lo,
-                                  &out[lo]);
-    }
+  out.clear();
+  if (area_lights.empty()) return;
+  std::vector<glm::vec3> p, n;
+  for (const Sample& s : samples.samples) {
+    p.push_back(s.position);
+    n.push_back(s.normal);
   }
+  area_irradiance_at_points(tracer, p, n, area_lights, strata, p.size(), out);
 }
 
 }  // namespace
@@ -201,17 +189,15 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
   // of a sample's sun light).
   std::vector<LightReach> reach;
   for (const Light& light : lights) reach.emplace_back(light);
-  // Kept with the calling thread (or the cache), so that a frame does not
-  // allocate it again; the loop's threads read it through the reference.
-  thread_local std::vector<glm::vec3> kept_area_e;
-  const auto compute_area_e = [&](std::vector<glm::vec3>& out) {
-    area_irradiance_per_sample(tracer, samples, area_lights, area_strata, out);
-  };
-  if (!area_cache) compute_area_e(kept_area_e);
+  // The samples' light from the area lights: the caller's kept one, or
+  // worked out for this call alone.
+  AreaLightCache this_call;
   const std::vector<glm::vec3>& area_e =
-      area_cache ? area_cache->irradiance(samples.samples.data(), samples.samples.size(),
-                                          area_lights, area_strata, compute_area_e)
-                 : kept_area_e;
+      (area_cache ? *area_cache : this_call)
+          .irradiance(samples.samples.data(), samples.samples.size(), area_lights, area_strata,
+                      [&](auto& out) {
+                        area_irradiance_per_sample(tracer, samples, area_lights, area_strata, out);
+                      });
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(patches.size()); ++pi) {
     const auto p = static_cast<std::size_t>(pi);

@@ -223,52 +223,28 @@ namespace {
 // seeds its jitter with i.
 void near_area_irradiance(const NearSources& near, const RayTracer& tracer,
                           const std::vector<AreaLight>& area, std::vector<glm::vec3>& out) {
-  const std::size_t n = near.size(), first_spot = n - std::min(n, near.spot_count);
+  const std::size_t n = near.size();
   const float eps = 10.0f * tracer.epsilon();
-  out.assign(n, glm::vec3(0.0f));
-  constexpr std::size_t kRun = 256;
-#pragma omp parallel
-  {
-    std::vector<glm::vec3> lifted;
-#pragma omp for schedule(dynamic, 1)
-    for (std::int64_t r = 0; r < static_cast<std::int64_t>((n + kRun - 1) / kRun); ++r) {
-      const std::size_t lo = static_cast<std::size_t>(r) * kRun, hi = std::min(n, lo + kRun);
-      // Lifted once here and once more by the light's own offset, as
-      // irradiance_at() lifts the point it is given.
-      lifted.clear();
-      for (std::size_t i = lo; i < hi; ++i)
-        lifted.push_back(near.position[i] + eps * near.normal[i]);
-      const std::size_t mid = std::clamp(first_spot, lo, hi);
-      for (const AreaLight& light : area) {
-        add_area_light_irradiance(tracer, lifted.data(), near.normal.data() + lo, mid - lo, light,
-                                  kAreaStrata, lo, &out[lo]);
-        add_area_light_irradiance(tracer, lifted.data() + (mid - lo), near.normal.data() + mid,
-                                  hi - mid, light, 1, mid, out.data() + mid);
-      }
-    }
-  }
+  // Lifted once here and once more by the light's own offset, as
+  // irradiance_at() lifts the point it is given.
+  std::vector<glm::vec3> lifted(n);
+  for (std::size_t i = 0; i < n; ++i) lifted[i] = near.position[i] + eps * near.normal[i];
+  area_irradiance_at_points(tracer, lifted, near.normal, area, kAreaStrata,
+                            n - std::min(n, near.spot_count), out);
 }
 
 void light_near_sources(const NearSources& near, const RayTracer* tracer,
                         const std::vector<Light>& lights, const std::vector<AreaLight>& area,
                         const std::vector<glm::vec3>& patch_indirect, float* out,
                         std::size_t stride, AreaLightCache* area_cache, ShadowBudget* budget) {
-  // The area lights' part, kept with the calling thread (or the cache) and
-  // read by the loop's threads through the pointer.
-  thread_local std::vector<glm::vec3> kept_area_e;
+  // The area lights' part: the caller's kept one, or worked out for this
+  // call alone.
+  AreaLightCache this_call;
   const std::vector<glm::vec3>* area_e = nullptr;
-  if (tracer && !area.empty()) {
-    const auto compute = [&](std::vector<glm::vec3>& e) {
-      near_area_irradiance(near, *tracer, area, e);
-    };
-    if (area_cache) {
-      area_e =
-          &area_cache->irradiance(near.position.data(), near.size(), area, kAreaStrata, compute);
-    } else {
-      compute(kept_area_e);
-      area_e = &kept_area_e;
-    }
-  }
+  if (tracer && !area.empty())
+    area_e = &(area_cache ? *area_cache : this_call)
+                  .irradiance(near.position.data(), near.size(), area, kAreaStrata,
+                              [&](auto& e) { near_area_irradiance(near, *tracer, area, e); });
   const std::size_t n = near.size();
   // The first source naming a patch that is not there, checked on the
   // threads as each source is written (n: none).

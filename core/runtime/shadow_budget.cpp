@@ -35,15 +35,13 @@ void ShadowBudget::begin_frame(const void* points, std::size_t batches,
   } else {
     for (std::size_t l = 0; l < lights.size(); ++l) {
       if (!same_rays(lights[l], lights_[l])) pending_[l] = static_cast<int>(frames_);
-      if (frames_ == 1) {
-        slice_[l] = pending_[l] > 0 ? kAll : kNone;
-      } else if (pending_[l] > 0) {
-        slice_[l] = cursor_[l];
+      if (pending_[l] > 0) {
+        slice_[l] = cursor_[l];  // with k = 1, always 0: every batch
         cursor_[l] = (cursor_[l] + 1) % static_cast<int>(frames_);
+        --pending_[l];
       } else {
         slice_[l] = kNone;
       }
-      pending_[l] = std::max(0, pending_[l] - 1);
     }
   }
   lights_ = lights;
