@@ -32,8 +32,8 @@ ErrorView::ErrorView(ViewJobs& jobs, QWidget* parent)
       table_(new QTableWidget(4, 4, this)),
       table_caption_(new QLabel(tr("Click a block of the right heatmap"), this)) {
   codec_box_->addItem(tr("as baked"), kUnset);
-  codec_box_->addItem(tr("paper (published BC1)"), static_cast<int>(CodecChoice::Paper));
-  codec_box_->addItem(tr("ours"), static_cast<int>(CodecChoice::Ours));
+  codec_box_->addItem(tr("paper (published BC1)"), static_cast<int>(CodecChoice::LargestEntries));
+  codec_box_->addItem(tr("ours"), static_cast<int>(CodecChoice::LightWeighted));
   codec_box_->setToolTip(
       tr("Compare codecs on this bake: re-compresses its "
          "exact matrix (T.npy) with the bake's "
@@ -41,8 +41,8 @@ ErrorView::ErrorView(ViewJobs& jobs, QWidget* parent)
          "the background. 'as baked' shows "
          "the stored T.dds"));
   ordering_box_->addItem(tr("codec's own"), kUnset);
-  for (OrderingMethod m :
-       {OrderingMethod::None, OrderingMethod::Paper1, OrderingMethod::Paper2, OrderingMethod::Ours})
+  for (OrderingMethod m : {OrderingMethod::None, OrderingMethod::GreedyRowTour,
+                           OrderingMethod::GreedyRowThenColumnTour, OrderingMethod::SketchTour})
     ordering_box_->addItem(QString::fromUtf8(ordering_name(m)), static_cast<int>(m));
   ordering_box_->setToolTip(
       tr("Row/column ordering of the comparison: which "
@@ -190,7 +190,8 @@ void ErrorView::compare(std::optional<CodecChoice> codec, std::optional<Ordering
     return;
   }
   BakeSettings s;
-  s.codec = codec.value_or(own.codec == "paper" ? CodecChoice::Paper : CodecChoice::Ours);
+  s.codec = codec.value_or(own.codec == "paper" ? CodecChoice::LargestEntries
+                                                : CodecChoice::LightWeighted);
   s.kept_fraction = own.kept_fraction;  // compare at the bake's share of exact entries
   s.ordering = ordering;
   s.pictures = false;

@@ -3,7 +3,7 @@
 // (the published pipeline: libsquish cluster fit, the greedy L1 tour in two
 // passes, 4% kept) and with our default codec as the last row.
 //
-// The grid rows are the published pipeline (CodecKind::Paper: its kept split
+// The grid rows are the published pipeline (CodecKind::LargestEntries: its kept split
 // and log quantiser) with the encoder and the ordering swapped, so each
 // column isolates one of the two; the last row is our whole codec, whose
 // quantiser differs too.
@@ -34,8 +34,9 @@ namespace bounce::cli {
 
 namespace {
 
-constexpr OrderingMethod kAllOrderings[] = {OrderingMethod::None, OrderingMethod::Paper1,
-                                            OrderingMethod::Paper2, OrderingMethod::Ours};
+constexpr OrderingMethod kAllOrderings[] = {OrderingMethod::None, OrderingMethod::GreedyRowTour,
+                                            OrderingMethod::GreedyRowThenColumnTour,
+                                            OrderingMethod::SketchTour};
 
 struct CompressBenchOptions {
   BakeOptions bake;  // the scene(s) or bake folder(s), bake settings, --json, --quiet
@@ -297,7 +298,7 @@ BenchResult run_one(const ExactTransport& exact, double kept,
   };
   const bool paper_in_grid = kept == kPaperKeptFraction &&
                              has_encoder(Bc1Encoder::kSquishClusterFit) &&
-                             has_ordering(OrderingMethod::Paper2);
+                             has_ordering(OrderingMethod::GreedyRowThenColumnTour);
   const std::size_t steps = encoders.size() * orderings.size() + (paper_in_grid ? 4 : 5) +
                             (exact.channels.size() > 1 ? 3 : 0);
   RowRunner runner(exact, progress, verbose, steps);
@@ -310,7 +311,7 @@ BenchResult run_one(const ExactTransport& exact, double kept,
   for (std::size_t o = 0; o < orderings.size(); ++o)
     for (std::size_t e = 0; e < encoders.size(); ++e) {
       CodecSettings s;
-      s.kind = CodecKind::Paper;  // the published quantiser; encoder and ordering swapped
+      s.kind = CodecKind::LargestEntries;  // the published quantiser; encoder and ordering swapped
       s.kept_fraction = kept;
       s.bc1_encoder = encoders[e];
       s.ordering = orderings[o];
@@ -319,16 +320,16 @@ BenchResult run_one(const ExactTransport& exact, double kept,
           std::string(bc1_encoder_name(encoders[e])) + " + " + ordering_name(orderings[o]), s,
           &cache);
       if (paper_in_grid && encoders[e] == Bc1Encoder::kSquishClusterFit &&
-          orderings[o] == OrderingMethod::Paper2)
+          orderings[o] == OrderingMethod::GreedyRowThenColumnTour)
         b.paper_index = index;
     }
 
   if (!paper_in_grid) {
     CodecSettings s;
-    s.kind = CodecKind::Paper;
+    s.kind = CodecKind::LargestEntries;
     s.kept_fraction = kPaperKeptFraction;
     s.bc1_encoder = Bc1Encoder::kSquishClusterFit;
-    s.ordering = OrderingMethod::Paper2;
+    s.ordering = OrderingMethod::GreedyRowThenColumnTour;
     // The grid's orderings were computed on codes of another kept fraction.
     b.paper = runner.run("paper: squish-cluster + paper-2-passes", s,
                          kept == kPaperKeptFraction ? &cache : nullptr);
@@ -342,9 +343,9 @@ BenchResult run_one(const ExactTransport& exact, double kept,
   // quantiser gives other codes than the paper's, and the holes differ
   // between the two, so each ordering is computed anew.
   CodecSettings s;
-  s.kind = CodecKind::Ours;
+  s.kind = CodecKind::LightWeighted;
   s.kept_fraction = kept;
-  s.ordering = OrderingMethod::Ours;
+  s.ordering = OrderingMethod::SketchTour;
   s.kept_storage = KeptStorage::kFloat32;
   b.ours_largest = runner.run("ours, largest entries kept", s, nullptr);
   const EntryImportance importance =

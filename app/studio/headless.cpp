@@ -147,7 +147,9 @@ void take_screenshot(const ScreenshotRequest& r) {
         failure = why;
         done = true;
       });
-      v->compare(r.compare_codec == "paper" ? CodecChoice::Paper : CodecChoice::Ours, std::nullopt);
+      v->compare(
+          r.compare_codec == "paper" ? CodecChoice::LargestEntries : CodecChoice::LightWeighted,
+          std::nullopt);
       while (!done) QApplication::processEvents(QEventLoop::WaitForMoreEvents);
       if (!failure.isEmpty()) throw Error("--compare-codec", failure.toStdString());
     }

@@ -161,7 +161,7 @@ void SettingsPanel::update_enabled() {
   patches_total_box_->setEnabled(grid == GridChoice::PatchesTotal);
   const QString codec = codec_box_->currentData().toString();
   const bool compressed = codec != to_string(CodecChoice::Dense);
-  const bool paper = codec == to_string(CodecChoice::Paper);
+  const bool paper = codec == to_string(CodecChoice::LargestEntries);
   // The paper's codec has no error budget: it keeps a fixed share.
   kept_mode_box_->setEnabled(compressed && !paper);
   ordering_box_->setEnabled(compressed);
@@ -223,7 +223,7 @@ void SettingsPanel::apply(const BakeSettings& s) {
   }
   if (s.kept_fraction)
     kept_mode_box_->setCurrentIndex(1);
-  else if (s.codec == CodecChoice::Ours)
+  else if (s.codec == CodecChoice::LightWeighted)
     kept_mode_box_->setCurrentIndex(0);
   update_enabled();
 }

@@ -17,7 +17,7 @@ void BakeSettings::apply_scene_defaults(const BakeDefaults& d) {
   if (!samples_per_face) samples_per_face = d.samples_per_face.value_or(kDefaultSamplesPerFace);
   // The scene's budget only where a budget applies: a kept fraction, the
   // paper's pipeline and the dense matrix each decide the matrix otherwise.
-  if (!error_budget && d.error_budget && !kept_fraction && codec != CodecChoice::Paper &&
+  if (!error_budget && d.error_budget && !kept_fraction && codec != CodecChoice::LargestEntries &&
       codec != CodecChoice::Dense)
     error_budget = d.error_budget;
 }
@@ -29,12 +29,12 @@ static void require(bool ok, const char* setting, const std::string& what) {
 void BakeSettings::validate() const {
   for (const SettingRow& row : settings_table()) check_setting(row, row.get(*this));
   require(!(size_limit &&
-            (kept_fraction || codec == CodecChoice::Paper || codec == CodecChoice::Dense)),
+            (kept_fraction || codec == CodecChoice::LargestEntries || codec == CodecChoice::Dense)),
           "size_limit",
           "only bounds the error budget's search (codec auto or ours without a kept fraction)");
   require(!(kept_fraction && error_budget), "error_budget",
           "cannot be combined with kept_fraction: the budget chooses the kept fraction");
-  require(!(codec == CodecChoice::Paper && error_budget), "error_budget",
+  require(!(codec == CodecChoice::LargestEntries && error_budget), "error_budget",
           "does not apply to codec paper, which keeps the published 4% (set kept_fraction)");
   require(!(codec == CodecChoice::Dense && (kept_fraction || error_budget)),
           kept_fraction ? "kept_fraction" : "error_budget",
@@ -61,9 +61,9 @@ const char* to_string(CodecChoice codec) {
       return "auto";
     case CodecChoice::Dense:
       return "dense";
-    case CodecChoice::Paper:
+    case CodecChoice::LargestEntries:
       return "paper";
-    case CodecChoice::Ours:
+    case CodecChoice::LightWeighted:
       return "ours";
   }
   return "?";

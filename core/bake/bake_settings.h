@@ -15,12 +15,13 @@ namespace bounce {
 enum class PatchMode { Virtual, Voxel };
 
 // How the multi-bounce matrix is stored.
-//   Auto:  ours, unless the matrix is so small that compression does not pay
-//          (dense float RGB under kDenseUpToBytes): then dense, and said so.
-//   Dense: float32, no compression (exact).
-//   Paper: the published pipeline, the baseline.
-//   Ours:  our codec, always, whatever the size.
-enum class CodecChoice { Auto, Dense, Paper, Ours };
+//   Auto:           light-weighted, unless the matrix is so small that
+//                   compression does not pay (dense float RGB under
+//                   kDenseUpToBytes): then dense, and said so.
+//   Dense:          float32, no compression (exact).
+//   LargestEntries: the published pipeline, the baseline ("paper").
+//   LightWeighted:  our codec, always, whatever the size ("ours").
+enum class CodecChoice { Auto, Dense, LargestEntries, LightWeighted };
 
 // Whether the finished dense N x N matrices (F, T) live in memory-mapped
 // temporary files (bake/out_of_core.h): Auto when the transport's dense

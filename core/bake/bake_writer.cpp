@@ -174,6 +174,7 @@ json storage_json(const MatrixStorage& s, std::size_t probe_lights_total) {
   m["light_weighted"] = c.light_weighted;
   m["kept_passes"] = c.kept_passes;
   m["lights_rebalanced"] = c.lights_rebalanced;
+  m["lights_rebalance_tried"] = c.lights_rebalance_tried;
   m["error_budget"] = s.error_budget ? json(*s.error_budget) : json();
   if (s.error_budget) {
     m["error_budget_metric"] = "errors.indirect_light.rel_rms_max";
@@ -212,6 +213,8 @@ json storage_json(const MatrixStorage& s, std::size_t probe_lights_total) {
   m["stage_seconds"] = {{"split", c.seconds_split},
                         {"ordering", c.seconds_ordering},
                         {"encoding", c.seconds_encoding}};
+  // Over both kept passes: a second pass encodes only the blocks it changed.
+  m["blocks_encoded"] = c.blocks_encoded;
   return m;
 }
 

@@ -18,21 +18,25 @@ using Clock = std::chrono::steady_clock;
 using Trial = MeasuredCompression;
 
 // The kept-fraction search's state: one ordering and one sample of rows for
-// every sampled trial, each rung's light error on the sample measured once. The
-// sample is compressed with the importance as given; each whole compression
-// also tries the lights rebalanced by its own per-light errors
-// (compress_for_light): a sample does not see the few rows where one light's
-// error concentrates, so weights taken from it can make that light worse.
+// every sampled trial, each rung's light error on the sample measured once;
+// each whole compression made once. The sample is compressed with the
+// importance as given. A whole compression is first made as given; the
+// lights rebalanced by its own per-light errors (rebalance_for_light) are
+// tried only where that can change the outcome: on a rung that misses the
+// budget, and on the rung kept. A sample does not see the few rows where one
+// light's error concentrates, so weights taken from it can make that light
+// worse.
 class KeptFractionSearch {
  public:
   // `codec`: with its permutation, sample of block rows and kept storage.
   KeptFractionSearch(const std::vector<const float*>& exact, std::size_t n, CodecSettings codec,
-                     const IndirectLightProbe& probe, MatrixStorage& s, Progress* progress,
-                     CompressionExecutor* executor)
+                     const IndirectLightProbe& probe, double budget, MatrixStorage& s,
+                     Progress* progress, CompressionExecutor* executor)
       : exact_(exact),
         n_(n),
         codec_(std::move(codec)),
         probe_(probe),
+        budget_(budget),
         s_(s),
         progress_(progress),
         executor_(executor) {}
@@ -52,22 +56,68 @@ class KeptFractionSearch {
   }
   std::size_t sampled_count() const { return sampled_.size(); }
 
-  // The whole matrix compressed at `rung` and measured (`error_map`: the
-  // error picture's |T~ - T| sums).
-  Trial compress_whole(int rung, std::vector<float>& error_map) {
-    CodecSettings codec = codec_;
-    // Its own ordering, as a bake given this kept fraction computes it: the
-    // stored matrix is the one that bake (or the studio's re-compression at
-    // the bake's kept fraction) makes, byte for byte.
-    codec.block_rows.clear();
-    codec.permutation.reset();
-    codec.kept_fraction = kKeptFractionLadder[rung];
-    Trial t = compress_for_light(exact_, n_, codec, probe_, &error_map, progress_, executor_);
-    record(codec.kept_fraction, t.errors, t.compressed.total_bytes(), n_);
-    return t;
+  // The light error of the whole matrix compressed at `rung`, as far as it
+  // has been improved.
+  double whole_error(int rung) { return budgeted_light_error(whole(rung).trial.errors.indirect); }
+
+  // Whether the whole matrix at `rung` meets the budget, with the lights
+  // rebalanced when it does not as given.
+  bool meets(int rung) {
+    if (whole_error(rung) <= budget_) return true;
+    finish(rung);
+    return whole_error(rung) <= budget_;
+  }
+
+  // The mean over the lights of the whole matrix's light error at `rung`:
+  // about as low as rebalancing the lights can bring its worst light.
+  double whole_mean_error(int rung) { return whole(rung).trial.errors.indirect.rel_rms_mean; }
+
+  // Tries the lights rebalanced at `rung` (once).
+  void finish(int rung) {
+    Whole& w = whole(rung);
+    const bool rebalanced_before = w.trial.compressed.lights_rebalanced;
+    w.trial = rebalance_for_light(std::move(w.trial), exact_, n_, whole_codec(rung), probe_, &w.map,
+                                  progress_, executor_);
+    if (w.trial.compressed.lights_rebalanced && !rebalanced_before)
+      record(kKeptFractionLadder[rung], w.trial.errors, w.trial.compressed.total_bytes(), n_);
+  }
+
+  // The whole compression at `rung` with its rebalancing tried, for keeping
+  // (`error_map`: the error picture's |T~ - T| sums).
+  Trial take(int rung, std::vector<float>& error_map) {
+    finish(rung);
+    Whole& w = whole(rung);
+    error_map.swap(w.map);
+    return std::move(w.trial);
   }
 
  private:
+  struct Whole {
+    Trial trial;
+    std::vector<float> map;
+  };
+
+  // Its own ordering, as a bake given this kept fraction computes it: the
+  // stored matrix is the one that bake (or the studio's re-compression at the
+  // bake's kept fraction) makes, byte for byte.
+  CodecSettings whole_codec(int rung) const {
+    CodecSettings codec = codec_;
+    codec.block_rows.clear();
+    codec.permutation.reset();
+    codec.kept_fraction = kKeptFractionLadder[rung];
+    return codec;
+  }
+
+  Whole& whole(int rung) {
+    if (const auto it = whole_.find(rung); it != whole_.end()) return it->second;
+    Whole w;
+    const CodecSettings codec = whole_codec(rung);
+    w.trial.compressed = compress_matrix(exact_, n_, codec, progress_, executor_);
+    w.trial.errors = measure_compression(exact_, w.trial.compressed, probe_, &w.map, progress_);
+    record(codec.kept_fraction, w.trial.errors, w.trial.compressed.total_bytes(), n_);
+    return whole_[rung] = std::move(w);
+  }
+
   void record(double kept_fraction, const CompressionErrors& e, std::size_t bytes,
               std::size_t rows) {
     s_.trials.push_back({kept_fraction, e.matrix.rel_frobenius, e.indirect, bytes, rows});
@@ -77,10 +127,12 @@ class KeptFractionSearch {
   std::size_t n_;
   CodecSettings codec_;
   const IndirectLightProbe& probe_;
+  double budget_;
   MatrixStorage& s_;
   Progress* progress_;
   CompressionExecutor* executor_;
   std::map<int, double> sampled_;
+  std::map<int, Whole> whole_;
 };
 
 // Bisection on rungs [0, top] of the light error on the sample: the smallest
@@ -101,25 +153,17 @@ int search_on_sample(KeptFractionSearch& search, int top, double budget) {
 
 // Bisection on rungs [0, top] with the whole matrix compressed at each, for a
 // matrix whose sample would be every row: the smallest rung that meets the
-// budget, else the top one, its compression in `kept`.
-int search_whole(KeptFractionSearch& search, int top, double budget, Trial& kept,
-                 std::vector<float>& error_map) {
-  int lo = 0, hi = top, found = -1;
-  std::vector<float> map;
+// budget, else the top one.
+int search_whole(KeptFractionSearch& search, int top) {
+  int lo = 0, hi = top, found = top;
   while (lo <= hi) {
     const int mid = (lo + hi) / 2;
-    Trial t = search.compress_whole(mid, map);
-    const bool meets = budgeted_light_error(t.errors.indirect) <= budget;
-    // A bisection that never meets the budget ends on the top rung.
-    if (meets || (found < 0 && mid == top)) {
+    if (search.meets(mid)) {
       found = mid;
-      kept = std::move(t);
-      error_map.swap(map);
-    }
-    if (meets)
       hi = mid - 1;
-    else
+    } else {
       lo = mid + 1;
+    }
   }
   return found;
 }
@@ -127,38 +171,41 @@ int search_whole(KeptFractionSearch& search, int top, double budget, Trial& kept
 // The sample's error at `rung` scaled by how far the sample was from the
 // whole matrix at `measured` (the same rows, so much the same bias): what the
 // whole matrix is predicted to give at `rung`.
-double predicted_whole_error(KeptFractionSearch& search, int rung, int measured,
-                             double whole_error) {
+double predicted_whole_error(KeptFractionSearch& search, int rung, int measured) {
   const double sampled = search.sampled_error(measured);
   if (!(sampled > 0.0)) return search.sampled_error(rung);
-  return search.sampled_error(rung) * whole_error / sampled;
+  return search.sampled_error(rung) * search.whole_error(measured) / sampled;
+}
+
+// Whether the whole matrix at the rung below `rung` is predicted to meet the
+// budget. When rebalancing the lights at `rung` could bring the prediction
+// within the budget (its worst light down to its mean), it is tried first.
+bool below_predicted_to_meet(KeptFractionSearch& search, int rung, double budget) {
+  if (predicted_whole_error(search, rung - 1, rung) <= budget) return true;
+  const double sampled = search.sampled_error(rung);
+  const double hopeful =
+      sampled > 0.0 ? search.sampled_error(rung - 1) * search.whole_mean_error(rung) / sampled
+                    : search.sampled_error(rung - 1);
+  if (hopeful > budget) return false;
+  search.finish(rung);
+  return predicted_whole_error(search, rung - 1, rung) <= budget;
 }
 
 // The whole matrix from the rung the sample found. While it misses the
 // budget, up the ladder to the first rung predicted to meet it (or the top).
 // When it meets it, one rung down if that one is predicted to meet it too.
 // Returns the rung kept.
-int compress_whole_from(KeptFractionSearch& search, int rung, int top, double budget, Trial& kept,
-                        std::vector<float>& error_map) {
-  const auto error = [](const Trial& t) { return budgeted_light_error(t.errors.indirect); };
-  kept = search.compress_whole(rung, error_map);
-  const bool missed = error(kept) > budget;
-  while (error(kept) > budget && rung < top) {
+int compress_whole_from(KeptFractionSearch& search, int rung, int top, double budget) {
+  const bool missed = !search.meets(rung);
+  while (!search.meets(rung) && rung < top) {
     const int measured = rung;
     do {
       ++rung;
-    } while (rung < top && predicted_whole_error(search, rung, measured, error(kept)) > budget);
-    kept = search.compress_whole(rung, error_map);
+    } while (rung < top && predicted_whole_error(search, rung, measured) > budget);
   }
   // After a climb the rung below is known to miss, or predicted to.
-  if (missed || rung == 0 || predicted_whole_error(search, rung - 1, rung, error(kept)) > budget)
-    return rung;
-  std::vector<float> lower_map;
-  Trial lower = search.compress_whole(rung - 1, lower_map);
-  if (error(lower) > budget) return rung;
-  kept = std::move(lower);
-  error_map.swap(lower_map);
-  return rung - 1;
+  if (missed || rung == 0 || !below_predicted_to_meet(search, rung, budget)) return rung;
+  return search.meets(rung - 1) ? rung - 1 : rung;
 }
 
 // The smallest kept fraction of the ladder whose light error meets the
@@ -203,13 +250,13 @@ Trial search_kept_fraction(const std::vector<const float*>& exact, std::size_t n
     codec.permutation = compute_permutation(exact, n, codec, progress);
     codec.block_rows = std::move(sample);
   }
-  KeptFractionSearch search(exact, n, codec, probe, s, progress, executor);
-  Trial passed;
+  KeptFractionSearch search(exact, n, codec, probe, budget, s, progress, executor);
+  const int best =
+      sample_is_whole
+          ? search_whole(search, top)
+          : compress_whole_from(search, search_on_sample(search, top, budget), top, budget);
   std::vector<float> map;
-  const int best = sample_is_whole
-                       ? search_whole(search, top, budget, passed, map)
-                       : compress_whole_from(search, search_on_sample(search, top, budget), top,
-                                             budget, passed, map);
+  Trial passed = search.take(best, map);
   s.error_budget_met = budgeted_light_error(passed.errors.indirect) <= budget;
   const double mib = 1.0 / (1 << 20);
   const auto bytes_text = [&](std::size_t bytes) {
@@ -313,7 +360,7 @@ MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t
       s.decisions.push_back({"codec: dense", why});
       diagnostics.left_out("compress", "compression of the transport matrix: " + why);
     } else {
-      choice = CodecChoice::Ours;
+      choice = CodecChoice::LightWeighted;
       s.decisions.push_back(
           {"codec: ours", text_format("the dense float32 matrix would take %.1f MiB",
                                       static_cast<double>(s.dense_bytes) / (1 << 20))});
@@ -332,11 +379,12 @@ MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t
   if (executor)
     s.decisions.push_back({"block encoding: " + executor->description(), "distributed bake"});
   CodecSettings codec;
-  codec.kind = choice == CodecChoice::Paper ? CodecKind::Paper : CodecKind::Ours;
+  codec.kind =
+      choice == CodecChoice::LargestEntries ? CodecKind::LargestEntries : CodecKind::LightWeighted;
   codec.ordering = settings.ordering;
   // Ours spends its bytes where the evaluation lights' light goes.
   EntryImportance importance;
-  if (codec.kind == CodecKind::Ours) {
+  if (codec.kind == CodecKind::LightWeighted) {
     importance = light_importance(exact, n, probe.first_hit, probe.channel_of_rgb, probe.area);
     codec.importance = &importance;
     s.decisions.push_back(
@@ -346,7 +394,7 @@ MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t
                      probe.first_hit.size(), static_cast<double>(kColumnWeightFloor))});
   }
   Trial chosen;
-  if (settings.kept_fraction || choice == CodecChoice::Paper) {
+  if (settings.kept_fraction || choice == CodecChoice::LargestEntries) {
     codec.kept_fraction = settings.kept_fraction.value_or(kPaperKeptFraction);
     s.decisions.push_back(
         {text_format("kept fraction: %g", codec.kept_fraction),
@@ -363,7 +411,7 @@ MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t
                    chosen.compressed.encoder.c_str(),
                    chosen.compressed.format == DdsFormat::kBc4 ? "BC4" : "BC1"),
        settings.ordering ? "ordering requested"
-       : choice == CodecChoice::Paper
+       : choice == CodecChoice::LargestEntries
            ? "the published pipeline"
            : (chosen.compressed.format == DdsFormat::kBc4
                   ? "one (grey) channel: BC4 spends the block's 8 bytes on it"

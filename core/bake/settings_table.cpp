@@ -87,11 +87,12 @@ E named(const E (&all)[N], const SettingValue& v) {
 }
 
 constexpr PatchMode kPatchModes[] = {PatchMode::Virtual, PatchMode::Voxel};
-constexpr CodecChoice kCodecs[] = {CodecChoice::Auto, CodecChoice::Dense, CodecChoice::Paper,
-                                   CodecChoice::Ours};
+constexpr CodecChoice kCodecs[] = {CodecChoice::Auto, CodecChoice::Dense,
+                                   CodecChoice::LargestEntries, CodecChoice::LightWeighted};
 constexpr OutOfCore kOutOfCore[] = {OutOfCore::Auto, OutOfCore::On, OutOfCore::Off};
-constexpr OrderingMethod kOrderings[] = {OrderingMethod::None, OrderingMethod::Paper1,
-                                         OrderingMethod::Paper2, OrderingMethod::Ours};
+constexpr OrderingMethod kOrderings[] = {OrderingMethod::None, OrderingMethod::GreedyRowTour,
+                                         OrderingMethod::GreedyRowThenColumnTour,
+                                         OrderingMethod::SketchTour};
 constexpr TransportSettings::Backend kBackends[] = {TransportSettings::Backend::Auto,
                                                     TransportSettings::Backend::OpenBLAS,
                                                     TransportSettings::Backend::CLBlast};

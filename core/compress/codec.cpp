@@ -1,12 +1,14 @@
 #include "compress/codec.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <string>
 
 #include "base/error.h"
 #include "compress/block_image.h"
+#include "compress/changed_blocks.h"
 #include "compress/ordering.h"
 #include "compress/ordering_paper.h"
 
@@ -24,11 +26,11 @@ Permutation compute_ordering(OrderingMethod ordering, const std::uint8_t* codes,
   switch (ordering) {
     case OrderingMethod::None:
       return identity_permutation(n);
-    case OrderingMethod::Paper1:
+    case OrderingMethod::GreedyRowTour:
       return paper_ordering(codes, n, channels, 1);
-    case OrderingMethod::Paper2:
+    case OrderingMethod::GreedyRowThenColumnTour:
       return paper_ordering(codes, n, channels, 2);
-    case OrderingMethod::Ours: {
+    case OrderingMethod::SketchTour: {
       // Code 0 is mostly a hole left by a kept entry, which the encoder
       // ignores: let the ordering ignore it too.
       OrderingSettings os;
@@ -63,17 +65,19 @@ std::size_t predicted_total_bytes(std::size_t n, int channels, double kept_fract
          n * sizeof(std::uint32_t);
 }
 
-const char* codec_name(CodecKind kind) { return kind == CodecKind::Paper ? "paper" : "ours"; }
+const char* codec_name(CodecKind kind) {
+  return kind == CodecKind::LargestEntries ? "paper" : "ours";
+}
 
 const char* ordering_name(OrderingMethod method) {
   switch (method) {
     case OrderingMethod::None:
       return "none";
-    case OrderingMethod::Paper1:
+    case OrderingMethod::GreedyRowTour:
       return "paper-1-pass";
-    case OrderingMethod::Paper2:
+    case OrderingMethod::GreedyRowThenColumnTour:
       return "paper-2-passes";
-    case OrderingMethod::Ours:
+    case OrderingMethod::SketchTour:
       return "ours";
   }
   return "?";
@@ -196,6 +200,10 @@ void quantise_channel(const float* a, const float* key, float threshold, const L
   const std::size_t ic = texels.channels;
   // Grey scene with BC1 (paper): the one matrix in R, G and B.
   const std::size_t copies = ic == 3 && stored_channels == 1 ? 3 : 1;
+  // The weight depends on the code alone: one exp per code, not per entry.
+  std::array<float, 256> code_weight;
+  for (int code = 0; code < 256; ++code)
+    code_weight[static_cast<std::size_t>(code)] = q.weight(static_cast<std::uint8_t>(code));
 #pragma omp parallel for schedule(static)
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const std::size_t i = rows[r];
@@ -204,7 +212,7 @@ void quantise_channel(const float* a, const float* key, float threshold, const L
       const std::uint8_t code = hole ? 0 : q.encode(a[k]);
       // A hole's value is replaced by the kept one at decode: any code will
       // do there, so it weighs nothing (ours). The paper encodes it as 0.
-      float w = hole ? 0.0f : q.weight(code);
+      float w = hole ? 0.0f : code_weight[code];
       if (importance) w *= importance->weight(c, i, k % n);
       for (std::size_t s = 0; s < copies; ++s) {
         texels.codes[k * ic + c + s] = code;
@@ -216,13 +224,15 @@ void quantise_channel(const float* a, const float* key, float threshold, const L
 
 // Step 1 of a compression: kept entries, quantisers and texels of `rows`.
 // `keys`: per stored channel, the n x n key that decides which entries are
-// kept (the largest); null: the codec's own (see kept_key).
+// kept (the largest); null: the codec's own (see kept_key). `quantizers`:
+// per stored channel, used instead of fitting them (a later kept pass).
 SplitTexels split_and_quantise(const std::vector<const float*>& matrices, std::size_t n,
                                const CodecSettings& settings,
                                const std::vector<std::vector<float>>* keys,
+                               const std::vector<LogQuantizer>* quantizers,
                                std::span<const std::uint32_t> rows, std::size_t image_channels,
                                CompressedMatrix& m) {
-  const bool paper = settings.kind == CodecKind::Paper;
+  const bool paper = settings.kind == CodecKind::LargestEntries;
   const EntryImportance* importance = paper ? nullptr : settings.importance;
   if (importance && (importance->row.size() != n || importance->column.size() != matrices.size()))
     throw Error("compress", "the entry importance does not match the matrices");
@@ -237,7 +247,8 @@ SplitTexels split_and_quantise(const std::vector<const float*>& matrices, std::s
     const float* key = keys ? (*keys)[c].data() : kept_key(a, n, c, importance, rows, score);
     const float threshold = kept_threshold(key, n, rows, settings.kept_fraction);
     m.kept.push_back(extract_kept(a, n, threshold, key, rows));
-    m.quantizers.push_back(fitted_quantizer(a, key, threshold, n, rows, paper));
+    m.quantizers.push_back(quantizers ? (*quantizers)[c]
+                                      : fitted_quantizer(a, key, threshold, n, rows, paper));
     quantise_channel(a, key, threshold, m.quantizers.back(), n, c, matrices.size(), importance,
                      rows, texels);
   }
@@ -295,7 +306,7 @@ struct ImageLayout {
 };
 
 ImageLayout image_layout(const CodecSettings& settings, std::size_t stored_channels) {
-  const bool paper = settings.kind == CodecKind::Paper;
+  const bool paper = settings.kind == CodecKind::LargestEntries;
   ImageLayout l;
   // The paper always encodes RGB with BC1; ours gives a single (grey)
   // channel BC4, which spends the same 8 bytes on one channel.
@@ -321,9 +332,9 @@ void check_sample(const CodecSettings& settings, std::size_t n) {
 // Step 2: one permutation for rows and columns.
 void order_rows(const CodecSettings& settings, const SplitTexels& texels, Progress* progress,
                 CompressedMatrix& m) {
-  const bool paper = settings.kind == CodecKind::Paper;
-  const OrderingMethod ordering =
-      settings.ordering.value_or(paper ? OrderingMethod::Paper2 : OrderingMethod::Ours);
+  const bool paper = settings.kind == CodecKind::LargestEntries;
+  const OrderingMethod ordering = settings.ordering.value_or(
+      paper ? OrderingMethod::GreedyRowThenColumnTour : OrderingMethod::SketchTour);
   m.ordering = ordering_name(ordering);
   if (progress)
     progress->begin_stage(std::string("compress: order rows (") + m.ordering +
@@ -345,15 +356,14 @@ void order_rows(const CodecSettings& settings, const SplitTexels& texels, Progre
 }
 
 // Step 3: the encoded block rows. A distributed executor encodes whole images
-// only; a sample is encoded here.
+// only; a sample is encoded here. With `previous` (a kept pass before this
+// one, same quantisers and permutation), only the blocks whose kept entries
+// changed are encoded; the others keep previous's bytes.
 void encode_image(const CodecSettings& settings, const ImageLayout& layout,
-                  const SplitTexels& texels, Progress* progress, CompressionExecutor* executor,
-                  CompressedMatrix& m) {
+                  const SplitTexels& texels, const CompressedMatrix* previous, Progress* progress,
+                  CompressionExecutor* executor, CompressedMatrix& m) {
   if (progress) progress->begin_stage("compress: encode blocks", 1);
   const auto t = Clock::now();
-  std::vector<std::uint8_t> image;
-  std::vector<float> image_weights;
-  permuted_image(m, texels, image, image_weights);
   BlockEncoding e;
   e.width = m.padded;
   e.format = m.format;
@@ -363,21 +373,37 @@ void encode_image(const CodecSettings& settings, const ImageLayout& layout,
   } else if (layout.bc4) {
     m.encoder = bc4_encoder_name(Bc4Encoder::kWeighted);
   } else {
-    e.bc1 = settings.bc1_encoder.value_or(
-        settings.kind == CodecKind::Paper ? Bc1Encoder::kSquishClusterFit : Bc1Encoder::kWeighted);
+    e.bc1 = settings.bc1_encoder.value_or(settings.kind == CodecKind::LargestEntries
+                                              ? Bc1Encoder::kSquishClusterFit
+                                              : Bc1Encoder::kWeighted);
     m.encoder = bc1_encoder_name(e.bc1);
   }
+  if (previous && e.images() == 1) {
+    m.blocks = previous->blocks;
+    const std::vector<std::size_t> changed = blocks_with_changed_holes(*previous, m);
+    encode_blocks_in_place(e, changed, texels.codes, texels.weights, texels.channels, m);
+    m.blocks_encoded = changed.size();
+    m.seconds_encoding = since(t);
+    if (progress) progress->end_stage();
+    return;
+  }
+  std::vector<std::uint8_t> image;
+  std::vector<float> image_weights;
+  permuted_image(m, texels, image, image_weights);
   const std::size_t count = image.size() / (4 * m.padded * texels.channels);
   m.blocks = executor && !m.sampled() ? executor->encode_blocks(e, image, image_weights)
                                       : encode_block_rows(e, count, image, image_weights);
+  m.blocks_encoded = m.blocks.size() / 8;
   m.seconds_encoding = since(t);
   if (progress) progress->end_stage();
 }
 
-// One compression; `keys` as split_and_quantise.
+// One compression; `keys` as split_and_quantise. `previous`: the kept pass
+// before this one, whose quantisers and unchanged blocks are reused.
 CompressedMatrix compress_once(const std::vector<const float*>& matrices, std::size_t n,
                                const CodecSettings& settings,
-                               const std::vector<std::vector<float>>* keys, Progress* progress,
+                               const std::vector<std::vector<float>>* keys,
+                               const CompressedMatrix* previous, Progress* progress,
                                CompressionExecutor* executor) {
   check_sample(settings, n);
   CompressedMatrix m;
@@ -396,11 +422,12 @@ CompressedMatrix compress_once(const std::vector<const float*>& matrices, std::s
   auto t = Clock::now();
   const std::vector<std::uint32_t> rows = m.rows();
   const SplitTexels texels =
-      split_and_quantise(matrices, n, settings, keys, rows, layout.channels, m);
+      split_and_quantise(matrices, n, settings, keys, previous ? &previous->quantizers : nullptr,
+                         rows, layout.channels, m);
   m.seconds_split = since(t);
   if (progress) progress->end_stage();
   order_rows(settings, texels, progress, m);
-  encode_image(settings, layout, texels, progress, executor, m);
+  encode_image(settings, layout, texels, previous, progress, executor, m);
   return m;
 }
 
@@ -443,7 +470,7 @@ Permutation compute_permutation(const std::vector<const float*>& matrices, std::
   m.n = n;
   const ImageLayout layout = image_layout(whole, matrices.size());
   const SplitTexels texels =
-      split_and_quantise(matrices, n, whole, nullptr, m.rows(), layout.channels, m);
+      split_and_quantise(matrices, n, whole, nullptr, nullptr, m.rows(), layout.channels, m);
   order_rows(whole, texels, progress, m);
   return m.permutation;
 }
@@ -451,22 +478,24 @@ Permutation compute_permutation(const std::vector<const float*>& matrices, std::
 CompressedMatrix compress_matrix(const std::vector<const float*>& matrices, std::size_t n,
                                  const CodecSettings& settings, Progress* progress,
                                  CompressionExecutor* executor) {
-  const int passes = settings.kind == CodecKind::Ours && settings.importance
+  const int passes = settings.kind == CodecKind::LightWeighted && settings.importance
                          ? std::max(1, settings.kept_passes)
                          : 1;
-  CompressedMatrix m = compress_once(matrices, n, settings, nullptr, progress, executor);
+  CompressedMatrix m = compress_once(matrices, n, settings, nullptr, nullptr, progress, executor);
   // Later passes: keep the entries the previous pass's blocks got most
-  // wrong, in light, with the first pass's ordering (the codes barely change).
+  // wrong, in light, with the first pass's ordering and quantisers, so that
+  // only the blocks whose kept entries changed are encoded again.
   CodecSettings again = settings;
   again.permutation = m.permutation;
   for (int pass = 1; pass < passes; ++pass) {
     const std::vector<std::vector<float>> keys =
         block_error_keys(m, matrices, *settings.importance);
-    CompressedMatrix next = compress_once(matrices, n, again, &keys, progress, executor);
+    CompressedMatrix next = compress_once(matrices, n, again, &keys, &m, progress, executor);
     next.ordering = m.ordering;
     next.seconds_split += m.seconds_split;
     next.seconds_ordering = m.seconds_ordering;
     next.seconds_encoding += m.seconds_encoding;
+    next.blocks_encoded += m.blocks_encoded;
     m = std::move(next);
   }
   m.kept_passes = passes;

@@ -36,15 +36,25 @@
 
 namespace bounce {
 
-enum class CodecKind { Paper, Ours };
+// LargestEntries: the published pipeline ("paper" above); LightWeighted:
+// ours, which with an EntryImportance keeps and weighs entries by the light
+// they carry ("ours"). codec_name gives the names the CLI and manifest use.
+enum class CodecKind { LargestEntries, LightWeighted };
 
 // The published pipeline keeps this share of each channel's largest entries
 // exactly (4%); `--codec paper` keeps it unless told otherwise.
 inline constexpr double kPaperKeptFraction = 0.04;
-enum class OrderingMethod { None, Paper1, Paper2, Ours };
+// How rows and columns are reordered before block encoding (the CLI and the
+// manifest keep the names ordering_name gives):
+//   GreedyRowTour: the published greedy nearest-neighbour tour over rows
+//     (ordering_paper.h, one pass, "paper-1-pass");
+//   GreedyRowThenColumnTour: that tour, then the same over columns ("paper-2-passes");
+//   SketchTour: row sketches, k nearest neighbours, a tour improved by 2-opt
+//     and Or-opt, block rows refined (ordering.h, "ours").
+enum class OrderingMethod { None, GreedyRowTour, GreedyRowThenColumnTour, SketchTour };
 
 struct CodecSettings {
-  CodecKind kind = CodecKind::Ours;
+  CodecKind kind = CodecKind::LightWeighted;
   double kept_fraction = kPaperKeptFraction;
   // Overrides, for comparisons (bounce bench compress); unset = the codec's own.
   std::optional<Bc1Encoder> bc1_encoder;
@@ -104,7 +114,13 @@ struct CompressedMatrix {
   // The importance weighted each light by its share of an earlier
   // compression's light error (bake/matrix_storage.h).
   bool lights_rebalanced = false;
+  // A rebalanced compression was made and measured (light_rebalance.h: only
+  // when the worst light's error stood out from the mean).
+  bool lights_rebalance_tried = false;
   double seconds_split = 0.0, seconds_ordering = 0.0, seconds_encoding = 0.0;
+  // Blocks encoded over all kept passes (a later pass encodes only the
+  // blocks whose kept entries changed).
+  std::size_t blocks_encoded = 0;
   // Empty: `blocks` holds every block row of the image. Otherwise the block
   // rows it holds, in this order (CodecSettings::block_rows): the matrix is
   // then known on rows() only, an estimate that is never stored.

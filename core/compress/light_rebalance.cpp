@@ -35,9 +35,21 @@ MeasuredCompression compress_for_light(const std::vector<const float*>& exact, s
                                        const CodecSettings& codec, const IndirectLightProbe& probe,
                                        std::vector<float>* abs_error_sum, Progress* progress,
                                        CompressionExecutor* executor) {
-  MeasuredCompression t =
-      compress_and_measure(exact, n, codec, probe, abs_error_sum, progress, executor);
-  if (!codec.importance || t.errors.indirect.lights < 2) return t;
+  return rebalance_for_light(
+      compress_and_measure(exact, n, codec, probe, abs_error_sum, progress, executor), exact, n,
+      codec, probe, abs_error_sum, progress, executor);
+}
+
+MeasuredCompression rebalance_for_light(MeasuredCompression first,
+                                        const std::vector<const float*>& exact, std::size_t n,
+                                        const CodecSettings& codec, const IndirectLightProbe& probe,
+                                        std::vector<float>* abs_error_sum, Progress* progress,
+                                        CompressionExecutor* executor) {
+  MeasuredCompression t = std::move(first);
+  if (!codec.importance || t.errors.indirect.lights < 2 || t.compressed.lights_rebalance_tried)
+    return t;
+  const IndirectLightError& error = t.errors.indirect;
+  if (!(budgeted_light_error(error) > kRebalanceSpread * error.rel_rms_mean)) return t;
   const std::vector<double> factor = rebalanced_light_factor(t.errors.indirect);
   if (factor.empty()) return t;
   const EntryImportance rebalanced =
@@ -49,6 +61,7 @@ MeasuredCompression compress_for_light(const std::vector<const float*>& exact, s
   std::vector<float> map;
   MeasuredCompression t2 = compress_and_measure(exact, n, second, probe,
                                                 abs_error_sum ? &map : nullptr, progress, executor);
+  t.compressed.lights_rebalance_tried = t2.compressed.lights_rebalance_tried = true;
   if (budgeted_light_error(t2.errors.indirect) < budgeted_light_error(t.errors.indirect)) {
     t2.compressed.seconds_ordering = t.compressed.seconds_ordering;
     t = std::move(t2);

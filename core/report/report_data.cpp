@@ -36,8 +36,8 @@ BakeSettings report_row_settings(const ReportRow& row) {
     s.transport.bounces = TransportSettings::kInfiniteBounces;
   else
     s.transport.bounces = std::stoi(row.bounces);
-  s.codec = row.codec_name == "paper"   ? CodecChoice::Paper
-            : row.codec_name == "ours"  ? CodecChoice::Ours
+  s.codec = row.codec_name == "paper"   ? CodecChoice::LargestEntries
+            : row.codec_name == "ours"  ? CodecChoice::LightWeighted
             : row.codec_name == "dense" ? CodecChoice::Dense
                                         : CodecChoice::Auto;
   s.kept_fraction = row.kept_fraction;

@@ -341,8 +341,8 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
           if (!codec_sweep && codec.name != "dense") continue;
           BakeSettings cs = bake.settings;
           cs.codec = codec.name == "dense"   ? CodecChoice::Dense
-                     : codec.name == "paper" ? CodecChoice::Paper
-                                             : CodecChoice::Ours;
+                     : codec.name == "paper" ? CodecChoice::LargestEntries
+                                             : CodecChoice::LightWeighted;
           cs.kept_fraction = codec.kept_fraction;
           t = Clock::now();
           const MatrixStorage storage = store_transport(transport, bake.probe, cs, &progress, diag);

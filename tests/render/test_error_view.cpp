@@ -134,7 +134,7 @@ TEST_F(ErrorView, CodecSwitchShowsTheCoresErrorForThatCodec) {
   // The core's compression stage with the paper's codec on the same exact
   // matrix and kept fraction: what the switch must show.
   BakeSettings s;
-  s.codec = CodecChoice::Paper;
+  s.codec = CodecChoice::LargestEntries;
   s.kept_fraction = b.compressed->kept_fraction;
   Diagnostics diagnostics;
   std::vector<const float*> exact;
@@ -143,7 +143,7 @@ TEST_F(ErrorView, CodecSwitchShowsTheCoresErrorForThatCodec) {
 
   QComboBox* codec = view_.codec_box();
   ASSERT_TRUE(wait_for_comparison(view_, [&] {
-    codec->setCurrentIndex(codec->findData(static_cast<int>(CodecChoice::Paper)));
+    codec->setCurrentIndex(codec->findData(static_cast<int>(CodecChoice::LargestEntries)));
   }));
   ASSERT_NE(view_.shown_matrix(), nullptr);
   EXPECT_EQ(view_.shown_matrix()->codec, "paper");
@@ -188,7 +188,7 @@ TEST_F(ErrorView, CodecSwitchShowsTheCoresErrorForThatCodec) {
 
   // Ours at the bake's kept fraction re-compresses to the stored bake exactly.
   ASSERT_TRUE(wait_for_comparison(view_, [&] {
-    codec->setCurrentIndex(codec->findData(static_cast<int>(CodecChoice::Ours)));
+    codec->setCurrentIndex(codec->findData(static_cast<int>(CodecChoice::LightWeighted)));
   }));
   const nlohmann::json e = fixture_manifest()["compression"]["errors"];
   EXPECT_NEAR(view_.errors().matrix.rel_frobenius, e["rel_frobenius"].get<double>(),

@@ -123,7 +123,7 @@ TEST_F(ReportView, PointsAreDrawnWhereTheAxesPutThemAndAClickSelectsTheRow) {
   const BakeSettings s = report_row_settings(report->rows[2]);
   EXPECT_EQ(s.patches_total, report->rows[2].patches_target);
   EXPECT_EQ(s.patch_mode, PatchMode::Virtual);
-  EXPECT_EQ(s.codec, CodecChoice::Paper);
+  EXPECT_EQ(s.codec, CodecChoice::LargestEntries);
   EXPECT_EQ(s.transport.bounces, TransportSettings::kAutoBounces);
   EXPECT_EQ(report_row_settings(report->rows[3]).patch_mode, PatchMode::Voxel);
   EXPECT_EQ(report_row_settings(report->rows[3]).transport.bounces, 1);

@@ -22,7 +22,7 @@ inline const LoadedBake& compressed_cornell_bake() {
           SceneLoader(d).load(std::string(BOUNCE_RESOURCE_DIR) + "/scenes/cornell-box");
       BakeSettings s;
       s.voxel_resolution = 4;
-      s.codec = CodecChoice::Ours;
+      s.codec = CodecChoice::LightWeighted;
       s.dump_matrices = true;
       s.pictures = false;
       Progress progress;

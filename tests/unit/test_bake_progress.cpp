@@ -28,7 +28,7 @@ const Scene& cornell_box() {
 BakeSettings small_settings() {
   BakeSettings s;
   s.voxel_resolution = 3;
-  s.codec = CodecChoice::Ours;
+  s.codec = CodecChoice::LightWeighted;
   s.transport.bounces = 3;
   s.transport.backend = TransportSettings::Backend::OpenBLAS;
   s.pictures = false;

@@ -100,7 +100,7 @@ TEST_P(CodecRoundTrip, KeptExactRestBoundedPermutationBijective) {
   const CompressedMatrix m = compress_matrix(in, n, s);
   EXPECT_TRUE(is_bijection(m.permutation));
   EXPECT_EQ(m.kept_storage,
-            v.kind == CodecKind::Paper ? KeptStorage::kFloat32 : KeptStorage::kFloat16);
+            v.kind == CodecKind::LargestEntries ? KeptStorage::kFloat32 : KeptStorage::kFloat16);
   EXPECT_EQ(m.block_bytes(), (v.bc4_per_channel ? v.channels : 1) * 20u * 20u * 8u);
   std::vector<float> out(n * n);
   for (int c = 0; c < v.channels; ++c) {
@@ -122,14 +122,14 @@ TEST_P(CodecRoundTrip, KeptExactRestBoundedPermutationBijective) {
   EXPECT_LT(errors(m, t).rel_frobenius, 0.3);
 }
 
-INSTANTIATE_TEST_SUITE_P(Variants, CodecRoundTrip,
-                         ::testing::Values(Variant{"paper_rgb", CodecKind::Paper, 3, false},
-                                           Variant{"paper_grey", CodecKind::Paper, 1, false},
-                                           Variant{"ours_rgb", CodecKind::Ours, 3, false},
-                                           Variant{"ours_grey", CodecKind::Ours, 1, false},
-                                           Variant{"ours_bc4_per_channel", CodecKind::Ours, 3,
-                                                   true}),
-                         [](const ::testing::TestParamInfo<Variant>& p) { return p.param.name; });
+INSTANTIATE_TEST_SUITE_P(
+    Variants, CodecRoundTrip,
+    ::testing::Values(Variant{"paper_rgb", CodecKind::LargestEntries, 3, false},
+                      Variant{"paper_grey", CodecKind::LargestEntries, 1, false},
+                      Variant{"ours_rgb", CodecKind::LightWeighted, 3, false},
+                      Variant{"ours_grey", CodecKind::LightWeighted, 1, false},
+                      Variant{"ours_bc4_per_channel", CodecKind::LightWeighted, 3, true}),
+    [](const ::testing::TestParamInfo<Variant>& p) { return p.param.name; });
 
 TEST(Codec, GreySceneIsOneBc4ChannelColourIsBc1) {
   const std::size_t n = 64;
@@ -137,7 +137,7 @@ TEST(Codec, GreySceneIsOneBc4ChannelColourIsBc1) {
   EXPECT_EQ(compress_matrix({t.data()}, n, {}).format, DdsFormat::kBc4);
   EXPECT_EQ(compress_matrix({t.data(), t.data(), t.data()}, n, {}).format, DdsFormat::kBc1);
   CodecSettings paper;
-  paper.kind = CodecKind::Paper;
+  paper.kind = CodecKind::LargestEntries;
   EXPECT_EQ(compress_matrix({t.data()}, n, paper).format, DdsFormat::kBc1);
 }
 
@@ -147,7 +147,7 @@ TEST(Codec, OursBeatsThePublishedPipelineAtTheSameSize) {
                                              transport_like(n, 0.8f, 3)};
   const std::vector<const float*> in = {t[0].data(), t[1].data(), t[2].data()};
   CodecSettings paper;
-  paper.kind = CodecKind::Paper;
+  paper.kind = CodecKind::LargestEntries;
   const CompressedMatrix mp = compress_matrix(in, n, paper);
   // Ours at the same bytes: half-precision kept entries take 4 bytes where
   // the paper's take 8, so twice as many fit.
@@ -176,7 +176,7 @@ TEST(Codec, PrecomputedPermutationGivesTheSameResultWithoutOrdering) {
                            t2 = transport_like(n, 0.8f, 4);
   const std::vector<const float*> in = {t0.data(), t1.data(), t2.data()};
   CodecSettings s;
-  s.ordering = OrderingMethod::Paper2;
+  s.ordering = OrderingMethod::GreedyRowThenColumnTour;
   s.bc1_encoder = Bc1Encoder::kStbHighQuality;
   const CompressedMatrix full = compress_matrix(in, n, s);
   s.permutation = full.permutation;

@@ -170,7 +170,7 @@ std::vector<Case> codec_cases() {
   const std::vector<std::vector<float>> colour = transport_like(kN, 3, 1);
   const std::vector<std::vector<float>> grey = transport_like(kN, 1, 2);
   CodecSettings paper, ours;
-  paper.kind = CodecKind::Paper;
+  paper.kind = CodecKind::LargestEntries;
   std::vector<Case> cases;
   cases.push_back({"paper, 3 channels (BC1)", compress_matrix(pointers(colour), kN, paper)});
   cases.push_back({"ours, 3 channels (BC1)", compress_matrix(pointers(colour), kN, ours)});

@@ -28,7 +28,7 @@ const Scene& cornell_box() {
 BakeSettings small_settings() {
   BakeSettings s;
   s.voxel_resolution = 3;
-  s.codec = CodecChoice::Ours;
+  s.codec = CodecChoice::LightWeighted;
   s.kept_fraction = 0.04;
   s.transport.bounces = 3;
   s.transport.backend = TransportSettings::Backend::OpenBLAS;
@@ -58,7 +58,7 @@ TEST(RebakePlan, EachSettingReRunsFromTheStageItFeeds) {
 
   // Storage: compression only.
   s = base;
-  s.codec = CodecChoice::Paper;
+  s.codec = CodecChoice::LargestEntries;
   EXPECT_EQ(first_stage(s), BakeStage::Compress);
   s = base;
   s.kept_fraction = 0.08;
@@ -68,7 +68,7 @@ TEST(RebakePlan, EachSettingReRunsFromTheStageItFeeds) {
   s.error_budget = 0.1;
   EXPECT_EQ(first_stage(s), BakeStage::Compress);
   s = base;
-  s.ordering = OrderingMethod::Paper1;
+  s.ordering = OrderingMethod::GreedyRowTour;
   EXPECT_EQ(first_stage(s), BakeStage::Compress);
 
   // Bounces and the GEMM backend: transport and compression.
@@ -216,8 +216,8 @@ TEST(Rebake, CodecOnlyReBakeEqualsAFullBakeWithoutNewFormFactors) {
   ASSERT_TRUE(ran(first, "transport"));
 
   BakeSettings paper = small_settings();
-  paper.codec = CodecChoice::Paper;
-  paper.ordering = OrderingMethod::Paper1;
+  paper.codec = CodecChoice::LargestEntries;
+  paper.ordering = OrderingMethod::GreedyRowTour;
   const CountedBake partial = run_bake(paper, &first.result);
   const CountedBake full = run_bake(paper);
 

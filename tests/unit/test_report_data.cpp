@@ -73,7 +73,7 @@ TEST(ReportData, RowSettingsRebuildTheRowsBake) {
   EXPECT_EQ(s.patches_total, 300);
   EXPECT_EQ(s.patch_mode, PatchMode::Voxel);
   EXPECT_EQ(s.transport.bounces, TransportSettings::kInfiniteBounces);
-  EXPECT_EQ(s.codec, CodecChoice::Ours);
+  EXPECT_EQ(s.codec, CodecChoice::LightWeighted);
   EXPECT_EQ(s.kept_fraction, 0.02);
   EXPECT_EQ(s.seed, 7u);
   EXPECT_EQ(report_row_settings(row("virtual", 60, 0.1, 1, "3")).transport.bounces, 3);

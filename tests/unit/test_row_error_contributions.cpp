@@ -167,14 +167,13 @@ TEST_P(RowErrorContributionsOf, SourcesAddUpToTheDecodedMatrixsErrorTermByTerm) 
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Codecs, RowErrorContributionsOf,
-                         ::testing::Values(Case{"OursRgbBc1", CodecKind::Ours, 3, false},
-                                           Case{"OursGreyBc4", CodecKind::Ours, 1, false},
-                                           Case{"OursRgbBc4PerChannel", CodecKind::Ours, 3, true},
-                                           Case{"PaperGreyBc1", CodecKind::Paper, 1, false}),
-                         [](const ::testing::TestParamInfo<Case>& c) {
-                           return std::string(c.param.name);
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Codecs, RowErrorContributionsOf,
+    ::testing::Values(Case{"OursRgbBc1", CodecKind::LightWeighted, 3, false},
+                      Case{"OursGreyBc4", CodecKind::LightWeighted, 1, false},
+                      Case{"OursRgbBc4PerChannel", CodecKind::LightWeighted, 3, true},
+                      Case{"PaperGreyBc1", CodecKind::LargestEntries, 1, false}),
+    [](const ::testing::TestParamInfo<Case>& c) { return std::string(c.param.name); });
 
 TEST(RowErrorContributions, WrongPatchOrLightIsAnError) {
   const std::size_t n = 12;

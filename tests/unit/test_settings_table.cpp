@@ -156,7 +156,7 @@ TEST(SettingsTable, OutOfRangeValuesNameTheSetting) {
   EXPECT_NO_THROW(s.validate());
   // Combinations name the setting that does not apply.
   s = {};
-  s.codec = CodecChoice::Paper;
+  s.codec = CodecChoice::LargestEntries;
   s.error_budget = 0.1;
   expect_rejected(s, "error_budget");
   s = {};
@@ -208,7 +208,7 @@ const Scene& cornell_box() {
 TEST(SettingsTable, RebakePlanReRunsFromEachRowsStage) {
   BakeSettings base;
   base.voxel_resolution = 3;
-  base.codec = CodecChoice::Ours;
+  base.codec = CodecChoice::LightWeighted;
   base.kept_fraction = 0.04;
   base.transport.bounces = 3;
   BakeSettings previous = base;
