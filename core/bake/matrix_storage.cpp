@@ -177,18 +177,16 @@ double predicted_whole_error(KeptFractionSearch& search, int rung, int measured)
   return search.sampled_error(rung) * search.whole_error(measured) / sampled;
 }
 
-// Whether the whole matrix at the rung below `rung` is predicted to meet the
-// budget. When rebalancing the lights at `rung` could bring the prediction
-// within the budget (its worst light down to its mean), it is tried first.
-bool below_predicted_to_meet(KeptFractionSearch& search, int rung, double budget) {
+// Whether the rung below `rung` is worth compressing whole: predicted to meet
+// the budget, or hopeful to once its lights are rebalanced (its worst light's
+// error brought down to the mean over the lights, as far as rebalancing goes).
+bool worth_trying_below(KeptFractionSearch& search, int rung, double budget) {
   if (predicted_whole_error(search, rung - 1, rung) <= budget) return true;
   const double sampled = search.sampled_error(rung);
   const double hopeful =
       sampled > 0.0 ? search.sampled_error(rung - 1) * search.whole_mean_error(rung) / sampled
                     : search.sampled_error(rung - 1);
-  if (hopeful > budget) return false;
-  search.finish(rung);
-  return predicted_whole_error(search, rung - 1, rung) <= budget;
+  return hopeful <= budget;
 }
 
 // The whole matrix from the rung the sample found. While it misses the
@@ -204,7 +202,7 @@ int compress_whole_from(KeptFractionSearch& search, int rung, int top, double bu
     } while (rung < top && predicted_whole_error(search, rung, measured) > budget);
   }
   // After a climb the rung below is known to miss, or predicted to.
-  if (missed || rung == 0 || !below_predicted_to_meet(search, rung, budget)) return rung;
+  if (missed || rung == 0 || !worth_trying_below(search, rung, budget)) return rung;
   return search.meets(rung - 1) ? rung - 1 : rung;
 }
 
