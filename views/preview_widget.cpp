@@ -23,6 +23,7 @@
 #include "bounce/export.h"
 #include "bounce/pictures.h"
 #include "bounce/scene.h"
+#include "preview_corners.h"
 #include "preview_lighting.h"
 #include "preview_programs.h"
 #include "preview_tangents.h"
@@ -195,40 +196,16 @@ void PreviewWidget::apply(SolveResult result) {
 
 void PreviewWidget::reset_camera() {
   const Scene& scene = lighting_->scene();
-  const Bounds b = scene.bounds();
-  scene_diagonal_ = std::max(1e-6f, glm::length(b.extent()));
-  target_ = scene.camera.target;
-  up_ = glm::normalize(scene.camera.up);
-  const glm::vec3 to_target = scene.camera.target - scene.camera.position;
-  distance_ = std::max(1e-3f * scene_diagonal_, glm::length(to_target));
-  base_forward_ = distance_ > 0.0f ? to_target / glm::length(to_target) : glm::vec3(0, 0, -1);
-  yaw_ = pitch_ = 0.0f;
-  fov_y_deg_ = scene.camera.fov_y_deg;
+  camera_.reset(scene.camera, glm::length(scene.bounds().extent()));
 }
 
-glm::vec3 PreviewWidget::eye() const {
-  // Orbit: turn the scene camera's direction by yaw about up, then by pitch
-  // about the camera's right axis.
-  const glm::mat4 yaw = glm::rotate(glm::mat4(1.0f), yaw_, up_);
-  glm::vec3 forward = glm::vec3(yaw * glm::vec4(base_forward_, 0.0f));
-  const glm::vec3 right = glm::normalize(glm::cross(forward, up_));
-  forward = glm::vec3(glm::rotate(glm::mat4(1.0f), pitch_, right) * glm::vec4(forward, 0.0f));
-  return target_ - distance_ * forward;
-}
-
-glm::mat4 PreviewWidget::view_matrix() const { return glm::lookAt(eye(), target_, up_); }
-
-glm::mat4 PreviewWidget::projection_matrix() const {
-  const float aspect =
-      static_cast<float>(std::max(1, width())) / static_cast<float>(std::max(1, height()));
-  const float far_plane = distance_ + 2.0f * scene_diagonal_;
-  return glm::perspective(glm::radians(fov_y_deg_), aspect, 1e-3f * far_plane, far_plane);
+float PreviewWidget::aspect() const {
+  return static_cast<float>(std::max(1, width())) / static_cast<float>(std::max(1, height()));
 }
 
 QPointF PreviewWidget::project(const glm::vec3& world) const {
-  const glm::vec4 clip = projection_matrix() * view_matrix() * glm::vec4(world, 1.0f);
-  const glm::vec3 ndc = glm::vec3(clip) / clip.w;
-  return {(0.5 * ndc.x + 0.5) * width(), (0.5 - 0.5 * ndc.y) * height()};
+  const glm::vec2 p = camera_.project(world, width(), height());
+  return {p.x, p.y};
 }
 
 void PreviewWidget::move_light_by(const glm::vec3& delta) {
@@ -248,21 +225,14 @@ void PreviewWidget::mouseMoveEvent(QMouseEvent* event) {
   if ((event->buttons() & Qt::LeftButton) && (event->modifiers() & Qt::ControlModifier)) {
     // Move the light with the mouse: one pixel is what a pixel spans at the
     // light's distance from the eye.
-    const glm::vec3 e = eye();
-    const glm::vec3 forward = glm::normalize(target_ - e);
-    const glm::vec3 right = glm::normalize(glm::cross(forward, up_));
-    const glm::vec3 up = glm::cross(right, forward);
-    const float depth = std::max(1e-3f, glm::dot(light_position_ - e, forward));
-    const float per_pixel = 2.0f * depth * std::tan(0.5f * glm::radians(fov_y_deg_)) /
-                            static_cast<float>(std::max(1, height()));
-    move_light_by(per_pixel * (static_cast<float>(d.x()) * right - static_cast<float>(d.y()) * up));
+    const float per_pixel = camera_.pixel_size_at(light_position_, height());
+    move_light_by(per_pixel * (static_cast<float>(d.x()) * camera_.right_axis() -
+                               static_cast<float>(d.y()) * camera_.up_axis()));
   } else if (event->buttons() & Qt::LeftButton) {
-    yaw_ -= 0.01f * static_cast<float>(d.x());
-    pitch_ = std::clamp(pitch_ - 0.01f * static_cast<float>(d.y()), -1.5f, 1.5f);
+    camera_.orbit(static_cast<float>(d.x()), static_cast<float>(d.y()));
     update();
   } else if (event->buttons() & Qt::RightButton) {
-    distance_ = std::clamp(distance_ * std::exp(0.01f * static_cast<float>(d.y())),
-                           0.01f * scene_diagonal_, 20.0f * scene_diagonal_);
+    camera_.dolly(std::exp(0.01f * static_cast<float>(d.y())));
     update();
   }
 }
@@ -271,11 +241,10 @@ void PreviewWidget::wheelEvent(QWheelEvent* event) {
   if (!lighting_) return;
   const float steps = static_cast<float>(event->angleDelta().y()) / 120.0f;
   if (event->modifiers() & Qt::ControlModifier) {
-    const glm::vec3 forward = glm::normalize(target_ - eye());
-    move_light_by(0.02f * scene_diagonal_ * steps * forward);
+    const glm::vec3 forward = glm::normalize(camera_.target() - camera_.eye());
+    move_light_by(0.02f * camera_.scene_diagonal() * steps * forward);
   } else {
-    distance_ = std::clamp(distance_ * std::pow(0.9f, steps), 0.01f * scene_diagonal_,
-                           20.0f * scene_diagonal_);
+    camera_.dolly(std::pow(0.9f, steps));
     update();
   }
 }
@@ -362,69 +331,25 @@ void PreviewWidget::upload_mesh() {
   corner_count_ = 0;
   corner_vertex_.clear();
   if (!lighting_) return;
-  // One vertex per triangle corner: albedo, emission and texture
-  // coordinates belong to the scene triangle, and neighbours of another
-  // material share mesh vertices. Corners are grouped by material so each
-  // material is one draw with its own textures bound.
-  const LitMesh& mesh = lighting_->mesh();
   const Scene& scene = lighting_->scene();
-  std::vector<std::vector<std::uint32_t>> faces_of(scene.materials.size());
-  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
-    faces_of[scene.triangle_material[mesh.source_triangle[f]]].push_back(
-        static_cast<std::uint32_t>(f));
-  // position, normal, albedo, emission (3 each), uv (2), whether uv is known
-  // (1), tangent and handedness (4)
-  constexpr int kFloats = 19;
-  const std::vector<glm::vec4> tangents = corner_tangents(scene, mesh);
-  std::vector<float> corners;
-  corners.reserve(mesh.triangles.size() * 3 * kFloats);
-  for (std::size_t material = 0; material < faces_of.size(); ++material) {
-    if (faces_of[material].empty()) continue;
-    const Material& m = scene.materials[material];
+  PreviewCorners corners = preview_corners(scene, lighting_->mesh());
+  for (const PreviewCorners::MaterialRange& range : corners.materials) {
     MaterialDraw draw;
-    draw.first = static_cast<GLint>(corner_vertex_.size());
-    draw.material = material;
-    for (const std::uint32_t f : faces_of[material]) {
-      const std::uint32_t source = mesh.source_triangle[f];
-      // A piece without texture coordinates has NaN ones in the core, where
-      // lookups answer the texture's mean and a mask keeps the surface
-      // (a constant mask still applies): the shaders are told per corner,
-      // as OpenGL lookups at NaN are undefined.
-      bool mapped = !scene.triangle_uv.empty();
-      if (mapped)
-        for (const glm::vec2& uv : scene.triangle_uv[source])
-          mapped = mapped && std::isfinite(uv.x) && std::isfinite(uv.y);
-      // Textured, the shader multiplies the texel by this factor (and
-      // clamps to the core's albedo range, as Scene::albedo_at does).
-      const glm::vec3 albedo = mapped && m.texture ? m.texture_factor : m.albedo;
-      // Likewise the emission factor of a textured emitter.
-      const glm::vec3 emission = mapped && m.emission_texture ? m.emission_factor : m.emission;
-      for (int c = 0; c < 3; ++c) {
-        const std::uint32_t v = mesh.triangles[f][c];
-        corner_vertex_.push_back(v);
-        // The vertex colour multiplies the albedo (or the texture's factor).
-        const glm::vec3 coloured = albedo * scene.colour_at(source, mesh.positions[v]);
-        for (const glm::vec3& a : {mesh.positions[v], mesh.normals[v], coloured, emission})
-          corners.insert(corners.end(), {a.x, a.y, a.z});
-        const glm::vec2 uv =
-            mapped ? texture_coordinates(scene, source, mesh.positions[v]) : glm::vec2(0.0f);
-        corners.insert(corners.end(), {uv.x, uv.y, mapped ? 1.0f : 0.0f});
-        const glm::vec4& t = tangents[3 * std::size_t{f} + static_cast<std::size_t>(c)];
-        corners.insert(corners.end(), {t.x, t.y, t.z, t.w});
-      }
-    }
-    draw.count = static_cast<GLsizei>(corner_vertex_.size()) - draw.first;
+    draw.first = static_cast<GLint>(range.first);
+    draw.count = static_cast<GLsizei>(range.count);
+    draw.material = range.material;
     draws_.push_back(draw);
   }
+  corner_vertex_ = std::move(corners.vertex);
   for (MaterialDraw& draw : draws_) draw.images = material_images_.upload(scene, draw.material);
   corner_count_ = static_cast<GLsizei>(corner_vertex_.size());
   glGenVertexArrays(1, &mesh_vao_);
   glBindVertexArray(mesh_vao_);
   glGenBuffers(1, &static_vbo_);
   glBindBuffer(GL_ARRAY_BUFFER, static_vbo_);
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(corners.size() * sizeof(float)),
-               corners.data(), GL_STATIC_DRAW);
-  const GLsizei stride = kFloats * sizeof(float);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(corners.floats.size() * sizeof(float)),
+               corners.floats.data(), GL_STATIC_DRAW);
+  const GLsizei stride = PreviewCorners::kFloats * sizeof(float);
   for (GLuint k = 0; k < 4; ++k) {
     glEnableVertexAttribArray(k);
     glVertexAttribPointer(
@@ -496,7 +421,7 @@ void PreviewWidget::upload_indirect() {
 
 void PreviewWidget::render_shadow_map() {
   shadow_dirty_ = false;
-  const float far_plane = 2.0f * scene_diagonal_;
+  const float far_plane = 2.0f * camera_.scene_diagonal();
   const glm::mat4 projection =
       glm::perspective(glm::radians(90.0f), 1.0f, 1e-3f * far_plane, far_plane);
   glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
@@ -539,8 +464,8 @@ void PreviewWidget::render(GLuint target) {
   targets_.ensure_size(w, h);
   if (shadow_dirty_) render_shadow_map();
 
-  const glm::mat4 view = view_matrix();
-  const glm::mat4 projection = projection_matrix();
+  const glm::mat4 view = camera_.view();
+  const glm::mat4 projection = camera_.projection(aspect());
 
   // 1. G-buffer.
   glBindFramebuffer(GL_FRAMEBUFFER, targets_.gbuffer_fbo());
@@ -586,8 +511,8 @@ void PreviewWidget::render(GLuint target) {
     // R and delta belong to the scene (the paper picks them per scene): a
     // twentieth of its diagonal reaches into corners without darkening whole
     // walls; delta is above the RGBA16F position's step at this depth.
-    programs_.ssao->setUniformValue("radius", 0.05f * scene_diagonal_);
-    programs_.ssao->setUniformValue("delta", 0.005f * scene_diagonal_);
+    programs_.ssao->setUniformValue("radius", 0.05f * camera_.scene_diagonal());
+    programs_.ssao->setUniformValue("delta", 0.005f * camera_.scene_diagonal());
     glUniformMatrix4fv(programs_.ssao->uniformLocation("projection"), 1, GL_FALSE,
                        glm::value_ptr(projection));
     programs_.ssao->setUniformValue(
@@ -649,7 +574,7 @@ void PreviewWidget::draw_composite(bool direct, bool indirect, bool ao, float ex
     glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
     glBindTexture(kind, t);
   };
-  const glm::mat4 view = view_matrix();
+  const glm::mat4 view = camera_.view();
   programs_.composite->bind();
   for (int k = 0; k < PreviewTargets::kGbufferTargets; ++k)
     bind(k, GL_TEXTURE_2D, targets_.gbuffer_texture(k));
@@ -673,8 +598,8 @@ void PreviewWidget::draw_composite(bool direct, bool indirect, bool ao, float ex
   programs_.composite->setUniformValue("spot_cos",
                                        QVector2D(std::cos(glm::radians(light.spot_inner_deg)),
                                                  std::cos(glm::radians(light.spot_outer_deg))));
-  programs_.composite->setUniformValue("far_plane", 2.0f * scene_diagonal_);
-  programs_.composite->setUniformValue("shadow_bias", 0.003f * scene_diagonal_);
+  programs_.composite->setUniformValue("far_plane", 2.0f * camera_.scene_diagonal());
+  programs_.composite->setUniformValue("shadow_bias", 0.003f * camera_.scene_diagonal());
   programs_.composite->setUniformValue("pcf_radius", 0.006f);
   programs_.composite->setUniformValue("show_direct", direct);
   programs_.composite->setUniformValue("show_indirect", indirect);

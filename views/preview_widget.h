@@ -39,6 +39,7 @@
 #include <glm/glm.hpp>
 
 #include "bake_view_data.h"
+#include "orbit_camera.h"
 #include "preview_material_images.h"
 #include "preview_programs.h"
 #include "preview_targets.h"
@@ -142,9 +143,7 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   // settled), without touching the direct light's shadow map.
   void solve_at(const glm::vec3& position, bool wait);
   void reset_camera();
-  glm::mat4 view_matrix() const;
-  glm::mat4 projection_matrix() const;
-  glm::vec3 eye() const;
+  float aspect() const;  // width / height
   void move_light_by(const glm::vec3& delta);
 
   // The one job of this widget: the light solved at its latest position.
@@ -165,11 +164,7 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   std::vector<glm::vec3> vertex_indirect_;  // indirect irradiance per mesh vertex
   double frame_seconds_ = 0.0, transfer_seconds_ = 0.0;
 
-  // Camera: orbit around target_.
-  glm::vec3 target_{0.0f}, up_{0.0f, 1.0f, 0.0f};
-  glm::vec3 base_forward_{0.0f, 0.0f, -1.0f};  // scene camera's direction at yaw = pitch = 0
-  float distance_ = 1.0f, yaw_ = 0.0f, pitch_ = 0.0f, fov_y_deg_ = 45.0f;
-  float scene_diagonal_ = 1.0f;
+  OrbitCamera camera_;
   QPoint last_mouse_;
 
   // Frame timing for the overlay.
