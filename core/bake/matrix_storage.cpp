@@ -179,9 +179,12 @@ double predicted_whole_error(KeptFractionSearch& search, int rung, int measured)
 
 // Whether the rung below `rung` is worth compressing whole: predicted to meet
 // the budget, or hopeful to once its lights are rebalanced (its worst light's
-// error brought down to the mean over the lights, as far as rebalancing goes).
+// error brought down to the mean over the lights, as far as rebalancing
+// goes). Hope needs lights as unbalanced at `rung` as rebalancing asks for
+// (kRebalanceSpread): on lights that even, no rebalancing would be tried.
 bool worth_trying_below(KeptFractionSearch& search, int rung, double budget) {
   if (predicted_whole_error(search, rung - 1, rung) <= budget) return true;
+  if (!(search.whole_error(rung) > kRebalanceSpread * search.whole_mean_error(rung))) return false;
   const double sampled = search.sampled_error(rung);
   const double hopeful =
       sampled > 0.0 ? search.sampled_error(rung - 1) * search.whole_mean_error(rung) / sampled
