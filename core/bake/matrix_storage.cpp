@@ -58,7 +58,7 @@ class KeptFractionSearch {
 
   // The light error of the whole matrix compressed at `rung`, as far as it
   // has been improved.
-  double whole_error(int rung) { return budgeted_light_error(whole(rung).trial.errors.indirect); }
+  double whole_error(int rung) { return budgeted_light_error(whole_light_error(rung)); }
 
   // Whether the whole matrix at `rung` meets the budget, with the lights
   // rebalanced when it does not as given.
@@ -68,9 +68,11 @@ class KeptFractionSearch {
     return whole_error(rung) <= budget_;
   }
 
-  // The mean over the lights of the whole matrix's light error at `rung`:
-  // about as low as rebalancing the lights can bring its worst light.
-  double whole_mean_error(int rung) { return whole(rung).trial.errors.indirect.rel_rms_mean; }
+  // The whole matrix's light error at `rung` per light: its mean is about as
+  // low as rebalancing the lights can bring the worst.
+  const IndirectLightError& whole_light_error(int rung) {
+    return whole(rung).trial.errors.indirect;
+  }
 
   // Tries the lights rebalanced at `rung` (once).
   void finish(int rung) {
@@ -184,11 +186,12 @@ double predicted_whole_error(KeptFractionSearch& search, int rung, int measured)
 // (kRebalanceSpread): on lights that even, no rebalancing would be tried.
 bool worth_trying_below(KeptFractionSearch& search, int rung, double budget) {
   if (predicted_whole_error(search, rung - 1, rung) <= budget) return true;
-  if (!(search.whole_error(rung) > kRebalanceSpread * search.whole_mean_error(rung))) return false;
+  const IndirectLightError& whole = search.whole_light_error(rung);
+  if (!lights_unbalanced(whole)) return false;
   const double sampled = search.sampled_error(rung);
-  const double hopeful =
-      sampled > 0.0 ? search.sampled_error(rung - 1) * search.whole_mean_error(rung) / sampled
-                    : search.sampled_error(rung - 1);
+  const double hopeful = sampled > 0.0
+                             ? search.sampled_error(rung - 1) * whole.rel_rms_mean / sampled
+                             : search.sampled_error(rung - 1);
   return hopeful <= budget;
 }
 

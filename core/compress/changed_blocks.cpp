@@ -23,13 +23,6 @@ std::vector<std::int64_t> slot_of_block_row(const CompressedMatrix& m) {
   return slot;
 }
 
-std::vector<std::uint32_t> stored_place(const Permutation& permutation) {
-  std::vector<std::uint32_t> place(permutation.size());
-  for (std::size_t k = 0; k < permutation.size(); ++k)
-    place[permutation[k]] = static_cast<std::uint32_t>(k);
-  return place;
-}
-
 // Calls mark(j) for every column kept in exactly one of the two sorted rows.
 template <class Mark>
 void symmetric_difference(std::span<const std::uint32_t> a, std::span<const std::uint32_t> b,
@@ -60,10 +53,11 @@ std::vector<std::size_t> blocks_with_changed_holes(const CompressedMatrix& befor
     throw Error("compress", "changed blocks: the two compressions do not share their layout");
   const std::size_t per_row = after.padded / 4;
   const std::vector<std::int64_t> slot = slot_of_block_row(after);
-  const std::vector<std::uint32_t> place = stored_place(after.permutation);
+  const Permutation place = inverse(after.permutation);  // stored index of each patch
+  const std::vector<std::uint32_t> rows = after.rows();
   std::vector<std::uint8_t> changed(after.blocks.size() / 8, 0);
   for (std::size_t c = 0; c < after.kept.size(); ++c)
-    for (const std::uint32_t i : after.rows()) {
+    for (const std::uint32_t i : rows) {
       const auto s = static_cast<std::size_t>(slot[place[i] / 4]);
       symmetric_difference(kept_row(before.kept[c], i), kept_row(after.kept[c], i),
                            [&](std::uint32_t j) { changed[s * per_row + place[j] / 4] = 1; });

@@ -48,8 +48,7 @@ MeasuredCompression rebalance_for_light(MeasuredCompression first,
   MeasuredCompression t = std::move(first);
   if (!codec.importance || t.errors.indirect.lights < 2 || t.compressed.lights_rebalance_tried)
     return t;
-  const IndirectLightError& error = t.errors.indirect;
-  if (!(budgeted_light_error(error) > kRebalanceSpread * error.rel_rms_mean)) return t;
+  if (!lights_unbalanced(t.errors.indirect)) return t;
   const std::vector<double> factor = rebalanced_light_factor(t.errors.indirect);
   if (factor.empty()) return t;
   const EntryImportance rebalanced =

@@ -27,6 +27,12 @@ struct MeasuredCompression {
 // The worst evaluation light's relative RMS error: what the budget bounds.
 inline double budgeted_light_error(const IndirectLightError& e) { return e.rel_rms_max; }
 
+// Whether the worst light stands out from the mean enough for rebalancing
+// the lights to be tried.
+inline bool lights_unbalanced(const IndirectLightError& e) {
+  return budgeted_light_error(e) > kRebalanceSpread * e.rel_rms_mean;
+}
+
 // Compresses `exact` (stored channels, n x n each) with `codec` and measures
 // it against `probe`; `abs_error_sum` as measure_compression. With
 // codec.importance (ours), also tries the rebalanced lights (see above).
