@@ -4,6 +4,7 @@
 #include <chrono>
 #include <random>
 
+#include "base/blas_kernels.h"
 #include "transport/clblast_gemm.h"
 #include "transport/inverse_transport.h"
 #include "transport/openblas_gemm.h"
@@ -102,7 +103,10 @@ TransportBench run_transport_bench(std::size_t n, int repeats, bool with_lu, boo
   b.repeats = std::max(repeats, 1);
   {
     OpenBlasGemm openblas;
-    b.entries.push_back({"OpenBLAS sgemm", true, {}, time_gemm(openblas, n, b.repeats)});
+    b.entries.push_back({"OpenBLAS sgemm (" + choose_blas_kernels().used + ")",
+                         true,
+                         {},
+                         time_gemm(openblas, n, b.repeats)});
   }
   try {
     ClblastGemm clblast;

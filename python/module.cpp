@@ -13,6 +13,7 @@
 #include <pybind11/stl.h>
 
 #include "bounce/bake.h"
+#include "bounce/blas.h"
 #include "bounce/scene.h"
 #include "opened_bake.h"
 #include "progress_callback.h"
@@ -124,6 +125,8 @@ PYBIND11_MODULE(bounce, m) {
   using namespace bounce;
   using namespace bounce::python;
   m.doc() = "Bounce: bake a scene's radiosity transport and relight the bake (docs/python.md)";
+  // At import, before a bake or a relighter can run BLAS on another thread.
+  choose_blas_kernels();
 
   // The exception types live as long as the interpreter: never released, so
   // that no reference is dropped after Python has shut down.

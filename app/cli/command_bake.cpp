@@ -14,6 +14,7 @@
 #include "bounce/scene.h"
 #include "commands.h"
 #include "console_progress.h"
+#include "flag_spelling.h"
 #include "lit_bake_mesh.h"
 #include "reference_check.h"
 #ifdef BOUNCE_HAVE_MPI
@@ -91,7 +92,8 @@ Outcome bake_one(const std::string& path, const fs::path& out, bool nest, const 
   const bool root = distributed.root();  // only the root speaks and writes
   diagnostics.set_listener([&](const Diagnostic& d) {
     if (root && d.kind == Diagnostic::Kind::Warning)
-      std::fprintf(stderr, "bounce: warning: %s: %s\n", d.where.c_str(), d.message.c_str());
+      std::fprintf(stderr, "bounce: warning: %s: %s\n", d.where.c_str(),
+                   with_flag_spellings(d.message).c_str());
   });
   const Scene scene = distributed.load_everywhere ? distributed.load_everywhere(path, diagnostics)
                                                   : SceneLoader(diagnostics).load(path);

@@ -24,6 +24,7 @@
 #include "bounce/scene.h"
 #include "commands.h"
 #include "console_progress.h"
+#include "flag_spelling.h"
 #include "number_text.h"
 #include "report_comparison.h"
 #ifdef BOUNCE_REPORT_CHARTS
@@ -131,7 +132,8 @@ std::pair<ReportData, fs::path> report_one(const ReportOptions& opt, const std::
   Diagnostics diag;
   diag.set_listener([&opt](const Diagnostic& d) {
     if (d.kind == Diagnostic::Kind::Warning && !opt.quiet && !opt.json)
-      std::fprintf(stderr, "bounce: warning: %s: %s\n", d.where.c_str(), d.message.c_str());
+      std::fprintf(stderr, "bounce: warning: %s: %s\n", d.where.c_str(),
+                   with_flag_spellings(d.message).c_str());
   });
   const Scene scene = SceneLoader(diag).load(scene_path);
   ConsoleProgress console(opt.quiet || opt.json);

@@ -25,6 +25,7 @@
 #include "bounce/scene.h"
 #include "commands.h"
 #include "console_progress.h"
+#include "flag_spelling.h"
 
 namespace bounce::cli {
 
@@ -330,7 +331,8 @@ void run_solve(const SolveOptions& opt) {
   Diagnostics diag;
   diag.set_listener([](const Diagnostic& d) {
     if (d.kind == Diagnostic::Kind::Warning)
-      std::fprintf(stderr, "bounce: warning: %s: %s\n", d.where.c_str(), d.message.c_str());
+      std::fprintf(stderr, "bounce: warning: %s: %s\n", d.where.c_str(),
+                   with_flag_spellings(d.message).c_str());
   });
   SolveRecord r;
   auto t = Clock::now();

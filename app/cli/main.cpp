@@ -3,8 +3,10 @@
 #include <cstdio>
 #include <exception>
 
+#include "bounce/blas.h"
 #include "bounce/error.h"
 #include "commands.h"
+#include "flag_spelling.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -24,6 +26,8 @@ int main(int argc, char** argv) {
   bounce::cli::register_solve(app);
   bounce::cli::register_report(app);
   bounce::cli::register_bench(app);
+  // Before any command runs BLAS, here or on another thread.
+  bounce::choose_blas_kernels();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -39,7 +43,7 @@ int main(int argc, char** argv) {
                  e.what());
     return 1;
   } catch (const bounce::Error& e) {
-    std::fprintf(stderr, "bounce: error: %s\n", e.what());
+    std::fprintf(stderr, "bounce: error: %s\n", bounce::cli::with_flag_spellings(e.what()).c_str());
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bounce: internal error: %s\n", e.what());

@@ -8,6 +8,7 @@
 #include <QCommandLineParser>
 #include <QSurfaceFormat>
 
+#include "bounce/blas.h"
 #include "bounce/error.h"
 #include "headless.h"
 #include "main_window.h"
@@ -37,6 +38,8 @@ bool asks_for_help_or_version(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Before a bake's worker thread or the preview runs BLAS.
+  bounce::choose_blas_kernels();
   QCommandLineParser parser;
   parser.setApplicationDescription(
       "Bounce Studio: bake a scene and look at its voxels, patches and transport matrix.");

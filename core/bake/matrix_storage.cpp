@@ -282,7 +282,7 @@ Trial search_kept_fraction(const std::vector<const float*>& exact, std::size_t n
     s.error_budget_outcome = text_format(
         "NOT met: %s; kept fraction %g, %s, gives a light error of %.3g on the worst of %zu "
         "evaluation lights (mean %.3g) against the budget %g. Kept that instead; for the "
-        "budget, raise --size-limit or use --codec dense (exact, %.1f MiB)",
+        "budget, raise 'size_limit' or set 'codec' to dense (exact, %.1f MiB)",
         nothing_fits ? ("no kept fraction fits " + limit_text).c_str()
                      : ("no kept fraction within " + limit_text + " meets it").c_str(),
         kKeptFractionLadder[best], bytes_text(bytes).c_str(), budgeted_light_error(light),

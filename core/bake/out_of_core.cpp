@@ -24,10 +24,10 @@ OutOfCoreDecision decide_out_of_core(const BakeSettings& settings, std::size_t p
   switch (settings.out_of_core) {
     case OutOfCore::On:
       d.on = true;
-      d.why = "requested (--out-of-core on)";
+      d.why = "requested ('out_of_core' on)";
       break;
     case OutOfCore::Off:
-      d.why = "requested (--out-of-core off)";
+      d.why = "requested ('out_of_core' off)";
       break;
     case OutOfCore::Auto:
       d.on = physical_memory > 0 && d.dense_footprint_bytes > physical_memory / 2;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <memory>
 
+#include "base/blas_kernels.h"
 #include "base/diagnostics.h"
 #include "base/error.h"
 #include "compute/opencl_context.h"
@@ -97,9 +98,11 @@ TransportMultiplier::TransportMultiplier(const StoredTransport& t, MultiplyChoic
   if (choice == MultiplyChoice::kDense || (!compressed && automatic)) {
     if (t.dense.empty())
       throw Error(t.where, choice == MultiplyChoice::kDense
-                               ? "holds no dense T.npy (bake with --codec dense or "
-                                 "--dump-matrices for --multiply dense)"
+                               ? "holds no dense T.npy, which the dense product needs (bake with "
+                                 "'codec' dense or with 'dump_matrices')"
                                : "holds neither a compressed nor a dense transport matrix");
+    // Here, not in the frame: the choice may re-initialise OpenBLAS.
+    choose_blas_kernels();
     const std::vector<const float*> dense = t.dense;
     const std::size_t n = t.n;
     const auto map = t.channel_of_rgb;
@@ -113,7 +116,7 @@ TransportMultiplier::TransportMultiplier(const StoredTransport& t, MultiplyChoic
     return;
   }
   if (!compressed)
-    throw Error(t.where, std::string("holds no compressed matrix (T.dds) for --multiply ") +
+    throw Error(t.where, std::string("holds no compressed matrix (T.dds) for the product ") +
                              multiply_choice_name(choice));
   const bool opencl = choice == MultiplyChoice::kOpenCl ||
                       (choice == MultiplyChoice::kAuto && opencl_device_is_gpu());

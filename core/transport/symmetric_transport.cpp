@@ -262,7 +262,7 @@ void factorise(Factor<Real>& f, const Split& s, double& flops) {
 std::string asymmetric(double asymmetry, double limit) {
   return text_format(
       "A F is not symmetric: relative asymmetry up to %.2g > %.0e (the form factors are not "
-      "balanced, e.g. --closure-rays 0)",
+      "balanced, e.g. 'closure_rays' 0)",
       asymmetry, limit);
 }
 

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 
+#include "base/blas_kernels.h"
 #include "base/error.h"
 #include "transport/bounce_series.h"
 #include "transport/gemm_selection.h"
@@ -32,6 +33,16 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Which OpenBLAS kernels the solve runs on, and why (base/blas_kernels.h).
+TransportDecision blas_kernels_decision(const BlasKernels& k) {
+  std::string why = k.why;
+  if (k.candidate_gflops > 0.0)
+    why +=
+        text_format(" (sgemm at n = %d: %s %.1f GFLOP/s, %s %.1f GFLOP/s)", BlasKernels::kProbeSize,
+                    k.detected.c_str(), k.detected_gflops, k.candidate.c_str(), k.candidate_gflops);
+  return {"OpenBLAS kernels: " + k.used, why};
 }
 
 std::string channel_label(const std::vector<int>& rgb) {
@@ -375,7 +386,7 @@ void solve_exactly(ChannelTransport& ct, MatrixValues& m, const ChannelPlan& pla
   else
     decisions.push_back({who + ": K = infinity by LU, not Cholesky",
                          executor ? "the distributed solve (ScaLAPACK) factorises by LU"
-                                  : "F was not balanced (--closure-rays 0): no patch areas make "
+                                  : "F was not balanced ('closure_rays' 0): no patch areas make "
                                     "A F symmetric"});
   decisions.push_back(
       {who + text_format(": K = infinity by %s in %s, condition %.3g", method_name(inv.method),
@@ -409,6 +420,7 @@ TransportResult compute_transport(const FormFactorMatrix& form_factors,
     result.backend = "none (no patches)";
     return result;
   }
+  result.decisions.push_back(blas_kernels_decision(choose_blas_kernels()));
 
   const std::vector<std::vector<int>> groups = channel_groups(albedo);
   result.grey = groups.size() == 1;

@@ -288,6 +288,9 @@ TEST(TransportBake, UnreachableLightBudgetIsSaidPlainly) {
   const json c = read_manifest(out)["compression"];
   EXPECT_FALSE(c["error_budget_met"].get<bool>());
   EXPECT_TRUE(contains(c["error_budget_outcome"].get<std::string>(), "NOT met")) << c;
+  // The core names the setting, as Python knows it; the CLI printed its option.
+  EXPECT_TRUE(contains(c["error_budget_outcome"].get<std::string>(), "'size_limit'")) << c;
+  EXPECT_FALSE(contains(c["error_budget_outcome"].get<std::string>(), "--size-limit")) << c;
   EXPECT_GT(c["errors"]["indirect_light"]["rel_rms_max"].get<double>(), 0.0001);
   EXPECT_LE(c["sizes"]["stored_bytes"].get<std::size_t>(),
             c["size_limit_bytes"].get<std::size_t>());

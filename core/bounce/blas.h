@@ -1,0 +1,10 @@
+#pragma once
+// Public: the BLAS kernels the dense algebra runs on.
+//
+//   const bounce::BlasKernels& k = bounce::choose_blas_kernels();  // at start-up
+//   std::printf("OpenBLAS kernels: %s (%s)\n", k.used.c_str(), k.why.c_str());
+//
+// The library calls it itself before its first dense product; a program
+// that may run BLAS on several threads calls it once at start-up, before
+// any of them does.
+#include "base/blas_kernels.h"
