@@ -54,6 +54,37 @@ TEST(SparseSplit, KeepsTheLargestFractionExactly) {
   EXPECT_EQ(extract_kept(m.data(), n, kept_threshold(m.data(), n, 0.0)).value.size(), 0u);
 }
 
+// Values over many decades (as T's entries are), with ties, zeros, negatives
+// and a NaN, on a subset of rows: the threshold is the k-th largest positive
+// value of those rows, as a sort gives it, for every fraction.
+TEST(SparseSplit, ThresholdIsTheKthLargestPositiveOfTheRows) {
+  const std::size_t n = 97;
+  std::vector<float> m(n * n);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-30.0f, 2.0f);
+  for (auto& v : m) v = std::exp(u(rng));
+  for (std::size_t k = 0; k < m.size(); k += 13) m[k] = m[k / 2];  // ties
+  for (std::size_t k = 5; k < m.size(); k += 17) m[k] = 0.0f;
+  for (std::size_t k = 9; k < m.size(); k += 29) m[k] = -m[k];
+  m[3] = std::numeric_limits<float>::quiet_NaN();
+  std::vector<std::uint32_t> rows;
+  for (std::uint32_t i = 0; i < n; i += 3) rows.push_back(i);
+  std::vector<float> positive;
+  for (const std::uint32_t i : rows)
+    for (std::size_t j = 0; j < n; ++j)
+      if (m[i * n + j] > 0.0f) positive.push_back(m[i * n + j]);
+  std::sort(positive.begin(), positive.end(), std::greater<float>());
+  for (const double fraction : {0.0001, 0.0004, 0.003, 0.01, 0.04, 0.3, 0.7, 0.85, 1.0}) {
+    const auto keep =
+        static_cast<std::size_t>(std::llround(fraction * static_cast<double>(rows.size() * n)));
+    const float expected = keep == 0                 ? std::numeric_limits<float>::infinity()
+                           : keep >= positive.size() ? std::numeric_limits<float>::min()
+                                                     : positive[keep - 1];
+    EXPECT_EQ(kept_threshold(m.data(), n, rows, fraction), expected) << fraction;
+  }
+  EXPECT_EQ(kept_threshold(m.data(), n, rows, 0.0), std::numeric_limits<float>::infinity());
+}
+
 TEST(MatrixError, FiguresMatchADirectComputation) {
   const std::vector<float> exact = {1.0f, 2.0f, 0.0f, 4.0f};
   const std::vector<float> approx = {1.5f, 2.0f, 0.25f, 3.0f};
