@@ -70,7 +70,8 @@ std::vector<std::size_t> blocks_with_changed_holes(const CompressedMatrix& befor
 
 void encode_blocks_in_place(const BlockEncoding& e, std::span<const std::size_t> which,
                             std::span<const std::uint8_t> codes, std::span<const float> weights,
-                            std::size_t channels, CompressedMatrix& m) {
+                            std::size_t channels, CompressedMatrix& m,
+                            std::span<const std::uint32_t> row_slot) {
   if (e.images() != 1 || channels != e.texel_channels())
     throw Error("compress", "blocks are re-encoded in place in one image only");
   const std::size_t n = m.n, per_row = m.padded / 4;
@@ -86,7 +87,9 @@ void encode_blocks_in_place(const BlockEncoding& e, std::span<const std::size_t>
       for (std::size_t x = 0; x < 4; ++x) {
         const std::size_t i = 4 * by + y, j = 4 * bx + x;
         if (i >= n || j >= n) continue;  // padding: code 0, weight 0
-        const std::size_t src = (std::size_t{m.permutation[i]} * n + m.permutation[j]) * channels;
+        const std::size_t row = m.permutation[i];
+        const std::size_t texel_row = row_slot.empty() ? row : row_slot[row];
+        const std::size_t src = (texel_row * n + m.permutation[j]) * channels;
         for (std::size_t c = 0; c < channels; ++c) {
           texel[4 * y + x][c] = codes[src + c];
           weight[4 * y + x][c] = weights[src + c];

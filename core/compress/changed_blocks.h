@@ -22,11 +22,13 @@ std::vector<std::size_t> blocks_with_changed_holes(const CompressedMatrix& befor
                                                    const CompressedMatrix& after);
 
 // Encodes blocks `which` of `m` into m.blocks from the texels in patch order
-// (`codes`, `weights`: n x n x `channels`, as compress_matrix splits them),
-// through m.permutation, exactly as the whole image's encoding would. One
-// image only (BC1, or BC4 of a grey scene).
+// (`codes`, `weights`: rows x n x `channels`, as compress_matrix splits them),
+// through m.permutation, exactly as the whole image's encoding would. Patch
+// row i's texels are texel row `row_slot[i]` (empty: row i; a sample holds
+// its own rows only). One image only (BC1, or BC4 of a grey scene).
 void encode_blocks_in_place(const BlockEncoding& e, std::span<const std::size_t> which,
                             std::span<const std::uint8_t> codes, std::span<const float> weights,
-                            std::size_t channels, CompressedMatrix& m);
+                            std::size_t channels, CompressedMatrix& m,
+                            std::span<const std::uint32_t> row_slot = {});
 
 }  // namespace bounce

@@ -144,10 +144,18 @@ namespace {
 
 // The texels of the whole matrix before ordering, in patch order: codes and
 // weights of `channels` per entry, only the covered rows filled.
+// Codes and weights per texel, channels interleaved, one texel row per patch
+// row split: every row for a whole compression, a sample's rows for a sample
+// (an n x n buffer for a sample of an eighth of the rows was mostly zeros,
+// written and faulted in for every trial).
 struct SplitTexels {
   std::size_t channels = 3;
   std::vector<std::uint8_t> codes;
   std::vector<float> weights;
+  std::vector<std::uint32_t> row_slot;  // texel row of each patch row; empty: the same row
+  std::size_t row_start(std::size_t i, std::size_t n) const {
+    return (row_slot.empty() ? i : std::size_t{row_slot[i]}) * n;
+  }
 };
 
 // What decides which entries of channel c are kept: the value itself, or the
@@ -207,7 +215,9 @@ void quantise_channel(const float* a, const float* key, float threshold, const L
 #pragma omp parallel for schedule(static)
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const std::size_t i = rows[r];
+    const std::size_t texel_row = texels.row_start(i, n);
     for (std::size_t k = i * n; k < (i + 1) * n; ++k) {
+      const std::size_t t = (texel_row + k - i * n) * ic;
       const bool hole = !(key[k] < threshold);
       const std::uint8_t code = hole ? 0 : q.encode(a[k]);
       // A hole's value is replaced by the kept one at decode: any code will
@@ -215,8 +225,8 @@ void quantise_channel(const float* a, const float* key, float threshold, const L
       float w = hole ? 0.0f : code_weight[code];
       if (importance) w *= importance->weight(c, i, k % n);
       for (std::size_t s = 0; s < copies; ++s) {
-        texels.codes[k * ic + c + s] = code;
-        texels.weights[k * ic + c + s] = w;
+        texels.codes[t + c + s] = code;
+        texels.weights[t + c + s] = w;
       }
     }
   }
@@ -239,8 +249,13 @@ SplitTexels split_and_quantise(const std::vector<const float*>& matrices, std::s
   m.light_weighted = importance != nullptr;
   SplitTexels texels;
   texels.channels = image_channels;
-  texels.codes.assign(n * n * image_channels, 0);
-  texels.weights.assign(n * n * image_channels, 0.0f);
+  if (rows.size() != n) {
+    texels.row_slot.assign(n, 0);
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      texels.row_slot[rows[r]] = static_cast<std::uint32_t>(r);
+  }
+  texels.codes.assign(rows.size() * n * image_channels, 0);
+  texels.weights.assign(rows.size() * n * image_channels, 0.0f);
   std::vector<float> score;
   for (std::size_t c = 0; c < matrices.size(); ++c) {
     const float* a = matrices[c];
@@ -290,7 +305,7 @@ void permuted_image(const CompressedMatrix& m, const SplitTexels& texels,
       if (i >= n) continue;
       const std::size_t src_row = m.permutation[i];
       for (std::size_t j = 0; j < n; ++j) {
-        const std::size_t src = (src_row * n + m.permutation[j]) * ic;
+        const std::size_t src = (texels.row_start(src_row, n) + m.permutation[j]) * ic;
         const std::size_t dst = ((4 * s + r) * w + j) * ic;
         for (std::size_t c = 0; c < ic; ++c) {
           image[dst + c] = texels.codes[src + c];
@@ -381,7 +396,8 @@ void encode_image(const CodecSettings& settings, const ImageLayout& layout,
   if (previous && e.images() == 1) {
     m.blocks = previous->blocks;
     const std::vector<std::size_t> changed = blocks_with_changed_holes(*previous, m);
-    encode_blocks_in_place(e, changed, texels.codes, texels.weights, texels.channels, m);
+    encode_blocks_in_place(e, changed, texels.codes, texels.weights, texels.channels, m,
+                           texels.row_slot);
     m.blocks_encoded = changed.size();
     m.seconds_encoding = since(t);
     if (progress) progress->end_stage();

@@ -4,6 +4,7 @@
 // and importance, encodes the whole image, and compares byte for byte.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 #include <glm/glm.hpp>
@@ -141,6 +142,37 @@ TEST(ChangedBlocks, EncodesOnlyTheBlocksItIsGiven) {
     for (std::size_t k = 0; k < 8; ++k)
       ASSERT_EQ(m.blocks[8 * b + k], given ? encoded[8 * b + k] : 0xAB) << "block " << b;
   }
+}
+
+}  // namespace bounce
+
+namespace bounce {
+
+// A sample holds its own rows' texels only: its blocks, both passes, are
+// those block rows of a full encoding of the texels its kept entries and
+// quantisers give.
+TEST(ChangedBlocks, ASampledSecondPassStoresWhatAFullEncodingOfItsRowsGives) {
+  const Matrices x;
+  CodecSettings s;
+  s.kept_fraction = 0.03;
+  s.importance = &x.importance;
+  s.kept_passes = 2;
+  s.permutation = compress_matrix(x.in, x.n, s).permutation;
+  s.block_rows = {1, 4, 5, 9, 15, 32};  // 33 block rows; the last is padded
+  const CompressedMatrix m = compress_matrix(x.in, x.n, s);
+  const std::size_t per_row = m.padded / 4;
+  ASSERT_EQ(m.blocks.size(), s.block_rows.size() * per_row * 8);
+  std::vector<std::uint8_t> codes;
+  std::vector<float> weights;
+  image_of(x, m, codes, weights);
+  const std::vector<std::uint8_t> full =
+      encode_bc1_image(m.padded, m.padded, codes, weights, Bc1Encoder::kWeighted);
+  for (std::size_t k = 0; k < s.block_rows.size(); ++k)
+    EXPECT_TRUE(
+        std::equal(m.blocks.begin() + static_cast<std::ptrdiff_t>(k * per_row * 8),
+                   m.blocks.begin() + static_cast<std::ptrdiff_t>((k + 1) * per_row * 8),
+                   full.begin() + static_cast<std::ptrdiff_t>(s.block_rows[k] * per_row * 8)))
+        << "block row " << s.block_rows[k];
 }
 
 }  // namespace bounce
