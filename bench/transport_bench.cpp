@@ -4,7 +4,7 @@
 #include <chrono>
 #include <random>
 
-#include "base/blas_kernels.h"
+#include "transport/blas_kernels.h"
 #include "transport/clblast_gemm.h"
 #include "transport/inverse_transport.h"
 #include "transport/openblas_gemm.h"

@@ -7,4 +7,4 @@
 // The library calls it itself before its first dense product; a program
 // that may run BLAS on several threads calls it once at start-up, before
 // any of them does.
-#include "base/blas_kernels.h"
+#include "transport/blas_kernels.h"

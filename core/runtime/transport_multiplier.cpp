@@ -5,13 +5,13 @@
 #include <limits>
 #include <memory>
 
-#include "base/blas_kernels.h"
 #include "base/diagnostics.h"
 #include "base/error.h"
 #include "compute/opencl_context.h"
 #include "runtime/compressed_transport.h"
 #include "runtime/compressed_transport_cl.h"
 #include "runtime/dense_transport.h"
+#include "transport/blas_kernels.h"
 
 namespace bounce {
 

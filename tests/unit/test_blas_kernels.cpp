@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-#include "base/blas_kernels.h"
+#include "transport/blas_kernels.h"
 
 namespace bounce {
 

@@ -1,4 +1,4 @@
-#include "base/blas_kernels.h"
+#include "transport/blas_kernels.h"
 
 #include <cblas.h>
 #include <dlfcn.h>
