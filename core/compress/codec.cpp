@@ -212,6 +212,7 @@ void quantise_channel(const float* a, const float* key, float threshold, const L
   std::array<float, 256> code_weight;
   for (int code = 0; code < 256; ++code)
     code_weight[static_cast<std::size_t>(code)] = q.weight(static_cast<std::uint8_t>(code));
+  const float half_code_one = 0.5f * q.decode(1);
 #pragma omp parallel for schedule(static)
   for (std::size_t r = 0; r < rows.size(); ++r) {
     const std::size_t i = rows[r];
@@ -219,7 +220,7 @@ void quantise_channel(const float* a, const float* key, float threshold, const L
     for (std::size_t k = i * n; k < (i + 1) * n; ++k) {
       const std::size_t t = (texel_row + k - i * n) * ic;
       const bool hole = !(key[k] < threshold);
-      const std::uint8_t code = hole ? 0 : q.encode(a[k]);
+      const std::uint8_t code = hole ? 0 : q.encode(a[k], &half_code_one);
       // A hole's value is replaced by the kept one at decode: any code will
       // do there, so it weighs nothing (ours). The paper encodes it as 0.
       float w = hole ? 0.0f : code_weight[code];
