@@ -156,8 +156,8 @@ void land_rays(const GatherInputs& in, std::size_t i, const CosineLattice::Frame
     }
     if (plan.spot_sources) {
       const glm::ivec3 cell(glm::floor(x / plan.spot_cell));
-      add_to_spot_cell(w.spots, {s, cell.x, cell.y, cell.z, h.triangle},
-                       SpotCell{1, static_cast<std::uint64_t>(i) * plan.rays + k, x, side});
+      w.spots.add({s, cell.x, cell.y, cell.z, h.triangle},
+                  SpotCell{1, static_cast<std::uint64_t>(i) * plan.rays + k, x, side});
     }
     if (w.hits[p]++ == 0) w.touched.push_back(static_cast<std::uint32_t>(p));
     if (plan.sample_sources && w.sample_hits[static_cast<std::size_t>(s)]++ == 0)
@@ -281,7 +281,7 @@ void add_thread_totals(const PointScratch& w, TracedRows& out) {
   out.tally += w.tally;
   for (std::size_t s = 0; s < w.seen.size(); ++s) out.seen_rays[s] += w.seen[s];
   for (std::size_t p = 0; p < w.cluster_rays.size(); ++p) out.cluster_rays[p] += w.cluster_rays[p];
-  for (const auto& [key, cell] : w.spots) add_to_spot_cell(out.spot_cells, key, cell);
+  out.spot_cells.merge(w.spots);
 }
 
 }  // namespace

@@ -5,15 +5,28 @@
 
 namespace bounce {
 
-void add_to_spot_cell(SpotCells& cells, const SurfaceCellKey& key, const SpotCell& cell) {
-  const auto [it, added] = cells.try_emplace(key, cell);
-  if (added) return;
-  it->second.rays += cell.rays;
-  if (cell.first < it->second.first) {
-    it->second.first = cell.first;
-    it->second.position = cell.position;
-    it->second.normal = cell.normal;
+void SpotCells::add(const SurfaceCellKey& key, const SpotCell& cell) {
+  const auto s = static_cast<std::size_t>(key.sample);
+  if (s >= by_sample_.size()) by_sample_.resize(s + 1);
+  auto& cells = by_sample_[s];
+  const auto it =
+      std::find_if(cells.begin(), cells.end(), [&](const auto& c) { return c.first == key; });
+  if (it == cells.end()) {
+    cells.emplace_back(key, cell);
+    ++size_;
+    return;
   }
+  SpotCell& into = it->second;
+  into.rays += cell.rays;
+  if (cell.first < into.first) {
+    into.first = cell.first;
+    into.position = cell.position;
+    into.normal = cell.normal;
+  }
+}
+
+void SpotCells::merge(const SpotCells& other) {
+  other.for_each([&](const SurfaceCellKey& key, const SpotCell& cell) { add(key, cell); });
 }
 
 void make_spots(const SurfacePatchLookup& lookup, const SpotCells& cells, int spots,
@@ -24,8 +37,9 @@ void make_spots(const SurfacePatchLookup& lookup, const SpotCells& cells, int sp
   };
   std::vector<Candidate> all;
   all.reserve(cells.size());
-  for (const auto& [key, cell] : cells)
+  cells.for_each([&](const SurfaceCellKey& key, const SpotCell& cell) {
     all.push_back({static_cast<std::uint32_t>(key.sample), cell});
+  });
   std::sort(all.begin(), all.end(), [](const Candidate& a, const Candidate& b) {
     if (a.sample != b.sample) return a.sample < b.sample;
     if (a.cell.rays != b.cell.rays) return a.cell.rays > b.cell.rays;
