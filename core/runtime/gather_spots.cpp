@@ -16,7 +16,14 @@ void SpotCells::add(const SurfaceCellKey& key, const SpotCell& cell) {
     ++size_;
     return;
   }
-  SpotCell& into = it->second;
+  // A found cell moves one place forward: the cells most rays land in end up
+  // first, where the scan finds them soonest (the order is not a result).
+  auto found = it;
+  if (found != cells.begin()) {
+    std::iter_swap(found, found - 1);
+    --found;
+  }
+  SpotCell& into = found->second;
   into.rays += cell.rays;
   if (cell.first < into.first) {
     into.first = cell.first;
