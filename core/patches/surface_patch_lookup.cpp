@@ -61,6 +61,12 @@ void SurfacePatchLookup::add_entries(const std::vector<std::uint64_t>& cell_of_v
                                return a.side == b.side && a.cell == b.cell && a.sample == b.sample;
                              }),
                  entries_.end());
+  if (entries_.size() > std::numeric_limits<std::uint32_t>::max())
+    throw Error("surface lookup", "more than 2^32 surface pieces");
+  const std::size_t sides = entries_.empty() ? 0 : entries_.back().side + 1;
+  side_first_.assign(sides + 1, 0);
+  for (const Entry& e : entries_) ++side_first_[e.side + 1];
+  for (std::size_t s = 0; s < sides; ++s) side_first_[s + 1] += side_first_[s];
 }
 
 std::int32_t SurfacePatchLookup::patch_at(std::uint32_t triangle, bool back,
@@ -72,6 +78,9 @@ std::int32_t SurfacePatchLookup::patch_at(std::uint32_t triangle, bool back,
 std::int32_t SurfacePatchLookup::sample_at(std::uint32_t triangle, bool back,
                                            const glm::vec3& x) const {
   const std::uint64_t side = 2ull * triangle + (back ? 1 : 0);
+  if (side + 1 >= side_first_.size()) return -1;
+  const auto side_begin = entries_.begin() + side_first_[side];
+  const auto side_end = entries_.begin() + side_first_[side + 1];
   const float hair = 1e-4f * grid_.cell_size();
   for (int k = 0; k < 7; ++k) {
     glm::vec3 y = x;
@@ -79,8 +88,8 @@ std::int32_t SurfacePatchLookup::sample_at(std::uint32_t triangle, bool back,
     const std::uint64_t cell = grid_.linear_index(grid_.cell_of(y));
     const Entry lo{side, cell, 0};
     const Entry hi{side, cell, std::numeric_limits<std::uint32_t>::max()};
-    auto first = std::lower_bound(entries_.begin(), entries_.end(), lo);
-    const auto last = std::upper_bound(first, entries_.end(), hi);
+    auto first = std::lower_bound(side_begin, side_end, lo);
+    const auto last = std::upper_bound(first, side_end, hi);
     if (first == last) continue;
     std::uint32_t best = first->sample;
     float best_d = std::numeric_limits<float>::infinity();

@@ -66,6 +66,9 @@ class SurfacePatchLookup {
   const SampleSet& samples_;
   const std::vector<std::int32_t>& patch_of_sample_;
   std::vector<Entry> entries_;  // sorted
+  // Entries of side s: [side_first_[s], side_first_[s + 1]). A lookup, one
+  // per gather ray, searches its side's few entries, not all of them.
+  std::vector<std::uint32_t> side_first_;
 };
 
 }  // namespace bounce
