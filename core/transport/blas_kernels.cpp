@@ -86,13 +86,14 @@ BlasKernels decide() {
     k.why = "OpenBLAS's own choice for this CPU";
     return k;
   }
-  k.candidate = candidate;
-  k.detected_gflops = sgemm_gflops();
+  const double detected_gflops = sgemm_gflops();
   if (!switch_kernels(candidate)) {
     switch_kernels(k.detected.c_str());
     k.why = std::string("OpenBLAS's own choice: this OpenBLAS cannot switch to ") + candidate;
     return k;
   }
+  k.candidate = candidate;
+  k.detected_gflops = detected_gflops;
   k.candidate_gflops = sgemm_gflops();
   if (k.candidate_gflops > k.detected_gflops) {
     k.used = candidate;
@@ -106,6 +107,11 @@ BlasKernels decide() {
 }
 
 }  // namespace
+
+std::shared_mutex& blas_threads_mutex() {
+  static std::shared_mutex m;
+  return m;
+}
 
 const BlasKernels& choose_blas_kernels() {
   static std::once_flag once;

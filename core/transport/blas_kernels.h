@@ -12,6 +12,7 @@
 // (AVX-512 -> SkylakeX, AVX2 + FMA -> Haswell, AVX -> Sandybridge), and keeps
 // the faster. Anything else is left as OpenBLAS chose it: a CPU it knows, an
 // OPENBLAS_CORETYPE the user set, or an OpenBLAS built for one CPU.
+#include <shared_mutex>
 #include <string>
 
 namespace bounce {
@@ -31,5 +32,12 @@ struct BlasKernels {
 // re-initialises OpenBLAS's kernel table. The bake, the runtime's dense
 // product and the front ends' start call it.
 const BlasKernels& choose_blas_kernels();
+
+// Held shared by code that runs BLAS while a bake on another thread may
+// start or end its transport (the runtime's dense product, which the studio
+// runs while it bakes), and exclusively while OpenBLAS's worker threads are
+// restarted (transport/flush_subnormals.h): a restart while another thread's
+// product is on those workers would leave that product waiting forever.
+std::shared_mutex& blas_threads_mutex();
 
 }  // namespace bounce

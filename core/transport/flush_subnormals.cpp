@@ -2,6 +2,10 @@
 
 #include <dlfcn.h>
 
+#include <mutex>
+
+#include "transport/blas_kernels.h"
+
 #if defined(__SSE2__)
 #include <xmmintrin.h>
 #endif
@@ -18,6 +22,7 @@ constexpr unsigned kDenormalsAreZero = 0x40u;  // DAZ: subnormal operands read a
 // OpenBLAS's worker threads stopped; its next call starts them again from
 // the calling thread. Nothing when this BLAS has no such pool.
 void restart_blas_threads() {
+  const std::unique_lock lock(blas_threads_mutex());
   using Shutdown = int (*)();
   if (const auto shutdown =
           reinterpret_cast<Shutdown>(dlsym(RTLD_DEFAULT, "blas_thread_shutdown_")))

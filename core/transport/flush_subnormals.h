@@ -13,8 +13,8 @@
 // OpenBLAS's worker threads keep the mode of the thread that started them
 // (new threads inherit it), so the scope stops them on entry and on exit
 // (OpenBLAS restarts them at its next call, from the calling thread, in the
-// mode then in force). Construct it where no other thread runs BLAS. A no-op
-// on CPUs without SSE.
+// mode then in force), while no other thread's product runs on them
+// (blas_threads_mutex). A no-op on CPUs without SSE.
 namespace bounce {
 
 class FlushSubnormals {
