@@ -220,7 +220,7 @@ void quantise_channel(const float* a, const float* key, float threshold, const L
     for (std::size_t k = i * n; k < (i + 1) * n; ++k) {
       const std::size_t t = (texel_row + k - i * n) * ic;
       const bool hole = !(key[k] < threshold);
-      const std::uint8_t code = hole ? 0 : q.encode(a[k], &half_code_one);
+      const std::uint8_t code = hole ? 0 : q.encode(a[k], half_code_one);
       // A hole's value is replaced by the kept one at decode: any code will
       // do there, so it weighs nothing (ours). The paper encodes it as 0.
       float w = hole ? 0.0f : code_weight[code];

@@ -25,14 +25,13 @@ struct LogQuantizer {
   // domain, up to half a code step above the bottom of the range.
   bool nearest_at_zero = false;
 
-  std::uint8_t encode(float v) const { return encode(v, nullptr); }
+  std::uint8_t encode(float v) const { return encode(v, 0.5f * decode(1)); }
   // The same with `half_code_one` = 0.5 decode(1) given: a loop over many
-  // values takes its exp once, not once per value below code 1.
-  std::uint8_t encode(float v, const float* half_code_one) const {
+  // values takes its exp once.
+  std::uint8_t encode(float v, float half_code_one) const {
     if (!(v > 0.0f) || !(vmax > 0.0f)) return 0;
     const float q = std::round(255.0f * (std::log(v / vmax) + range) / range);
-    if (q < 1.0f && nearest_at_zero)
-      return v >= (half_code_one ? *half_code_one : 0.5f * decode(1)) ? 1 : 0;
+    if (q < 1.0f && nearest_at_zero) return v >= half_code_one ? 1 : 0;
     return static_cast<std::uint8_t>(q < 0.0f ? 0.0f : (q > 255.0f ? 255.0f : q));
   }
   float decode(std::uint8_t q) const {

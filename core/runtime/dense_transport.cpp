@@ -2,10 +2,12 @@
 
 #include <cblas.h>
 
+#include <shared_mutex>
 #include <string>
 
 #include "base/error.h"
 #include "transport/blas_int.h"
+#include "transport/blas_kernels.h"
 
 namespace bounce {
 
@@ -42,6 +44,9 @@ void dense_indirect(const std::vector<const float*>& matrices, std::size_t n,
   const int dim = blas_dim(n, "cblas_sgemv");
   const float* x = &b[0].x;
   float* y = &indirect[0].x;
+  // The studio runs this on its view jobs and its preview while a bake may
+  // restart OpenBLAS's threads (transport/blas_kernels.h).
+  const std::shared_lock lock(blas_threads_mutex());
   // One sgemv per colour even when colours share a matrix: an n x 3 sgemm
   // would read it once, but OpenBLAS's took 1.7-2.8x as long as three sgemv
   // at n = 4096 here (its packing does not pay for 3 columns).

@@ -107,11 +107,9 @@ TransportMultiplier::TransportMultiplier(const StoredTransport& t, MultiplyChoic
     const std::size_t n = t.n;
     const auto map = t.channel_of_rgb;
     multiply_ = [dense, n, map](const std::vector<glm::vec3>& in, std::vector<glm::vec3>& out) {
-      const std::shared_lock lock(blas_threads_mutex());
       dense_indirect(dense, n, map, in, out);
     };
     multiply_into_ = [dense, n, map](std::span<const glm::vec3> in, std::span<glm::vec3> out) {
-      const std::shared_lock lock(blas_threads_mutex());
       dense_indirect(dense, n, map, in, out);
     };
     what_ = "dense float32 (OpenBLAS sgemv)";

@@ -67,6 +67,7 @@ bool switch_kernels(const char* name) {
   const auto quit = reinterpret_cast<InitFunction>(dlsym(RTLD_DEFAULT, "gotoblas_dynamic_quit"));
   const auto init = reinterpret_cast<InitFunction>(dlsym(RTLD_DEFAULT, "gotoblas_dynamic_init"));
   if (!quit || !init) return false;
+  const std::unique_lock lock(blas_threads_mutex());
   setenv("OPENBLAS_CORETYPE", name, 1);
   quit();
   init();

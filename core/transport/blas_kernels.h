@@ -33,11 +33,12 @@ struct BlasKernels {
 // product and the front ends' start call it.
 const BlasKernels& choose_blas_kernels();
 
-// Held shared by code that runs BLAS while a bake on another thread may
-// start or end its transport (the runtime's dense product, which the studio
-// runs while it bakes), and exclusively while OpenBLAS's worker threads are
-// restarted (transport/flush_subnormals.h): a restart while another thread's
-// product is on those workers would leave that product waiting forever.
+// Held shared by the runtime's dense product (dense_indirect, which the
+// studio runs on its preview and view jobs while a bake runs on another
+// thread), and exclusively while OpenBLAS's kernel table is switched or its
+// worker threads are restarted (transport/flush_subnormals.h): a restart
+// while another thread's product is on those workers would leave that
+// product waiting forever.
 std::shared_mutex& blas_threads_mutex();
 
 }  // namespace bounce
