@@ -6,7 +6,7 @@
 #include <queue>
 #include <unordered_map>
 
-#include "base/form_factor_kernel.h"
+#include "patches/target_exchange.h"
 
 namespace bounce {
 
@@ -72,17 +72,59 @@ Targets make_targets(const Voxelization& vox, const SampleSet& set, std::size_t 
   return t;
 }
 
+TargetPoints target_points(const SampleSet& set, const Targets& targets) {
+  TargetPoints points;
+  std::vector<SurfacePoint> of_target;
+  for (const std::vector<std::uint32_t>& members : targets.samples) {
+    of_target.clear();
+    for (std::uint32_t j : members) {
+      const Sample& b = set.samples[j];
+      of_target.push_back({b.position, b.normal, b.area});
+    }
+    points.add_target(of_target);
+  }
+  return points;
+}
+
+// Row `si` of F: the exchange sums divided by the sample's area, zero where
+// the one visibility ray to the target's representative is blocked.
+void finish_row(const RayTracer& tracer, const SampleSet& set, const Targets& targets,
+                std::size_t si, const float* sums, std::size_t lane, float* row,
+                std::vector<ShadowRay>& rays, std::vector<std::uint32_t>& ray_target,
+                std::vector<std::uint8_t>& blocked) {
+  const float eps = 10.0f * tracer.epsilon();
+  const Sample& a = set.samples[si];
+  rays.clear();
+  ray_target.clear();
+  for (std::size_t t = 0; t < targets.samples.size(); ++t) {
+    const float sum = sums[t * kExchangeLanes + lane];
+    if (sum <= 0.0f) continue;
+    row[t] = sum / a.area;
+    const Sample& rep = set.samples[targets.representative[t]];
+    const glm::vec3 from = a.position + eps * a.normal;
+    const glm::vec3 to = rep.position + eps * rep.normal;
+    rays.push_back({from, to - from, 0.0f, 1.0f - 1e-4f});
+    ray_target.push_back(static_cast<std::uint32_t>(t));
+  }
+  blocked.resize(rays.size());
+  tracer.occluded(rays.data(), rays.size(), blocked.data());
+  for (std::size_t k = 0; k < rays.size(); ++k)
+    if (blocked[k]) row[ray_target[k]] = 0.0f;
+}
+
 // F from each sample to each target, with one visibility ray per pair; the
 // rows of this process's range only when shared (SampleRowSharing), then the
-// others' gathered into place.
+// others' gathered into place. Rows go kExchangeLanes at a time through the
+// exchange sums.
 std::vector<float> sample_target_form_factors(const RayTracer& tracer, const SampleSet& set,
                                               const Targets& targets,
                                               const SampleRowSharing& sharing, Progress* progress) {
   const std::size_t ns = set.samples.size(), nt = targets.samples.size();
   std::vector<float> f(ns * nt, 0.0f);
-  const float eps = 10.0f * tracer.epsilon();
   const SampleRows own =
       sharing.gather ? sample_rows_of(sharing.part, sharing.parts, ns) : SampleRows{0, ns};
+  const TargetPoints points = target_points(set, targets);
+  const std::size_t groups = (own.end - own.first + kExchangeLanes - 1) / kExchangeLanes;
   if (progress)
     progress->begin_stage("cluster: form factors to targets",
                           std::max<std::size_t>(1, own.end - own.first));
@@ -91,33 +133,22 @@ std::vector<float> sample_target_form_factors(const RayTracer& tracer, const Sam
     std::vector<ShadowRay> rays;
     std::vector<std::uint32_t> ray_target;
     std::vector<std::uint8_t> blocked;
-#pragma omp for schedule(dynamic, 16)
-    for (std::int64_t si = static_cast<std::int64_t>(own.first);
-         si < static_cast<std::int64_t>(own.end); ++si) {
+    std::vector<float> sums(nt * kExchangeLanes);
+    SurfacePoint sources[kExchangeLanes];
+#pragma omp for schedule(dynamic, 2)
+    for (std::int64_t gi = 0; gi < static_cast<std::int64_t>(groups); ++gi) {
       if (progress && progress->should_stop()) continue;
-      const Sample& a = set.samples[static_cast<std::size_t>(si)];
-      float* row = &f[static_cast<std::size_t>(si) * nt];
-      rays.clear();
-      ray_target.clear();
-      for (std::size_t t = 0; t < nt; ++t) {
-        float sum = 0.0f;
-        for (std::uint32_t j : targets.samples[t]) {
-          const Sample& b = set.samples[j];
-          sum += bounded_exchange({a.position, a.normal, a.area}, {b.position, b.normal, b.area});
-        }
-        if (sum <= 0.0f) continue;
-        row[t] = sum / a.area;
-        const Sample& rep = set.samples[targets.representative[t]];
-        const glm::vec3 from = a.position + eps * a.normal;
-        const glm::vec3 to = rep.position + eps * rep.normal;
-        rays.push_back({from, to - from, 0.0f, 1.0f - 1e-4f});
-        ray_target.push_back(static_cast<std::uint32_t>(t));
+      const std::size_t first = own.first + static_cast<std::size_t>(gi) * kExchangeLanes;
+      const std::size_t count = std::min(kExchangeLanes, own.end - first);
+      for (std::size_t l = 0; l < count; ++l) {
+        const Sample& a = set.samples[first + l];
+        sources[l] = {a.position, a.normal, a.area};
       }
-      blocked.resize(rays.size());
-      tracer.occluded(rays.data(), rays.size(), blocked.data());
-      for (std::size_t k = 0; k < rays.size(); ++k)
-        if (blocked[k]) row[ray_target[k]] = 0.0f;
-      if (progress) progress->advance();
+      exchange_with_targets(sources, count, points, sums.data());
+      for (std::size_t l = 0; l < count; ++l)
+        finish_row(tracer, set, targets, first + l, sums.data(), l, &f[(first + l) * nt], rays,
+                   ray_target, blocked);
+      if (progress) progress->advance(count);
     }
   }
   if (progress) progress->check();
