@@ -53,6 +53,8 @@ struct RayTracer::Impl {
   mutable std::mutex error_mutex;
   mutable std::string pending_error;
   mutable std::atomic<bool> has_error{false};
+  // Set for a tracer whose occlusion the engine answers (no device, no BVH).
+  OcclusionQuery query;
 
   static void on_error(void* user, RTCError code, const char* message) {
     auto* self = static_cast<Impl*>(user);
@@ -109,6 +111,13 @@ RayTracer::RayTracer(const Scene& scene) : scene_(scene), impl_(std::make_unique
   throw_pending_error();
 }
 
+RayTracer::RayTracer(const Scene& scene, OcclusionQuery query)
+    : scene_(scene), impl_(std::make_unique<Impl>()) {
+  if (!query) throw Error("ray tracer", "the engine's occlusion query is empty");
+  epsilon_ = 1e-6f * std::max(1e-20f, glm::length(scene.bounds().extent()));
+  impl_->query = std::move(query);
+}
+
 RayTracer::~RayTracer() {
   if (impl_->scene) rtcReleaseScene(impl_->scene);
   if (impl_->device) rtcReleaseDevice(impl_->device);
@@ -118,6 +127,14 @@ void RayTracer::throw_pending_error() const {
   if (!impl_->has_error) return;
   std::lock_guard lock(impl_->error_mutex);
   throw EmbreeError("embree", impl_->pending_error);
+}
+
+void RayTracer::require_bvh(const char* query) const {
+  if (impl_->scene) return;
+  throw Error("ray tracer",
+              std::string(query) +
+                  " needs the scene's own BVH; this tracer passes shadow rays to the engine's "
+                  "occlusion query and answers nothing else");
 }
 
 static RTCRayHit make_rayhit(const glm::vec3& o, const glm::vec3& d, float t_near, float t_far) {
@@ -139,6 +156,7 @@ static RTCRayHit make_rayhit(const glm::vec3& o, const glm::vec3& d, float t_nea
 
 Hit RayTracer::intersect(const glm::vec3& origin, const glm::vec3& direction, float t_near,
                          float t_far) const {
+  require_bvh("a closest-hit query");
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRayHit rh = make_rayhit(origin, direction, t_near, t_far);
@@ -172,6 +190,12 @@ std::vector<Hit> RayTracer::intersect_all(const glm::vec3& origin, const glm::ve
 
 bool RayTracer::occluded(const glm::vec3& origin, const glm::vec3& direction, float t_near,
                          float t_far) const {
+  if (impl_->query) {
+    const ShadowRay ray{origin, direction, t_near, t_far};
+    std::uint8_t blocked = 0;
+    impl_->query({&ray, 1}, {&blocked, 1});
+    return blocked != 0;
+  }
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   RTCRay ray = make_rayhit(origin, direction, t_near, t_far).ray;
@@ -181,6 +205,10 @@ bool RayTracer::occluded(const glm::vec3& origin, const glm::vec3& direction, fl
 }
 
 void RayTracer::occluded(const ShadowRay* rays, std::size_t count, std::uint8_t* blocked) const {
+  if (impl_->query) {
+    impl_->query({rays, count}, {blocked, count});
+    return;
+  }
   constexpr std::size_t kChunk = 256;
   RTCRay batch[kChunk];
   RTCIntersectContext ctx;

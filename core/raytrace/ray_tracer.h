@@ -3,12 +3,17 @@
 // The device error callback is set once, here, and turns every Embree error
 // into a RayTracer::EmbreeError (after the call that caused it returns).
 // Queries are thread-safe; callers parallelise over their own work.
+// An engine with its own visibility (shadow maps, its own ray tracer) makes
+// a RayTracer from an OcclusionQuery instead: no BVH is built, and every
+// shadow ray the runtime's frame casts goes to the engine.
 // Alpha-masked triangles are holes where their mask cuts them away: no query
 // reports a hit there (an Embree filter function, installed only when the
 // scene has masks).
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -32,6 +37,12 @@ struct ShadowRay {
   float t_far = 1.0f;
 };
 
+// An engine's answer to shadow rays: blocked[k] = 1 when something lies on
+// ray k between t_near and t_far (in units of its direction), else 0. Called
+// from several threads at once, with batches of any size; it must not throw.
+using OcclusionQuery =
+    std::function<void(std::span<const ShadowRay> rays, std::span<std::uint8_t> blocked)>;
+
 class RayTracer {
  public:
   class EmbreeError : public Error {
@@ -40,6 +51,12 @@ class RayTracer {
   };
 
   explicit RayTracer(const Scene& scene);
+  // Occlusion answered by `query` (which must not be empty), no BVH built.
+  // The runtime's frame (Relighter: direct light on the samples, area
+  // lights, the final gather's near sources) asks only occlusion; the
+  // closest-hit queries, which the bake and the camera pictures need, throw
+  // bounce::Error on such a tracer.
+  RayTracer(const Scene& scene, OcclusionQuery query);
   ~RayTracer();
   RayTracer(const RayTracer&) = delete;
   RayTracer& operator=(const RayTracer&) = delete;
@@ -66,6 +83,7 @@ class RayTracer {
 
  private:
   void throw_pending_error() const;
+  void require_bvh(const char* query) const;
   struct Impl;
   const Scene& scene_;
   float epsilon_ = 0.0f;

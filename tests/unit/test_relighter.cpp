@@ -8,34 +8,15 @@
 #include "bake/bake.h"
 #include "bake/stored_transport.h"
 #include "base/error.h"
+#include "furnace_bake.h"
 #include "raytrace/ray_tracer.h"
 #include "runtime/area_lights.h"
 #include "runtime/relighter.h"
-#include "test_scenes.h"
 
 namespace bounce {
 namespace {
 
-struct Fixture {
-  Scene scene = test_scenes::furnace_box(glm::vec3(0.7f, 0.5f, 0.3f), glm::vec3(0.0f));
-  BakeResult bake;
-  RayTracer tracer{scene};
-
-  Fixture() {
-    BakeSettings s;
-    s.voxel_resolution = 4;
-    s.codec = CodecChoice::Dense;
-    s.pictures = false;
-    Diagnostics d;
-    Progress progress;
-    bake = Baker(scene, s, d).run(progress);
-  }
-};
-
-const Fixture& fixture() {
-  static const Fixture f;
-  return f;
-}
+using test_scenes::furnace_bake;
 
 std::vector<Light> one_point_light() {
   Light l;
@@ -54,7 +35,7 @@ TEST(TransportMultiplier, ChoicesByName) {
 }
 
 TEST(TransportMultiplier, TakesWhatTheBakeHolds) {
-  const Fixture& f = fixture();
+  const test_scenes::FurnaceBake& f = furnace_bake();
   const StoredTransport dense = stored_transport(f.bake.transport, f.bake.storage);
   ASSERT_EQ(dense.compressed, nullptr);
   EXPECT_EQ(TransportMultiplier(dense, MultiplyChoice::kAuto, CppLoop::kMeasured)
@@ -75,7 +56,7 @@ TEST(TransportMultiplier, TakesWhatTheBakeHolds) {
 }
 
 TEST(Relighter, EqualsLightPatchesPublishedOrRecorded) {
-  const Fixture& f = fixture();
+  const test_scenes::FurnaceBake& f = furnace_bake();
   const StoredTransport t = stored_transport(f.bake.transport, f.bake.storage);
   const std::vector<Light> lights = one_point_light();
   const std::vector<AreaLight> area = area_lights(f.scene);
@@ -97,7 +78,7 @@ TEST(Relighter, EqualsLightPatchesPublishedOrRecorded) {
 }
 
 TEST(Relighter, GathersTheReflectedLight) {
-  const Fixture& f = fixture();
+  const test_scenes::FurnaceBake& f = furnace_bake();
   RelighterSettings s;
   s.frame.record = false;
   Relighter r(f.tracer, f.bake.samples, f.bake.patches,
