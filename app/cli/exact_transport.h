@@ -25,7 +25,7 @@ struct ExactTransport {
   std::vector<const float*> matrices() const;
 };
 
-// Reads a bake folder with the one bake reader (bake/bake_reader.h); throws
+// Reads a bake folder with the one bake reader (folder/bake_reader.h); throws
 // bounce::Error naming the missing or malformed file (T.npy missing: says to
 // bake with --dump-matrices).
 ExactTransport read_bake_folder(const std::filesystem::path& folder);

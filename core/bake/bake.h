@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "bake/bake_distribution.h"
-#include "bake/bake_settings.h"
 #include "bake/matrix_storage.h"
 #include "bake/out_of_core.h"
 #include "bake/rebake_plan.h"
@@ -24,6 +23,7 @@
 #include "patches/patch_set.h"
 #include "patches/samples.h"
 #include "runtime/final_gather.h"
+#include "settings/bake_settings.h"
 #include "transport/transport.h"
 #include "voxel/voxelization.h"
 

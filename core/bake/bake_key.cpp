@@ -6,12 +6,12 @@
 #include <fstream>
 #include <string_view>
 
-#include "bake/bake_format.h"
-#include "bake/bake_reader.h"
 #include "bake/rebake_plan.h"
-#include "bake/settings_table.h"
+#include "folder/bake_format.h"
+#include "folder/bake_reader.h"
 #include "reference/reference_cache.h"
 #include "scene/scene_files.h"
+#include "settings/settings_table.h"
 
 namespace bounce {
 

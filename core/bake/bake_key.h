@@ -13,8 +13,8 @@
 #include <optional>
 #include <string>
 
-#include "bake/bake_settings.h"
 #include "scene/scene.h"
+#include "settings/bake_settings.h"
 
 namespace bounce {
 

@@ -18,8 +18,8 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/bake_reader.h"
 #include "compress/row_error_contributions.h"
+#include "folder/bake_reader.h"
 #include "metrics/patch_light_error.h"
 
 namespace bounce {

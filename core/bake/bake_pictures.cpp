@@ -1,7 +1,7 @@
 #include "bake/bake_pictures.h"
 
-#include "bake/bake_format.h"
 #include "compress/matrix_picture.h"
+#include "folder/bake_format.h"
 #include "io/png_writer.h"
 
 namespace bounce {

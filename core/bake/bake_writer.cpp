@@ -7,12 +7,12 @@
 #include <vector>
 
 #include "bake/bake_pictures.h"
-#include "bake/final_gather_files.h"
-#include "bake/settings_table.h"
 #include "compress/dds.h"
+#include "folder/final_gather_files.h"
 #include "io/atomic_file.h"
 #include "io/npy.h"
 #include "runtime/final_gather_settings.h"
+#include "settings/settings_table.h"
 
 namespace bounce {
 

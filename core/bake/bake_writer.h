@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/bake.h"
-#include "bake/bake_format.h"
+#include "folder/bake_format.h"
 
 namespace bounce {
 

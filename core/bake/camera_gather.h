@@ -17,8 +17,8 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/bake_reader.h"
 #include "base/progress.h"
+#include "folder/bake_reader.h"
 #include "raytrace/ray_tracer.h"
 #include "runtime/area_lights.h"
 #include "runtime/camera_image.h"

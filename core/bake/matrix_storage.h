@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "bake/bake_settings.h"
 #include "base/diagnostics.h"
 #include "base/progress.h"
 #include "compress/codec.h"
 #include "compress/compression_error.h"
 #include "compress/light_rebalance.h"
+#include "settings/bake_settings.h"
 #include "transport/transport.h"
 
 namespace bounce {

@@ -15,8 +15,8 @@
 #include <optional>
 #include <string>
 
-#include "bake/bake_settings.h"
 #include "base/mapped_buffer.h"
+#include "settings/bake_settings.h"
 
 namespace bounce {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "bake/bake.h"
-#include "bake/settings_table.h"
+#include "settings/settings_table.h"
 #include "transport/text_format.h"
 
 namespace bounce {

@@ -9,28 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "bake/bake_settings.h"
 #include "scene/scene.h"
+#include "settings/bake_settings.h"
+#include "settings/bake_stage.h"
 
 namespace bounce {
-
-// In pipeline order. Geometry: voxel grid, ray tracer, samples and their
-// albedo from textures and vertex colours. Patches: the patches, clustered
-// from those samples (what a mesh's patch density changes). FormFactors: form
-// factors, their checks (pruning) and the evaluation lights' first-hit light
-// (it needs the patches only). Transport: the multi-bounce matrices.
-// Compress: how they are stored. None: nothing to run.
-// A plan never starts at FormFactors: the checks prune patches that see
-// nothing, so new form factors need the unpruned patches: settings of the
-// form-factor stage re-run from Patches.
-enum class BakeStage {
-  Geometry = 0,
-  Patches = 1,
-  FormFactors = 2,
-  Transport = 3,
-  Compress = 4,
-  None = 5
-};
 
 // How many stages a bake has (None is not one).
 inline constexpr std::size_t kBakeStageCount = static_cast<std::size_t>(BakeStage::None);

@@ -3,7 +3,7 @@
 // (runtime/transport_multiplier.h), from a bake folder read back or from a
 // bake still in memory. The result points into its argument.
 #include "bake/bake.h"
-#include "bake/bake_reader.h"
+#include "folder/bake_reader.h"
 #include "runtime/transport_multiplier.h"
 
 namespace bounce {

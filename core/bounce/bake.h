@@ -19,9 +19,9 @@
 // end keeps its bakes.
 #include "bake/bake.h"
 #include "bake/bake_key.h"
-#include "bake/bake_settings.h"
 #include "bake/bake_writer.h"
 #include "base/diagnostics.h"
 #include "base/error.h"
 #include "base/progress.h"
 #include "io/cache_dir.h"
+#include "settings/bake_settings.h"

@@ -15,8 +15,8 @@
 // The tables are NumPy files; read_npy_f32 and write_npy read and write
 // them (and a front end's own arrays) with the same checks.
 // manifest_meshes() gives the manifest's per-mesh patch counts and densities.
-#include "bake/bake_format.h"
-#include "bake/bake_reader.h"
-#include "bake/final_gather_files.h"
-#include "bake/manifest_meshes.h"
+#include "folder/bake_format.h"
+#include "folder/bake_reader.h"
+#include "folder/final_gather_files.h"
+#include "folder/manifest_meshes.h"
 #include "io/npy.h"

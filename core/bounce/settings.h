@@ -6,6 +6,6 @@
 //   for (const bounce::SettingRow& row : bounce::settings_table())
 //     add_control(row.name, row.help, row.get(bounce::BakeSettings{}));
 //   row.set(settings, bounce::parse_setting(row, text));  // throws InvalidSetting
-#include "bake/bake_settings.h"
-#include "bake/settings_table.h"
 #include "base/error.h"
+#include "settings/bake_settings.h"
+#include "settings/settings_table.h"

@@ -1,8 +1,8 @@
 #include "relight/lighting_session.h"
 
-#include "bake/final_gather_files.h"
 #include "bake/stored_transport.h"
 #include "base/error.h"
+#include "folder/final_gather_files.h"
 #include "scene/scene_loader.h"
 
 namespace fs = std::filesystem;

@@ -25,9 +25,9 @@
 
 #include <glm/glm.hpp>
 
-#include "bake/bake_reader.h"
 #include "bake/camera_gather.h"
 #include "base/progress.h"
+#include "folder/bake_reader.h"
 #include "raytrace/ray_tracer.h"
 #include "runtime/area_lights.h"
 #include "runtime/camera_image.h"

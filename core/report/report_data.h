@@ -13,9 +13,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bake/bake_settings.h"
 #include "metrics/image_metrics.h"
 #include "metrics/vertex_metrics.h"
+#include "settings/bake_settings.h"
 
 namespace bounce {
 

@@ -2,7 +2,7 @@
 // How the final gather's rows are built (runtime/final_gather_build.h). The
 // defaults written here are the bake's: the settings table's rows
 // final_gather_rays, final_gather_near, final_gather_near_min_rays and
-// final_gather_spots take theirs from this struct (bake/bake_settings.h), and
+// final_gather_spots take theirs from this struct (settings/bake_settings.h), and
 // their ranges are the table's alone. The other fields are the method's own
 // constants, not settings a bake offers.
 #include <cmath>

@@ -24,7 +24,7 @@ namespace bounce {
 class Diagnostics;
 
 // A bake's matrices as the runtime multiplies them; LoadedBake
-// (bake/bake_reader.h) and BakeResult (bake/bake.h) both describe theirs so.
+// (folder/bake_reader.h) and BakeResult (bake/bake.h) both describe theirs so.
 struct StoredTransport {
   std::size_t n = 0;
   std::array<int, 3> channel_of_rgb{0, 1, 2};

@@ -20,11 +20,11 @@
 #include <string_view>
 #include <vector>
 
-#include "bake/bake_format.h"
-#include "bake/bake_reader.h"
-#include "bake/final_gather_files.h"
 #include "base/error.h"
 #include "compress/dds.h"
+#include "folder/bake_format.h"
+#include "folder/bake_reader.h"
+#include "folder/final_gather_files.h"
 #include "fuzz_workdir.h"
 #include "io/npy.h"
 

@@ -7,9 +7,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "bake/bake_reader.h"
 #include "base/diagnostics.h"
 #include "cli_harness.h"
+#include "folder/bake_reader.h"
 #include "io/npy.h"
 #include "raytrace/ray_tracer.h"
 #include "runtime/direct_light.h"

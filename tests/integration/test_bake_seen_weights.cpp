@@ -7,9 +7,9 @@
 #include <cmath>
 #include <span>
 
-#include "bake/bake_reader.h"
-#include "bake/final_gather_files.h"
 #include "cli_harness.h"
+#include "folder/bake_reader.h"
+#include "folder/final_gather_files.h"
 #include "io/npy.h"
 
 namespace bounce::itest {

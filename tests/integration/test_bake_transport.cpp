@@ -8,9 +8,9 @@
 #include <numeric>
 #include <set>
 
-#include "bake/bake_reader.h"
 #include "cli_harness.h"
 #include "decoded_bake.h"
+#include "folder/bake_reader.h"
 #include "light_error_check.h"
 
 namespace bounce::itest {

@@ -5,9 +5,9 @@
 // picture's figure are recomputed from their outputs.
 #include <OpenImageIO/imageio.h>
 
-#include "bake/bake_reader.h"
-#include "bake/final_gather_files.h"
 #include "cli_harness.h"
+#include "folder/bake_reader.h"
+#include "folder/final_gather_files.h"
 #include "ply_vertices.h"
 #include "solve_fixture.h"
 

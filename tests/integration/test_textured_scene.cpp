@@ -9,8 +9,8 @@
 #include <cmath>
 #include <initializer_list>
 
-#include "bake/bake_reader.h"
 #include "cli_harness.h"
+#include "folder/bake_reader.h"
 
 namespace bounce::itest {
 namespace {

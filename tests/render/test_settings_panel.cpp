@@ -7,8 +7,8 @@
 #include <QSettings>
 #include <QSpinBox>
 
-#include "bake/settings_table.h"
 #include "render_support.h"
+#include "settings/settings_table.h"
 #include "settings_panel.h"
 
 namespace bounce::render_test {

@@ -5,8 +5,8 @@
 #include <string>
 
 #include "bake/bake.h"
-#include "bake/bake_reader.h"
 #include "bake/bake_writer.h"
+#include "folder/bake_reader.h"
 #include "scene/scene_loader.h"
 #include "scratch_dir.h"
 

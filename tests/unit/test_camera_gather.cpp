@@ -10,12 +10,12 @@
 #include <random>
 
 #include "bake/bake.h"
-#include "bake/bake_format.h"
-#include "bake/bake_reader.h"
 #include "bake/bake_writer.h"
 #include "bake/camera_gather.h"
 #include "bake/stored_transport.h"
 #include "base/error.h"
+#include "folder/bake_format.h"
+#include "folder/bake_reader.h"
 #include "io/npy.h"
 #include "patches/surface_patch_lookup.h"
 #include "raytrace/ray_tracer.h"

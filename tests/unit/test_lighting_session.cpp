@@ -7,10 +7,10 @@
 #include <gtest/gtest.h>
 
 #include "bake/bake.h"
-#include "bake/bake_reader.h"
 #include "bake/bake_writer.h"
 #include "bake/stored_transport.h"
 #include "base/error.h"
+#include "folder/bake_reader.h"
 #include "relight/lighting_session.h"
 #include "runtime/area_lights.h"
 #include "scene/scene_loader.h"

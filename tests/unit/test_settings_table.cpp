@@ -1,4 +1,4 @@
-// The settings table (core/bake/settings_table.h): the settings it lists,
+// The settings table (core/settings/settings_table.h): the settings it lists,
 // their defaults against validate(), range errors that name the setting,
 // text round trips, and the re-bake stage each row says a change re-runs.
 #include <gtest/gtest.h>
@@ -6,10 +6,10 @@
 #include <map>
 #include <string>
 
-#include "bake/bake_settings.h"
 #include "bake/rebake_plan.h"
-#include "bake/settings_table.h"
 #include "scene/scene_loader.h"
+#include "settings/bake_settings.h"
+#include "settings/settings_table.h"
 
 namespace bounce {
 namespace {

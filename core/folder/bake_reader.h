@@ -10,10 +10,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "bake/bake_description.h"
-#include "bake/bake_format.h"
 #include "compress/codec.h"
 #include "compress/compression_error.h"
+#include "folder/bake_description.h"
+#include "folder/bake_format.h"
 #include "patches/patch_set.h"
 #include "patches/samples.h"
 

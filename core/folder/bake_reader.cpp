@@ -1,4 +1,4 @@
-#include "bake/bake_reader.h"
+#include "folder/bake_reader.h"
 
 #include <cmath>
 #include <fstream>
@@ -6,9 +6,9 @@
 #include <optional>
 #include <string>
 
-#include "bake/bake_format.h"
 #include "base/checked_size.h"
 #include "compress/dds.h"
+#include "folder/bake_format.h"
 #include "io/npy.h"
 #include "runtime/seen_first_hit.h"
 #include "voxel/voxel_grid.h"

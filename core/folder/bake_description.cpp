@@ -1,4 +1,4 @@
-#include "bake/bake_description.h"
+#include "folder/bake_description.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "bake/manifest_meshes.h"
+#include "folder/manifest_meshes.h"
 
 namespace bounce {
 

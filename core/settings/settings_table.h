@@ -13,8 +13,8 @@
 #include <variant>
 #include <vector>
 
-#include "bake/bake_settings.h"
-#include "bake/rebake_plan.h"
+#include "settings/bake_settings.h"
+#include "settings/bake_stage.h"
 
 namespace bounce {
 

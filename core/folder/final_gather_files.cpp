@@ -1,11 +1,11 @@
-#include "bake/final_gather_files.h"
+#include "folder/final_gather_files.h"
 
 #include <algorithm>
 #include <limits>
 #include <span>
 
-#include "bake/bake_format.h"
 #include "base/error.h"
+#include "folder/bake_format.h"
 #include "io/npy.h"
 
 namespace bounce {

@@ -1,8 +1,8 @@
-#include "bake/bake_settings.h"
+#include "settings/bake_settings.h"
 
 #include <string>
 
-#include "bake/settings_table.h"
+#include "settings/settings_table.h"
 
 namespace bounce {
 

@@ -1,4 +1,4 @@
-#include "bake/settings_table.h"
+#include "settings/settings_table.h"
 
 #include <algorithm>
 #include <optional>

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "bake/bake_reader.h"
+#include "folder/bake_reader.h"
 
 namespace bounce {
 
