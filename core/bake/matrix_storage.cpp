@@ -386,7 +386,8 @@ MatrixStorage store_matrices(const std::vector<const float*>& exact, std::size_t
   codec.kind =
       choice == CodecChoice::LargestEntries ? CodecKind::LargestEntries : CodecKind::LightWeighted;
   codec.ordering = settings.ordering;
-  // Ours spends its bytes where the evaluation lights' light goes.
+  // The light-weighted codec spends its bytes where the evaluation lights'
+  // light goes.
   EntryImportance importance;
   if (codec.kind == CodecKind::LightWeighted) {
     importance = light_importance(exact, n, probe.first_hit, probe.channel_of_rgb, probe.area);

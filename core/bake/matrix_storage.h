@@ -1,7 +1,7 @@
 #pragma once
 // How a bake stores its multi-bounce matrix, and what that costs: decides
 // dense or compressed (BakeSettings::codec), chooses the kept fraction from
-// the error budget (ours), compresses, and measures every error against the
+// the error budget (the light-weighted codec), compresses, and measures every error against the
 // exact matrix. Each choice is recorded with its reason.
 #include <optional>
 #include <string>
@@ -34,8 +34,8 @@ struct MatrixStorage {
   std::size_t dense_bytes = 0;            // float32, the stored channels
   std::size_t dense_rgb_bytes = 0;        // float32, three channels: the reference of ratios
   std::size_t stored_bytes = 0;           // what the bake keeps of the matrix
-  std::vector<KeptFractionTrial> trials;  // ours with an error budget
-  // Ours with an error budget: the budget (relative RMS error of the indirect
+  std::vector<KeptFractionTrial> trials;  // light-weighted codec, error budget
+  // The light-weighted codec with an error budget: the budget (relative RMS error of the indirect
   // light on the worst evaluation light), the size the search may spend, and
   // whether the chosen matrix meets the budget.
   std::optional<double> error_budget;

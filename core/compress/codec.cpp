@@ -41,9 +41,9 @@ Permutation compute_ordering(OrderingMethod ordering, const std::uint8_t* codes,
   return identity_permutation(n);
 }
 
-// Ours: the log range covers all but the smallest 0.1% of the values (see
+// The light-weighted codec: the log range covers all but the smallest 0.1% of the values (see
 // fitted_log_range).
-constexpr double kOursRangeQuantile = 0.001;
+constexpr double kLightWeightedRangeQuantile = 0.001;
 
 }  // namespace
 
@@ -189,12 +189,12 @@ LogQuantizer fitted_quantizer(const float* a, const float* key, float threshold,
   q.vmax = vmax;
   if (paper) return q;
   if (rows.size() == n) {
-    q.range = fitted_log_range(a, n * n, q.vmax, kOursRangeQuantile);
+    q.range = fitted_log_range(a, n * n, q.vmax, kLightWeightedRangeQuantile);
   } else {
     std::vector<float> values;
     values.reserve(rows.size() * n);
     for (std::uint32_t i : rows) values.insert(values.end(), a + i * n, a + (i + 1) * n);
-    q.range = fitted_log_range(values.data(), values.size(), q.vmax, kOursRangeQuantile);
+    q.range = fitted_log_range(values.data(), values.size(), q.vmax, kLightWeightedRangeQuantile);
   }
   q.nearest_at_zero = true;
   return q;

@@ -141,7 +141,7 @@ TEST(Codec, GreySceneIsOneBc4ChannelColourIsBc1) {
   EXPECT_EQ(compress_matrix({t.data()}, n, paper).format, DdsFormat::kBc1);
 }
 
-TEST(Codec, OursBeatsThePublishedPipelineAtTheSameSize) {
+TEST(Codec, LightWeightedBeatsThePublishedPipelineAtTheSameSize) {
   const std::size_t n = 256;
   const std::vector<std::vector<float>> t = {transport_like(n, 1.0f, 3), transport_like(n, 0.9f, 3),
                                              transport_like(n, 0.8f, 3)};

@@ -248,7 +248,7 @@ TEST(OrderingPaper, RecoversHiddenBlocks) {
   }
 }
 
-TEST(OrderingOurs, RecoversHiddenBlocksAsWellAsThePaper) {
+TEST(OrderingSketchTour, RecoversHiddenBlocksAsWellAsThePaper) {
   const HiddenBlocks h = hidden_blocks(21);
   const double truth = block_spread_cost(h.ordered.data(), h.n, 3);
   const Permutation ours = our_ordering(h.shuffled.data(), h.n, 3, OrderingSettings{});
@@ -261,7 +261,7 @@ TEST(OrderingOurs, RecoversHiddenBlocksAsWellAsThePaper) {
   EXPECT_LT(cost, 1.05 * paper);
 }
 
-TEST(OrderingOurs, BeatsThePaperOnASmoothTransportLikeMatrix) {
+TEST(OrderingSketchTour, BeatsThePaperOnASmoothTransportLikeMatrix) {
   const std::size_t n = 512;
   const auto image = wall_kernel_image(n, 3);
   const double identity = block_spread_cost(image.data(), n, 3);
@@ -279,7 +279,7 @@ TEST(OrderingOurs, BeatsThePaperOnASmoothTransportLikeMatrix) {
   EXPECT_EQ(our_ordering(image.data(), n, 3, OrderingSettings{}), ours);
 }
 
-TEST(OrderingOurs, LargeImageGivesAValidBetterOrdering) {
+TEST(OrderingSketchTour, LargeImageGivesAValidBetterOrdering) {
   // n = 4096 (50 MB image): a run at the scale the pipeline meets, checked
   // for validity and gain only; timings are measured outside the tests.
   const std::size_t n = 4096;
@@ -290,7 +290,7 @@ TEST(OrderingOurs, LargeImageGivesAValidBetterOrdering) {
             0.1 * block_spread_cost(image.data(), n, 3));
 }
 
-TEST(OrderingOurs, TinyAndOddSizes) {
+TEST(OrderingSketchTour, TinyAndOddSizes) {
   std::mt19937 rng(2);
   for (const std::size_t n : {0, 1, 2, 3, 4, 5, 7, 9, 10, 13, 41}) {
     const auto image = random_image(n, 3, rng);

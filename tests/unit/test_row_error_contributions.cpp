@@ -68,7 +68,8 @@ TEST_P(RowErrorContributionsOf, SourcesAddUpToTheDecodedMatrixsErrorTermByTerm) 
       tampered_row = i;
   ASSERT_LT(k0.row_ptr[tampered_row], k0.row_ptr[tampered_row + 1]) << "the row keeps entries";
   const std::uint32_t tampered = k0.row_ptr[tampered_row];
-  // Ours keeps halves, the paper exact floats: what was kept, before tampering.
+  // The light-weighted codec keeps halves, the largest-entries one exact
+  // floats: what was kept, before tampering.
   const double kept_before = k0.value[tampered];
   k0.value[tampered] *= 1.5f;
 
@@ -169,10 +170,10 @@ TEST_P(RowErrorContributionsOf, SourcesAddUpToTheDecodedMatrixsErrorTermByTerm) 
 
 INSTANTIATE_TEST_SUITE_P(
     Codecs, RowErrorContributionsOf,
-    ::testing::Values(Case{"OursRgbBc1", CodecKind::LightWeighted, 3, false},
-                      Case{"OursGreyBc4", CodecKind::LightWeighted, 1, false},
-                      Case{"OursRgbBc4PerChannel", CodecKind::LightWeighted, 3, true},
-                      Case{"PaperGreyBc1", CodecKind::LargestEntries, 1, false}),
+    ::testing::Values(Case{"LightWeightedRgbBc1", CodecKind::LightWeighted, 3, false},
+                      Case{"LightWeightedGreyBc4", CodecKind::LightWeighted, 1, false},
+                      Case{"LightWeightedRgbBc4PerChannel", CodecKind::LightWeighted, 3, true},
+                      Case{"LargestEntriesGreyBc1", CodecKind::LargestEntries, 1, false}),
     [](const ::testing::TestParamInfo<Case>& c) { return std::string(c.param.name); });
 
 TEST(RowErrorContributions, WrongPatchOrLightIsAnError) {
