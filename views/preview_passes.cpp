@@ -64,6 +64,66 @@ void PreviewWidget::render_shadow_map() {
   }
 }
 
+// The G-buffer: position, normal, albedo, emission and indirect light per
+// pixel.
+void PreviewWidget::render_gbuffer(const glm::mat4& view, const glm::mat4& projection, int w,
+                                   int h) {
+  glBindFramebuffer(GL_FRAMEBUFFER, targets_.gbuffer_fbo());
+  glViewport(0, 0, w, h);
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_CULL_FACE);  // from outside, the walls' backs open the box up
+  glCullFace(GL_BACK);
+  const float far_position[4] = {0.0f, 0.0f, -1e4f, 0.0f};
+  const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  glClearBufferfv(GL_COLOR, 0, far_position);
+  for (int k = 1; k < PreviewTargets::kGbufferTargets; ++k) glClearBufferfv(GL_COLOR, k, zero);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  programs_.gbuffer->bind();
+  glUniformMatrix4fv(programs_.gbuffer->uniformLocation("view"), 1, GL_FALSE, glm::value_ptr(view));
+  glUniformMatrix4fv(programs_.gbuffer->uniformLocation("projection"), 1, GL_FALSE,
+                     glm::value_ptr(projection));
+  draw_mesh(*programs_.gbuffer);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_DEPTH_TEST);
+}
+
+// Screen-space occlusion of the G-buffer, then its blur.
+void PreviewWidget::render_occlusion(const glm::mat4& projection, int w, int h) {
+  auto bind = [this](int unit, GLenum kind, GLuint texture) {
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+    glBindTexture(kind, texture);
+  };
+  glBindFramebuffer(GL_FRAMEBUFFER, targets_.ao_fbo());
+  programs_.ssao->bind();
+  bind(0, GL_TEXTURE_2D, targets_.gbuffer_texture(0));
+  bind(1, GL_TEXTURE_2D, targets_.gbuffer_texture(1));
+  bind(2, GL_TEXTURE_2D, targets_.gbuffer_texture(2));
+  bind(3, GL_TEXTURE_2D, noise_texture_);
+  programs_.ssao->setUniformValue("g_position", 0);
+  programs_.ssao->setUniformValue("g_normal", 1);
+  programs_.ssao->setUniformValue("g_albedo", 2);
+  programs_.ssao->setUniformValue("noise", 3);
+  glUniform3fv(programs_.ssao->uniformLocation("kernel"), kAoSamples,
+               glm::value_ptr(ao_kernel_.front()));
+  programs_.ssao->setUniformValue("kernel_size", kAoSamples);
+  // R and delta belong to the scene (the paper picks them per scene): a
+  // twentieth of its diagonal reaches into corners without darkening whole
+  // walls; delta is above the RGBA16F position's step at this depth.
+  programs_.ssao->setUniformValue("radius", 0.05f * camera_.scene_diagonal());
+  programs_.ssao->setUniformValue("delta", 0.005f * camera_.scene_diagonal());
+  glUniformMatrix4fv(programs_.ssao->uniformLocation("projection"), 1, GL_FALSE,
+                     glm::value_ptr(projection));
+  programs_.ssao->setUniformValue(
+      "noise_scale", QVector2D(static_cast<float>(w) / 4.0f, static_cast<float>(h) / 4.0f));
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+
+  glBindFramebuffer(GL_FRAMEBUFFER, targets_.blur_fbo());
+  programs_.blur->bind();
+  bind(0, GL_TEXTURE_2D, targets_.ao_texture());
+  programs_.blur->setUniformValue("ao", 0);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+}
+
 void PreviewWidget::render(GLuint target) {
   const qreal ratio = devicePixelRatioF();
   const int w = std::max(1, static_cast<int>(width() * ratio));
@@ -84,63 +144,11 @@ void PreviewWidget::render(GLuint target) {
   const glm::mat4 projection = camera_.projection(aspect());
 
   // 1. G-buffer.
-  glBindFramebuffer(GL_FRAMEBUFFER, targets_.gbuffer_fbo());
-  glViewport(0, 0, w, h);
-  glEnable(GL_DEPTH_TEST);
-  glEnable(GL_CULL_FACE);  // from outside, the walls' backs open the box up
-  glCullFace(GL_BACK);
-  const float far_position[4] = {0.0f, 0.0f, -1e4f, 0.0f};
-  const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-  glClearBufferfv(GL_COLOR, 0, far_position);
-  for (int k = 1; k < PreviewTargets::kGbufferTargets; ++k) glClearBufferfv(GL_COLOR, k, zero);
-  glClear(GL_DEPTH_BUFFER_BIT);
-  programs_.gbuffer->bind();
-  glUniformMatrix4fv(programs_.gbuffer->uniformLocation("view"), 1, GL_FALSE, glm::value_ptr(view));
-  glUniformMatrix4fv(programs_.gbuffer->uniformLocation("projection"), 1, GL_FALSE,
-                     glm::value_ptr(projection));
-  draw_mesh(*programs_.gbuffer);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_DEPTH_TEST);
-
-  auto bind = [this](int unit, GLenum kind, GLuint texture) {
-    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
-    glBindTexture(kind, texture);
-  };
+  render_gbuffer(view, projection, w, h);
   glBindVertexArray(empty_vao_);
-
   // 2-3. Occlusion and its blur (only when they are shown).
   const bool ao = passes_.ao && passes_.indirect;
-  if (ao) {
-    glBindFramebuffer(GL_FRAMEBUFFER, targets_.ao_fbo());
-    programs_.ssao->bind();
-    bind(0, GL_TEXTURE_2D, targets_.gbuffer_texture(0));
-    bind(1, GL_TEXTURE_2D, targets_.gbuffer_texture(1));
-    bind(2, GL_TEXTURE_2D, targets_.gbuffer_texture(2));
-    bind(3, GL_TEXTURE_2D, noise_texture_);
-    programs_.ssao->setUniformValue("g_position", 0);
-    programs_.ssao->setUniformValue("g_normal", 1);
-    programs_.ssao->setUniformValue("g_albedo", 2);
-    programs_.ssao->setUniformValue("noise", 3);
-    glUniform3fv(programs_.ssao->uniformLocation("kernel"), kAoSamples,
-                 glm::value_ptr(ao_kernel_.front()));
-    programs_.ssao->setUniformValue("kernel_size", kAoSamples);
-    // R and delta belong to the scene (the paper picks them per scene): a
-    // twentieth of its diagonal reaches into corners without darkening whole
-    // walls; delta is above the RGBA16F position's step at this depth.
-    programs_.ssao->setUniformValue("radius", 0.05f * camera_.scene_diagonal());
-    programs_.ssao->setUniformValue("delta", 0.005f * camera_.scene_diagonal());
-    glUniformMatrix4fv(programs_.ssao->uniformLocation("projection"), 1, GL_FALSE,
-                       glm::value_ptr(projection));
-    programs_.ssao->setUniformValue(
-        "noise_scale", QVector2D(static_cast<float>(w) / 4.0f, static_cast<float>(h) / 4.0f));
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-
-    glBindFramebuffer(GL_FRAMEBUFFER, targets_.blur_fbo());
-    programs_.blur->bind();
-    bind(0, GL_TEXTURE_2D, targets_.ao_texture());
-    programs_.blur->setUniformValue("ao", 0);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-  }
+  if (ao) render_occlusion(projection, w, h);
 
   // 4. Lighting and composite. The exposure is fixed once, from the first
   // frame after set_data (the light where the scene puts it): the core's

@@ -127,6 +127,8 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
  private:
   struct SolveResult;
   void render(GLuint target);
+  void render_gbuffer(const glm::mat4& view, const glm::mat4& projection, int w, int h);
+  void render_occlusion(const glm::mat4& projection, int w, int h);
   void draw_composite(bool direct, bool indirect, bool ao, float exposure, bool linear);
   void calibrate_exposure(int width, int height);
   void draw_overlay();

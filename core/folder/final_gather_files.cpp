@@ -40,25 +40,41 @@ void write_final_gather(const fs::path& dir, const FinalGather& g) {
   write_npy(dir / bake_file::kGatherSpotWeight, g.spot_weight, {g.spot_weight.size()});
 }
 
-std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t patches,
-                                             std::size_t samples) {
-  if (!fs::exists(dir / bake_file::kGatherFirst)) return std::nullopt;
-  // Each file one-dimensional, read whole.
-  const auto vector_of = [&dir](const char* name, auto reader) {
-    const fs::path file = dir / name;
-    auto array = reader(file);
-    if (array.shape.size() != 1) throw Error(file.string(), "expected a one-dimensional array");
-    return std::move(array.data);
-  };
-  const auto u32 = [](const fs::path& f) { return read_npy_u32(f); };
-  const auto f32 = [](const fs::path& f) { return read_npy_f32(f); };
-  FinalGather g;
-  const std::vector<std::uint32_t> first = vector_of(bake_file::kGatherFirst, u32);
-  g.first.assign(first.begin(), first.end());
-  g.source = vector_of(bake_file::kGatherSource, u32);
-  g.weight = vector_of(bake_file::kGatherWeight, f32);
-  g.cluster_of_patch = vector_of(bake_file::kGatherCluster, u32);
-  g.cluster_share = vector_of(bake_file::kGatherShare, f32);
+namespace {
+
+// A one-dimensional array, read whole.
+template <typename Reader>
+auto read_vector(const fs::path& dir, const char* name, Reader reader) {
+  const fs::path file = dir / name;
+  auto array = reader(file);
+  if (array.shape.size() != 1) throw Error(file.string(), "expected a one-dimensional array");
+  return std::move(array.data);
+}
+
+std::vector<std::uint32_t> read_u32(const fs::path& dir, const char* name) {
+  return read_vector(dir, name, [](const fs::path& f) { return read_npy_u32(f); });
+}
+
+std::vector<float> read_f32(const fs::path& dir, const char* name) {
+  return read_vector(dir, name, [](const fs::path& f) { return read_npy_f32(f); });
+}
+
+// An array of shape [near sources, 3].
+std::vector<glm::vec3> read_rows(const fs::path& dir, const char* name) {
+  const fs::path file = dir / name;
+  auto array = read_npy_f32(file);
+  if (array.shape.size() != 2 || array.shape[1] != 3)
+    throw Error(file.string(), "expected an array of shape [near sources, 3]");
+  std::vector<glm::vec3> out(array.shape[0]);
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = glm::vec3(array.data[3 * i], array.data[3 * i + 1], array.data[3 * i + 2]);
+  return out;
+}
+
+// The patches' clusters and shares; the cluster count from the numbers.
+void read_clusters(const fs::path& dir, std::size_t patches, FinalGather& g) {
+  g.cluster_of_patch = read_u32(dir, bake_file::kGatherCluster);
+  g.cluster_share = read_f32(dir, bake_file::kGatherShare);
   const fs::path cluster_file = dir / bake_file::kGatherCluster;
   g.patches = patches;
   if (g.cluster_of_patch.size() != patches)
@@ -75,58 +91,68 @@ std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t pa
                                            std::to_string(patches) +
                                            " patches make at most that many clusters");
   g.clusters = clusters;
+}
+
+void read_near_sources(const fs::path& dir, FinalGather& g) {
+  g.near.patch = read_u32(dir, bake_file::kGatherNearPatch);
+  g.near.position = read_rows(dir, bake_file::kGatherNearPosition);
+  g.near.normal = read_rows(dir, bake_file::kGatherNearNormal);
+  g.near.albedo = read_rows(dir, bake_file::kGatherNearAlbedo);
+  if (g.near.position.size() != g.near.patch.size() ||
+      g.near.normal.size() != g.near.patch.size() || g.near.albedo.size() != g.near.patch.size())
+    throw Error((dir / bake_file::kGatherNearPatch).string(),
+                "the near sources' files differ in length");
+}
+
+// After the near sources: the spots are the last of them.
+void read_spots(const fs::path& dir, std::size_t samples, FinalGather& g) {
+  g.spot_first = read_u32(dir, bake_file::kGatherSpotFirst);
+  g.spot_weight = read_f32(dir, bake_file::kGatherSpotWeight);
+  if (g.spot_first.size() != samples + 1)
+    throw Error((dir / bake_file::kGatherSpotFirst).string(),
+                "expected one row start per sample and one more (" + std::to_string(samples + 1) +
+                    "), found " + std::to_string(g.spot_first.size()));
+  if (g.spot_weight.size() != g.spot_first.back() || g.spot_first.back() > g.near.size())
+    throw Error((dir / bake_file::kGatherSpotWeight).string(),
+                "expected " + std::to_string(g.spot_first.back()) + " spot weights within " +
+                    std::to_string(g.near.size()) + " near sources, found " +
+                    std::to_string(g.spot_weight.size()) + " weights");
+  g.near.spot_count = g.spot_first.back();
+}
+
+}  // namespace
+
+std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t patches,
+                                             std::size_t samples) {
+  if (!fs::exists(dir / bake_file::kGatherFirst)) return std::nullopt;
+  FinalGather g;
+  const std::vector<std::uint32_t> first = read_u32(dir, bake_file::kGatherFirst);
+  g.first.assign(first.begin(), first.end());
+  g.source = read_u32(dir, bake_file::kGatherSource);
+  g.weight = read_f32(dir, bake_file::kGatherWeight);
+  read_clusters(dir, patches, g);
   // Sources past the clusters are samples, then near sources (validate()
   // checks the range).
-  for (const std::uint32_t s : g.source)
-    if (s >= patches + clusters) {
-      g.samples = samples;
-      break;
-    }
+  if (std::any_of(g.source.begin(), g.source.end(),
+                  [&](std::uint32_t s) { return s >= patches + g.clusters; }))
+    g.samples = samples;
   if (fs::exists(dir / bake_file::kGatherNearPatch)) {
     g.samples = samples;
-    const auto rows = [&dir](const char* name) {
-      const fs::path file = dir / name;
-      auto array = read_npy_f32(file);
-      if (array.shape.size() != 2 || array.shape[1] != 3)
-        throw Error(file.string(), "expected an array of shape [near sources, 3]");
-      std::vector<glm::vec3> out(array.shape[0]);
-      for (std::size_t i = 0; i < out.size(); ++i)
-        out[i] = glm::vec3(array.data[3 * i], array.data[3 * i + 1], array.data[3 * i + 2]);
-      return out;
-    };
-    g.near.patch = vector_of(bake_file::kGatherNearPatch, u32);
-    g.near.position = rows(bake_file::kGatherNearPosition);
-    g.near.normal = rows(bake_file::kGatherNearNormal);
-    g.near.albedo = rows(bake_file::kGatherNearAlbedo);
-    if (g.near.position.size() != g.near.patch.size() ||
-        g.near.normal.size() != g.near.patch.size() || g.near.albedo.size() != g.near.patch.size())
-      throw Error((dir / bake_file::kGatherNearPatch).string(),
-                  "the near sources' files differ in length");
+    read_near_sources(dir, g);
   }
   // Seen weights (bakes made before them have none: patches read their own
   // light).
   if (fs::exists(dir / bake_file::kGatherSeenFirst)) {
-    g.seen_first = vector_of(bake_file::kGatherSeenFirst, u32);
-    g.seen_sample = vector_of(bake_file::kGatherSeenSample, u32);
-    g.seen_weight = vector_of(bake_file::kGatherSeenWeight, f32);
+    g.seen_first = read_u32(dir, bake_file::kGatherSeenFirst);
+    g.seen_sample = read_u32(dir, bake_file::kGatherSeenSample);
+    g.seen_weight = read_f32(dir, bake_file::kGatherSeenWeight);
     g.samples = samples;
   }
   // Spots (bakes made before them have none: samples are lit at their
   // centres).
   if (fs::exists(dir / bake_file::kGatherSpotFirst)) {
-    g.spot_first = vector_of(bake_file::kGatherSpotFirst, u32);
-    g.spot_weight = vector_of(bake_file::kGatherSpotWeight, f32);
     g.samples = samples;
-    if (g.spot_first.size() != samples + 1)
-      throw Error((dir / bake_file::kGatherSpotFirst).string(),
-                  "expected one row start per sample and one more (" + std::to_string(samples + 1) +
-                      "), found " + std::to_string(g.spot_first.size()));
-    if (g.spot_weight.size() != g.spot_first.back() || g.spot_first.back() > g.near.size())
-      throw Error((dir / bake_file::kGatherSpotWeight).string(),
-                  "expected " + std::to_string(g.spot_first.back()) + " spot weights within " +
-                      std::to_string(g.near.size()) + " near sources, found " +
-                      std::to_string(g.spot_weight.size()) + " weights");
-    g.near.spot_count = g.spot_first.back();
+    read_spots(dir, samples, g);
   }
   g.validate((dir / "gather_*.npy").string());
   g.compact_rows();

@@ -12,6 +12,7 @@
 #include "base/error.h"
 #include "runtime/direct_light.h"
 #include "runtime/gather_row_loops.h"
+#include "runtime/near_source_light.h"
 
 namespace bounce {
 
@@ -76,15 +77,6 @@ void pad_light(const FinalGather& g, const std::vector<glm::vec3>& patch_exitanc
     for (int c = 0; c < 3; ++c) cl.c[c] += g.cluster_share[p] * light[p].c[c];
   }
 }
-
-// The near sources' light (see near_exitance()) written to out[i * stride],
-// three floats each (and a zero fourth when stride is 4, the product's
-// padded light).
-void light_near_sources(const NearSources& near, const RayTracer* tracer,
-                        const std::vector<Light>& lights, const std::vector<AreaLight>& area,
-                        const std::vector<glm::vec3>& patch_indirect, float* out,
-                        std::size_t stride, AreaLightCache* area_cache = nullptr,
-                        ShadowBudget* budget = nullptr);
 
 }  // namespace
 
@@ -215,122 +207,5 @@ void near_exitance(const NearSources& near, const RayTracer* tracer,
   light_near_sources(near, tracer, lights, area, patch_indirect, out.empty() ? nullptr : &out[0].x,
                      3);
 }
-
-namespace {
-
-// Each near source's irradiance from the area lights: kAreaStrata squared
-// rays per emissive triangle, a spot's one (see NearSources). Source i
-// seeds its jitter with i.
-void near_area_irradiance(const NearSources& near, const RayTracer& tracer,
-                          const std::vector<AreaLight>& area, std::vector<glm::vec3>& out) {
-  const std::size_t n = near.size();
-  const float eps = 10.0f * tracer.epsilon();
-  // Lifted once here and once more by the light's own offset, as
-  // irradiance_at() lifts the point it is given.
-  std::vector<glm::vec3> lifted(n);
-  for (std::size_t i = 0; i < n; ++i) lifted[i] = near.position[i] + eps * near.normal[i];
-  area_irradiance_at_points(tracer, lifted, near.normal, area, kAreaStrata,
-                            n - std::min(n, near.spot_count), out);
-}
-
-void light_near_sources(const NearSources& near, const RayTracer* tracer,
-                        const std::vector<Light>& lights, const std::vector<AreaLight>& area,
-                        const std::vector<glm::vec3>& patch_indirect, float* out,
-                        std::size_t stride, AreaLightCache* area_cache, ShadowBudget* budget) {
-  // The area lights' part: the caller's kept one, or worked out for this
-  // call alone.
-  AreaLightCache this_call;
-  const std::vector<glm::vec3>* area_e = nullptr;
-  if (tracer && !area.empty())
-    area_e = &(area_cache ? *area_cache : this_call)
-                  .irradiance(near.position.data(), near.size(), area, kAreaStrata,
-                              [&](auto& e) { near_area_irradiance(near, *tracer, area, e); });
-  const std::size_t n = near.size();
-  // The first source naming a patch that is not there, checked on the
-  // threads as each source is written (n: none).
-  std::atomic<std::size_t> first_bad{n};
-  const float eps = tracer ? 10.0f * tracer->epsilon() : 0.0f;
-  // The shadow rays to one light go to Embree in batches of a few hundred
-  // (its stream API): on Sponza's 421,838 near sources and the sun 1.5
-  // times as fast as one rtcOccluded1 call per ray. (Marking the batches
-  // coherent, or sending them as packets of 8 or 16, measured no faster.)
-  // Each source sums its lights in order, then the area lights, as
-  // irradiance_at() does, so the light is the same to the last bit.
-  constexpr std::size_t kBatch = 256;
-  const std::size_t batches = (n + kBatch - 1) / kBatch;
-  std::vector<LightReach> reach;
-  for (const Light& light : lights) reach.emplace_back(light);
-  // Each light's kept visibility per source, sized here, before the threads.
-  std::vector<std::uint8_t*> kept_visibility(lights.size(), nullptr);
-  if (budget && tracer) {
-    budget->begin_frame(near.position.data(), batches, lights);
-    for (std::size_t l = 0; l < lights.size(); ++l)
-      kept_visibility[l] = budget->visibility_of(l, n).data();
-  }
-#pragma omp parallel
-  {
-    // A batch's rays to one light, their unshadowed light and whose they
-    // are: written field by field in place (see LightReach::at).
-    std::vector<ShadowRay> rays(kBatch);
-    std::vector<glm::vec3> value(kBatch), e;
-    std::vector<std::uint32_t> who(kBatch);
-    std::vector<std::uint8_t> blocked(kBatch);
-#pragma omp for schedule(dynamic, 1)
-    for (std::int64_t bi = 0; bi < static_cast<std::int64_t>(batches); ++bi) {
-      const std::size_t lo = static_cast<std::size_t>(bi) * kBatch, hi = std::min(n, lo + kBatch);
-      e.assign(hi - lo, glm::vec3(0.0f));
-      if (tracer) {
-        for (std::size_t l = 0; l < reach.size(); ++l) {
-          // Without a budget, or in a batch it traces this frame: the rays
-          // are traced (and their visibility kept); else each point keeps the
-          // visibility it was last traced with.
-          const bool trace = !budget || budget->traced(l, static_cast<std::size_t>(bi));
-          std::uint8_t* const kept = budget ? kept_visibility[l] : nullptr;
-          std::size_t m = 0;
-          for (std::size_t i = lo; i < hi; ++i) {
-            // A source kept in shadow gets nothing: its light is not needed.
-            if (!trace && !kept[i]) continue;
-            // Lifted once here and once more by the light's own offset, as
-            // irradiance_at() lifts the point it is given.
-            const glm::vec3 at = near.position[i] + eps * near.normal[i];
-            if (!reach[l].at(at, near.normal[i], eps, rays[m], value[m])) continue;
-            if (trace)
-              who[m++] = static_cast<std::uint32_t>(i - lo);
-            else
-              e[i - lo] += value[m];
-          }
-          if (!trace) continue;
-          tracer->occluded(rays.data(), m, blocked.data());
-          for (std::size_t k = 0; k < m; ++k) {
-            if (!blocked[k]) e[who[k]] += value[k];
-            if (kept) kept[lo + who[k]] = blocked[k] ? 0 : 1;
-          }
-        }
-        if (area_e)
-          for (std::size_t i = lo; i < hi; ++i) e[i - lo] += (*area_e)[i];
-      }
-      for (std::size_t i = lo; i < hi; ++i) {
-        const bool known = near.patch[i] < patch_indirect.size();
-        const glm::vec3 v =
-            known ? near.albedo[i] * e[i - lo] + patch_indirect[near.patch[i]] : glm::vec3(0.0f);
-        float* o = out + i * stride;
-        o[0] = v.x;
-        o[1] = v.y;
-        o[2] = v.z;
-        if (stride == 4) o[3] = 0.0f;
-        if (!known)
-          for (std::size_t seen = first_bad.load();
-               i < seen && !first_bad.compare_exchange_weak(seen, i);) {
-          }
-      }
-    }
-  }
-  if (const std::size_t i = first_bad.load(); i < n)
-    throw Error("final gather", "near source " + std::to_string(i) + " names patch " +
-                                    std::to_string(near.patch[i]) + " of " +
-                                    std::to_string(patch_indirect.size()));
-}
-
-}  // namespace
 
 }  // namespace bounce

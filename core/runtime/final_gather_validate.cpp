@@ -11,93 +11,125 @@
 
 namespace bounce {
 
-void FinalGather::validate(const std::string& what) const {
-  if (first.empty() || first.front() != 0 || first.back() != source.size() ||
-      source.size() != weight.size())
-    throw Error(what, "row offsets do not match the " + std::to_string(source.size()) + " entries");
-  if (cluster_of_patch.size() != patches || cluster_share.size() != patches)
+namespace {
+
+// The row offsets, and one cluster and share per patch.
+void check_rows_and_clusters(const FinalGather& g, const std::string& what) {
+  if (g.first.empty() || g.first.front() != 0 || g.first.back() != g.source.size() ||
+      g.source.size() != g.weight.size())
+    throw Error(what,
+                "row offsets do not match the " + std::to_string(g.source.size()) + " entries");
+  if (g.cluster_of_patch.size() != g.patches || g.cluster_share.size() != g.patches)
     throw Error(what, "one cluster and share per patch expected");
-  for (std::size_t p = 0; p < patches; ++p)
-    if (cluster_of_patch[p] >= clusters || !(cluster_share[p] >= 0.0f && cluster_share[p] <= 1.0f))
+  for (std::size_t p = 0; p < g.patches; ++p)
+    if (g.cluster_of_patch[p] >= g.clusters ||
+        !(g.cluster_share[p] >= 0.0f && g.cluster_share[p] <= 1.0f))
       throw Error(what, "patch " + std::to_string(p) + "'s cluster or share is out of range");
-  if (near.normal.size() != near.size() || near.albedo.size() != near.size() ||
-      near.patch.size() != near.size())
+}
+
+// Each near source finite and on a patch that is there.
+void check_near_sources(const FinalGather& g, const std::string& what) {
+  if (g.near.normal.size() != g.near.size() || g.near.albedo.size() != g.near.size() ||
+      g.near.patch.size() != g.near.size())
     throw Error(what, "near sources need a position, normal, albedo and patch each");
-  if (near.size() > 0 && samples == 0)
+  if (g.near.size() > 0 && g.samples == 0)
     throw Error(what, "near sources without the bake's sample count");
-  for (std::size_t k = 0; k < near.size(); ++k) {
-    const glm::vec3 v[3] = {near.position[k], near.normal[k], near.albedo[k]};
+  for (std::size_t k = 0; k < g.near.size(); ++k) {
+    const glm::vec3 v[3] = {g.near.position[k], g.near.normal[k], g.near.albedo[k]};
     for (const glm::vec3& x : v)
       if (!std::isfinite(x.x) || !std::isfinite(x.y) || !std::isfinite(x.z))
         throw Error(what, "near source " + std::to_string(k) + " is not finite");
-    if (near.patch[k] >= patches)
+    if (g.near.patch[k] >= g.patches)
       throw Error(what, "near source " + std::to_string(k) + " names patch " +
-                            std::to_string(near.patch[k]) + " of " + std::to_string(patches));
+                            std::to_string(g.near.patch[k]) + " of " + std::to_string(g.patches));
   }
-  if (!seen_first.empty()) {
-    if (seen_first.size() != patches + 1 || seen_first.front() != 0 ||
-        seen_first.back() != seen_sample.size() || seen_sample.size() != seen_weight.size())
+}
+
+// Each patch's seen samples in range, their weights summing to 1.
+void check_seen_weights(const FinalGather& g, const std::string& what) {
+  if (!g.seen_first.empty()) {
+    if (g.seen_first.size() != g.patches + 1 || g.seen_first.front() != 0 ||
+        g.seen_first.back() != g.seen_sample.size() || g.seen_sample.size() != g.seen_weight.size())
       throw Error(what, "the seen weights' row starts do not match their " +
-                            std::to_string(seen_sample.size()) + " entries and " +
-                            std::to_string(patches) + " patches");
-    if (samples == 0) throw Error(what, "seen weights without the bake's sample count");
-    for (std::size_t p = 0; p < patches; ++p) {
-      if (seen_first[p + 1] < seen_first[p])
+                            std::to_string(g.seen_sample.size()) + " entries and " +
+                            std::to_string(g.patches) + " patches");
+    if (g.samples == 0) throw Error(what, "seen weights without the bake's sample count");
+    for (std::size_t p = 0; p < g.patches; ++p) {
+      if (g.seen_first[p + 1] < g.seen_first[p])
         throw Error(what, "the seen weights' row starts decrease at patch " + std::to_string(p));
       double total = 0.0;
-      for (std::uint32_t k = seen_first[p]; k < seen_first[p + 1]; ++k) {
-        if (seen_sample[k] >= samples || !(seen_weight[k] >= 0.0f && seen_weight[k] <= 1.0f))
+      for (std::uint32_t k = g.seen_first[p]; k < g.seen_first[p + 1]; ++k) {
+        if (g.seen_sample[k] >= g.samples ||
+            !(g.seen_weight[k] >= 0.0f && g.seen_weight[k] <= 1.0f))
           throw Error(what, "patch " + std::to_string(p) +
                                 "'s seen weights name a sample out of range or a weight "
                                 "outside [0, 1]");
-        total += seen_weight[k];
+        total += g.seen_weight[k];
       }
-      if (seen_first[p + 1] > seen_first[p] && std::abs(total - 1.0) > 1e-3)
+      if (g.seen_first[p + 1] > g.seen_first[p] && std::abs(total - 1.0) > 1e-3)
         throw Error(what, "patch " + std::to_string(p) + "'s seen weights sum to " +
                               std::to_string(total) + ", not 1");
     }
   }
-  if (near.spot_count != spots())
-    throw Error(what, "the near sources end in " + std::to_string(near.spot_count) +
-                          " spots, the spots' row starts name " + std::to_string(spots()));
-  if (!spot_first.empty()) {
-    if (spot_first.size() != samples + 1 || spot_first.front() != 0 ||
-        spot_first.back() != spot_weight.size() || spot_first.back() > near.size())
+}
+
+// Each sample's spots among the near sources, their weights summing to 1.
+void check_spots(const FinalGather& g, const std::string& what) {
+  if (g.near.spot_count != g.spots())
+    throw Error(what, "the near sources end in " + std::to_string(g.near.spot_count) +
+                          " spots, the spots' row starts name " + std::to_string(g.spots()));
+  if (!g.spot_first.empty()) {
+    if (g.spot_first.size() != g.samples + 1 || g.spot_first.front() != 0 ||
+        g.spot_first.back() != g.spot_weight.size() || g.spot_first.back() > g.near.size())
       throw Error(what, "the spots' row starts do not match their " +
-                            std::to_string(spot_weight.size()) + " weights, " +
-                            std::to_string(samples) + " samples and " +
-                            std::to_string(near.size()) + " near sources");
-    for (std::size_t s = 0; s < samples; ++s) {
-      if (spot_first[s + 1] < spot_first[s])
+                            std::to_string(g.spot_weight.size()) + " weights, " +
+                            std::to_string(g.samples) + " samples and " +
+                            std::to_string(g.near.size()) + " near sources");
+    for (std::size_t s = 0; s < g.samples; ++s) {
+      if (g.spot_first[s + 1] < g.spot_first[s])
         throw Error(what, "the spots' row starts decrease at sample " + std::to_string(s));
       double total = 0.0;
-      for (std::uint32_t k = spot_first[s]; k < spot_first[s + 1]; ++k) {
-        if (!(spot_weight[k] >= 0.0f && spot_weight[k] <= 1.0f))
+      for (std::uint32_t k = g.spot_first[s]; k < g.spot_first[s + 1]; ++k) {
+        if (!(g.spot_weight[k] >= 0.0f && g.spot_weight[k] <= 1.0f))
           throw Error(what, "sample " + std::to_string(s) + " has a spot weight outside [0, 1]");
-        total += spot_weight[k];
+        total += g.spot_weight[k];
       }
-      if (spot_first[s + 1] > spot_first[s] && std::abs(total - 1.0) > 1e-3)
+      if (g.spot_first[s + 1] > g.spot_first[s] && std::abs(total - 1.0) > 1e-3)
         throw Error(what, "sample " + std::to_string(s) + "'s spot weights sum to " +
                               std::to_string(total) + ", not 1");
     }
   }
-  for (std::size_t i = 0; i + 1 < first.size(); ++i) {
-    if (first[i + 1] < first[i])
+}
+
+// Each point's entries on a source that is there, their weights at most 1.
+void check_entries(const FinalGather& g, const std::string& what) {
+  for (std::size_t i = 0; i + 1 < g.first.size(); ++i) {
+    if (g.first[i + 1] < g.first[i])
       throw Error(what, "row offsets decrease at point " + std::to_string(i));
     double total = 0.0;
-    for (std::uint64_t k = first[i]; k < first[i + 1]; ++k) {
-      if (source[k] >= patches + clusters + samples + near.size())
+    for (std::uint64_t k = g.first[i]; k < g.first[i + 1]; ++k) {
+      if (g.source[k] >= g.patches + g.clusters + g.samples + g.near.size())
         throw Error(what, "point " + std::to_string(i) + " gathers from source " +
-                              std::to_string(source[k]) + " of " +
-                              std::to_string(patches + clusters + samples + near.size()));
-      if (!(weight[k] >= 0.0f && weight[k] <= 1.0f))
+                              std::to_string(g.source[k]) + " of " +
+                              std::to_string(g.patches + g.clusters + g.samples + g.near.size()));
+      if (!(g.weight[k] >= 0.0f && g.weight[k] <= 1.0f))
         throw Error(what, "point " + std::to_string(i) + " has a weight outside [0, 1]");
-      total += weight[k];
+      total += g.weight[k];
     }
     if (total > 1.0 + 1e-4)
       throw Error(what, "point " + std::to_string(i) + "'s weights sum to " +
                             std::to_string(total) + " > 1");
   }
+}
+
+}  // namespace
+
+void FinalGather::validate(const std::string& what) const {
+  check_rows_and_clusters(*this, what);
+  check_near_sources(*this, what);
+  check_seen_weights(*this, what);
+  check_spots(*this, what);
+  check_entries(*this, what);
 }
 
 }  // namespace bounce
