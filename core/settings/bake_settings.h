@@ -71,6 +71,11 @@ struct BakeSettings {
   // every frame, whose light is the sample's (runtime/final_gather.h, spots);
   // 0: samples are lit at their centres.
   int final_gather_spots = FinalGatherSettings{}.spots;
+  // Light probes in the empty cells next to surfaces, gathered like the
+  // vertices (runtime/light_probes.h, runtime/light_probe_placement.h), and
+  // the most the grid may make: more is refused before any is traced.
+  bool light_probes = false;
+  int light_probes_max = 200000;
   std::uint64_t seed = 1;
   bool dump_matrices = false;
 
