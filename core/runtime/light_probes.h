@@ -16,7 +16,13 @@
 // source where the directions store one per source and direction, with the
 // same rays; and the fitted coefficients reproduce the gathered irradiance
 // of the axis directions an engine's checks use, where a projection of
-// cosine rays would need its own quadrature of the sphere.
+// cosine rays would need its own quadrature of the sphere. Why 14: for the
+// sharpest irradiance there is, a directional light's clamped cosine, the
+// fit's RMS error over the sphere is 1.29 times (at worst 1.79 times) that
+// of the exact L2 projection, against 1.18 at worst with the 12 cube edges
+// added (26 directions, 1.9 times the rays and entries); bounced light is
+// far smoother, and on the Cornell box the 14 come within 0.065 of the
+// path tracer at the axis normals (tests/unit/test_light_probes.cpp).
 //
 // The SH convention (docs/bake-format.md, "Light probes"):
 //   - the real SH basis, orthonormal over the sphere, in the order
