@@ -42,6 +42,7 @@ inline constexpr const char* kGatherNearPatch = "gather_near_patch.npy";
 // files of the vertices' gather with this prefix instead of "gather_".
 inline constexpr const char* kProbePositions = "probe_position.npy";
 inline constexpr const char* kProbeGatherPrefix = "probe_gather_";
+inline constexpr const char* kGatherPrefix = "gather_";  // of the names above
 inline constexpr const char* kFormFactors = "F.npy";
 inline constexpr const char* kDenseTransport = "T.npy";
 inline constexpr const char* kLightsFirstHit = "lights_first_hit.npy";

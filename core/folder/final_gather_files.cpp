@@ -15,17 +15,17 @@ namespace bounce {
 namespace fs = std::filesystem;
 
 std::string gather_file_name(const char* prefix, const char* vertex_name) {
-  const std::string_view name(vertex_name), base("gather_");
+  const std::string_view name(vertex_name), base(bake_file::kGatherPrefix);
   return std::string(prefix) + std::string(name.substr(base.size()));
 }
 
 void write_final_gather(const fs::path& dir, const FinalGather& g) {
-  write_final_gather(dir, g, "gather_");
+  write_final_gather(dir, g, bake_file::kGatherPrefix);
 }
 
 std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t patches,
                                              std::size_t samples) {
-  return read_final_gather(dir, patches, samples, "gather_");
+  return read_final_gather(dir, patches, samples, bake_file::kGatherPrefix);
 }
 
 void write_final_gather(const fs::path& dir, const FinalGather& g, const char* prefix) {
@@ -33,7 +33,7 @@ void write_final_gather(const fs::path& dir, const FinalGather& g, const char* p
     return dir / gather_file_name(prefix, name);
   };
   if (g.source.size() > std::numeric_limits<std::uint32_t>::max())
-    throw Error((file(bake_file::kGatherFirst)).string(),
+    throw Error(file(bake_file::kGatherFirst).string(),
                 "the final gather has more than 2^32 entries: too many for its row starts");
   std::vector<std::uint32_t> first(g.first.begin(), g.first.end());
   write_npy(file(bake_file::kGatherFirst), first, {first.size()});
@@ -122,7 +122,7 @@ std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t pa
     g.near.albedo = rows(bake_file::kGatherNearAlbedo);
     if (g.near.position.size() != g.near.patch.size() ||
         g.near.normal.size() != g.near.patch.size() || g.near.albedo.size() != g.near.patch.size())
-      throw Error((file(bake_file::kGatherNearPatch)).string(),
+      throw Error(file(bake_file::kGatherNearPatch).string(),
                   "the near sources' files differ in length");
   }
   // Seen weights (bakes made before them have none: patches read their own
@@ -140,11 +140,11 @@ std::optional<FinalGather> read_final_gather(const fs::path& dir, std::size_t pa
     g.spot_weight = vector_of(bake_file::kGatherSpotWeight, f32);
     g.samples = samples;
     if (g.spot_first.size() != samples + 1)
-      throw Error((file(bake_file::kGatherSpotFirst)).string(),
+      throw Error(file(bake_file::kGatherSpotFirst).string(),
                   "expected one row start per sample and one more (" + std::to_string(samples + 1) +
                       "), found " + std::to_string(g.spot_first.size()));
     if (g.spot_weight.size() != g.spot_first.back() || g.spot_first.back() > g.near.size())
-      throw Error((file(bake_file::kGatherSpotWeight)).string(),
+      throw Error(file(bake_file::kGatherSpotWeight).string(),
                   "expected " + std::to_string(g.spot_first.back()) + " spot weights within " +
                       std::to_string(g.near.size()) + " near sources, found " +
                       std::to_string(g.spot_weight.size()) + " weights");
