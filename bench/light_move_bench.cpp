@@ -52,6 +52,12 @@ LightMoveSteps timed_frame(LightingSession& session, std::vector<glm::vec3>& e) 
   const auto t1 = Clock::now();
   session.vertex_irradiance(e);
   const double gather = ms_since(t1);
+  if (session.light_probes()) {
+    thread_local std::vector<glm::vec3> sh;
+    const auto t2 = Clock::now();
+    session.probe_sh(sh);
+    s.probes = ms_since(t2);
+  }
   s.whole = ms_since(t0);
   const RuntimeFrame& frame = session.frame();
   bool after_product = false;
@@ -81,7 +87,7 @@ LightMoveSteps median_steps(const std::vector<LightMoveSteps>& frames) {
     return median(v);
   };
   return {of(&LightMoveSteps::direct), of(&LightMoveSteps::indirect), of(&LightMoveSteps::product),
-          of(&LightMoveSteps::near), of(&LightMoveSteps::whole)};
+          of(&LightMoveSteps::near),   of(&LightMoveSteps::whole),    of(&LightMoveSteps::probes)};
 }
 
 // Moves one light in both sessions, then holds it still until the spread
@@ -152,6 +158,7 @@ LightMoveBench run_light_move_bench(const std::filesystem::path& bake,
   out.patches = every.bake().size();
   out.vertices = every.final_gather()->points();
   out.near_sources = every.final_gather()->near.size();
+  out.probes = every.light_probes() ? every.light_probes()->size() : 0;
   out.shadow_frames = settings.shadow_frames;
   const std::vector<Light> lights = every.scene().lights;
   for (const Light& light : lights)

@@ -19,9 +19,11 @@ struct LightMoveSettings {
   int shadow_frames = 8;        // k of the spread rays
 };
 
-// Milliseconds per step, median over the moving frames.
+// Milliseconds per step, median over the moving frames. `probes`: the light
+// probes' SH from the same frame (their gather product and SH fit; 0 for a
+// bake without probes), part of `whole`.
 struct LightMoveSteps {
-  double direct = 0.0, indirect = 0.0, product = 0.0, near = 0.0, whole = 0.0;
+  double direct = 0.0, indirect = 0.0, product = 0.0, near = 0.0, whole = 0.0, probes = 0.0;
 };
 
 struct LightMoveRow {
@@ -37,7 +39,7 @@ struct LightMoveRow {
 
 struct LightMoveBench {
   std::string scene;
-  std::size_t patches = 0, vertices = 0, near_sources = 0;
+  std::size_t patches = 0, vertices = 0, near_sources = 0, probes = 0;
   int shadow_frames = 0;
   std::vector<LightMoveRow> rows;
 };

@@ -188,6 +188,9 @@ PYBIND11_MODULE(bounce, m) {
                              [](const OpenedBake& b) { return light_list(b.scene().lights); })
       .def_property_readonly("multiply", &OpenedBake::multiply_name)
       .def_property_readonly("has_final_gather", &OpenedBake::has_final_gather)
+      .def_property_readonly(
+          "probe_positions", [](const OpenedBake& b) { return rows_of_three(b.probe_positions()); },
+          "The light probes' positions (probes x 3, float32; 0 x 3 for a bake without them)")
       .def_property_readonly("manifest",
                              [](const OpenedBake& b) { return json_to_python(b.bake().manifest); })
       .def_property_readonly("vertex_positions",
@@ -232,13 +235,22 @@ PYBIND11_MODULE(bounce, m) {
             out["patch_light"] = rows_of_three(frame.reflected);
             out["exitance"] = rows_of_three(frame.exitance);
             out["vertex_light"] = rows_of_three(frame.vertex_light);
+            py::array_t<float> sh(
+                {static_cast<py::ssize_t>(frame.probe_sh.size() / kShCoefficients),
+                 static_cast<py::ssize_t>(kShCoefficients), py::ssize_t{3}});
+            std::copy_n(reinterpret_cast<const float*>(frame.probe_sh.data()),
+                        3 * frame.probe_sh.size(), sh.mutable_data());
+            out["probe_sh"] = sh;
             return out;
           },
           py::arg("lights") = py::none(),
           "relight(lights=None) -> dict of float32 arrays.\n"
           "One frame with the scene's lights; lights={'name': (x, y, z)} moves point and spot "
           "lights first. Per patch (n x 3): first_hit (b), indirect (T b), patch_light "
-          "(b + T b), exitance (emission + b + T b); per lit-mesh vertex (v x 3): vertex_light.")
+          "(b + T b), exitance (emission + b + T b); per lit-mesh vertex (v x 3): vertex_light; "
+          "per "
+          "light probe (p x 9 x 3, p = 0 without probes): probe_sh, the irradiance of light "
+          "reflected at least once as real SH L2 (docs/bake-format.md, Light probes).")
       .def(
           "camera_image",
           [](OpenedBake& b, int width, int height, int samples, int gather_rays) {

@@ -28,6 +28,7 @@ RelitFrame OpenedBake::relight(const std::map<std::string, glm::vec3>& moved) {
   session_.relighter().reflected(out.reflected);
   out.exitance = frame.exitance();
   out.vertex_light = session_.lit_mesh().radiosity;
+  session_.probe_sh(out.probe_sh);
   return out;
 }
 

@@ -20,6 +20,8 @@ struct RelitFrame {
   std::vector<glm::vec3> reflected;  // b + T b per patch
   std::vector<glm::vec3> exitance;   // emission + b + T b per patch
   std::vector<glm::vec3> vertex_light;
+  // The light probes' irradiance SH, 9 per probe (empty without probes).
+  std::vector<glm::vec3> probe_sh;
 };
 
 class OpenedBake {
@@ -32,6 +34,10 @@ class OpenedBake {
   const LoadedBake& bake() const { return session_.bake(); }
   const std::string& multiply_name() const { return session_.relighter().multiply_name(); }
   bool has_final_gather() const { return session_.final_gather().has_value(); }
+  // The light probes' positions (empty without probes).
+  std::vector<glm::vec3> probe_positions() const {
+    return session_.light_probes() ? session_.light_probes()->position : std::vector<glm::vec3>{};
+  }
   // The lit mesh's vertices and triangles (built on first use).
   const LitMesh& mesh() { return session_.mesh(); }
 

@@ -114,7 +114,7 @@ void print_bake_report(std::FILE* out, const json& m) {
   if (m.contains("files")) {
     std::fprintf(out, "\nFiles\n");
     for (const json& e : m["files"])
-      std::fprintf(out, "  %-24s %10.2f MiB\n", e["name"].get<std::string>().c_str(),
+      std::fprintf(out, "  %-28s %10.2f MiB\n", e["name"].get<std::string>().c_str(),
                    mib(e["bytes"]));
   }
 }

@@ -31,11 +31,8 @@ struct RuntimeBenchOptions {
 };
 
 nlohmann::json steps_json(const LightMoveSteps& s) {
-  return {{"direct_ms", s.direct},
-          {"indirect_ms", s.indirect},
-          {"product_ms", s.product},
-          {"near_ms", s.near},
-          {"whole_ms", s.whole}};
+  return {{"direct_ms", s.direct}, {"indirect_ms", s.indirect}, {"product_ms", s.product},
+          {"near_ms", s.near},     {"whole_ms", s.whole},       {"probes_ms", s.probes}};
 }
 
 nlohmann::json light_moves_json(const LightMoveBench& m) {
@@ -50,22 +47,25 @@ nlohmann::json light_moves_json(const LightMoveBench& m) {
   return {{"shadow_frames", m.shadow_frames},
           {"vertices", m.vertices},
           {"near_sources", m.near_sources},
+          {"light_probes", m.probes},
           {"rows", rows}};
 }
 
 void print_light_moves(const LightMoveBench& m, int moves) {
   std::printf(
-      "light moves (%s): %zu vertices, %zu near sources, median over %d moving frames, ms\n",
-      m.scene.c_str(), m.vertices, m.near_sources, moves);
-  std::printf("  %-24s %-11s %-14s %8s %8s %8s %8s %8s\n", "light", "type", "shadow rays", "direct",
-              "T b", "product", "near", "whole");
+      "light moves (%s): %zu vertices, %zu near sources, %zu light probes, median over %d "
+      "moving frames, ms\n",
+      m.scene.c_str(), m.vertices, m.near_sources, m.probes, moves);
+  std::printf("  %-24s %-11s %-14s %8s %8s %8s %8s %8s %8s\n", "light", "type", "shadow rays",
+              "direct", "T b", "product", "near", "probes", "whole");
   for (const LightMoveRow& r : m.rows)
     for (const auto& [what, s] :
          {std::pair{std::string("every frame"), r.every_ray},
           std::pair{"over " + std::to_string(m.shadow_frames) + " frames", r.spread}}) {
       if (r.type == "area" && what != "every frame") continue;
-      std::printf("  %-24s %-11s %-14s %8.2f %8.2f %8.2f %8.2f %8.2f\n", r.light.c_str(),
-                  r.type.c_str(), what.c_str(), s.direct, s.indirect, s.product, s.near, s.whole);
+      std::printf("  %-24s %-11s %-14s %8.2f %8.2f %8.2f %8.2f %8.2f %8.2f\n", r.light.c_str(),
+                  r.type.c_str(), what.c_str(), s.direct, s.indirect, s.product, s.near, s.probes,
+                  s.whole);
     }
   for (const LightMoveRow& r : m.rows) {
     if (r.type == "area") continue;

@@ -23,6 +23,8 @@
 #include "patches/patch_set.h"
 #include "patches/samples.h"
 #include "runtime/final_gather.h"
+#include "runtime/light_probe_placement.h"
+#include "runtime/light_probes.h"
 #include "settings/bake_settings.h"
 #include "transport/transport.h"
 #include "voxel/voxelization.h"
@@ -44,6 +46,10 @@ struct BakeResult {
   // The final gather of the lit mesh's vertices (empty rows when
   // final_gather_rays is 0), and what it took.
   FinalGather vertex_gather;
+  // The light probes and their gather (none unless settings.light_probes),
+  // and how the placement went (its positions are light_probes.position).
+  LightProbes light_probes;
+  ProbePlacement probe_placement;
   BalanceStats balance;
   ClusteringStats clustering;
   // Each mesh's patch density the patches were made with: a re-bake of a

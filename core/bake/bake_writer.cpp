@@ -9,6 +9,7 @@
 #include "bake/bake_pictures.h"
 #include "compress/dds.h"
 #include "folder/final_gather_files.h"
+#include "folder/light_probe_files.h"
 #include "io/atomic_file.h"
 #include "io/npy.h"
 #include "runtime/final_gather_settings.h"
@@ -220,6 +221,43 @@ json storage_json(const MatrixStorage& s, std::size_t probe_lights_total) {
 
 // Every setting by its manifest key (settings_table.h): unset ones as null,
 // choices and named values (bounces "auto", "inf") by name.
+// The light probes: the placement rule, how many, which were rejected and
+// why, and what their gather holds.
+json light_probes_json(const BakeResult& r) {
+  const ProbePlacement& pl = r.probe_placement;
+  const FinalGather& g = r.light_probes.gather;
+  return {
+      {"probes", r.light_probes.size()},
+      {"rule", "the centre of every empty voxel sharing a face with an occupied voxel"},
+      {"candidates", pl.candidates},
+      {"test_rays", kProbeTestRays},
+      {"rejected", json::array({{{"reason",
+                                  "inside a closed solid: more than half of its test rays meet the "
+                                  "back of a one-sided face"},
+                                 {"count", pl.rejected_enclosed}},
+                                {{"reason",
+                                  "sees no surface: every test ray leaves the scene or meets a "
+                                  "back face"},
+                                 {"count", pl.rejected_sees_nothing}}})},
+      {"directions", kProbeDirections},
+      {"sh", "irradiance, real SH L2, 9 coefficients (docs/bake-format.md, Light probes)"},
+      {"rays_per_direction", g.rays},
+      {"entries", g.source.size()},
+      {"entries_per_probe",
+       static_cast<double>(g.source.size()) /
+           static_cast<double>(std::max<std::size_t>(1, r.light_probes.size()))},
+      {"enclosed_directions", g.points_enclosed},
+      {"rays",
+       {{"landed", g.rays_landed},
+        {"escaped", g.rays_escaped},
+        {"back_faces", g.rays_back},
+        {"unrepresented_surface", g.rays_unrepresented}}},
+      {"bytes",
+       12 * r.light_probes.size() +
+           4 * (g.first.size() + g.source.size() + g.weight.size() + 2 * g.cluster_of_patch.size() +
+                g.seen_first.size() + g.seen_sample.size() + g.seen_weight.size())}};
+}
+
 json settings_json(const BakeSettings& s) {
   json out = json::object();
   for (const SettingRow& row : settings_table()) {
@@ -307,6 +345,8 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                    {"final_gather_near", s.final_gather_near},
                    {"final_gather_near_min_rays", s.final_gather_near_min_rays},
                    {"final_gather_spots", s.final_gather_spots},
+                   {"light_probes", s.light_probes},
+                   {"light_probes_max", s.light_probes_max},
                    {"seed", s.seed},
                    {"dump_matrices", s.dump_matrices},
                    {"out_of_core", to_string(s.out_of_core)}};
@@ -468,6 +508,7 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
   } else {
     m["final_gather"] = {{"transfer", "nearest patches"}};
   }
+  if (r.settings.light_probes) m["light_probes"] = light_probes_json(r);
   m["transport"] = transport_json(r.transport);
   m["transport"]["channel_of_rgb"] = r.probe.channel_of_rgb;
   m["compression"] = storage_json(r.storage, r.probe_lights_total);
@@ -596,6 +637,29 @@ json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const Bake
       record(bake_file::kGatherSpotWeight,
              "float32 [spots]: the spot's share of the sample's light (of the far rays that "
              "landed on the sample's spots)");
+    }
+  }
+  if (r.settings.light_probes) {
+    write_light_probes(dir.path(), r.light_probes);
+    record(bake_file::kProbePositions, "float32 [probes x 3]: light probe positions");
+    const auto probe_file = [](const char* name) {
+      return gather_file_name(bake_file::kProbeGatherPrefix, name);
+    };
+    record(probe_file(bake_file::kGatherFirst),
+           "uint32 [probes x 14 + 1]: row starts of the probes' gather, probe p's direction k "
+           "in row 14 p + k");
+    record(probe_file(bake_file::kGatherSource), "uint32 [entries]: as gather_source.npy");
+    record(probe_file(bake_file::kGatherWeight),
+           "float32 [entries]: direction-to-source form factor");
+    record(probe_file(bake_file::kGatherCluster), "uint32 [patches]: cluster of each patch");
+    record(probe_file(bake_file::kGatherShare),
+           "float32 [patches]: each patch's share of its cluster's light");
+    if (!r.light_probes.gather.seen_first.empty()) {
+      record(probe_file(bake_file::kGatherSeenFirst),
+             "uint32 [patches + 1]: row starts of each patch's seen weights");
+      record(probe_file(bake_file::kGatherSeenSample), "uint32 [entries]: a sample of the patch");
+      record(probe_file(bake_file::kGatherSeenWeight),
+             "float32 [entries]: its share of the probes' rays read through the patch");
     }
   }
   if (r.settings.dump_matrices) {

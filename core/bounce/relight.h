@@ -5,6 +5,19 @@
 //   session.move_light("ceiling-point", {0.0f, 1.5f, 0.0f});
 //   session.light();                                        // b, T b per patch
 //   const bounce::LitMesh mesh = session.lit_mesh();        // light per vertex
+//   std::vector<glm::vec3> sh;                              // baked with --light-probes:
+//   session.probe_sh(sh);                                   // 9 RGB SH per probe
+//   // positions: session.light_probes()->position
+//
+// Light probes (runtime/light_probes.h): session.light_probes()->position
+// holds each probe's position (float x, y, z) and probe_sh() its irradiance
+// as real SH L2, 9 RGB coefficients per probe, probe p's coefficient j at
+// p * 9 + j. E(n) = sum_j c_j Y_j(n) with the orthonormal real basis in the
+// order (0,0), (1,-1), (1,0), (1,1), (2,-2), (2,-1), (2,0), (2,1), (2,2),
+// Y_1 = 0.488603 y, Y_2 = 0.488603 z, Y_3 = 0.488603 x: the irradiance of
+// light reflected at least once (the engine adds its lights' direct light).
+// three.js's and Unity's radiance coefficients are c_j / A_l, A = pi,
+// 2 pi / 3, pi / 4 for l = 0, 1, 2 (docs/bake-format.md, "Light probes").
 //
 // LightingSession (relight/lighting_session.h) is what every front end
 // opens: it reads and checks the folder, loads the scene the bake was made
@@ -31,6 +44,7 @@
 #include "runtime/direct_light.h"
 #include "runtime/final_gather.h"
 #include "runtime/final_gather_build.h"
+#include "runtime/light_probes.h"
 #include "runtime/mesh_transfer.h"
 #include "runtime/patch_gather.h"
 #include "runtime/patch_lighting.h"

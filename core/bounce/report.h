@@ -13,7 +13,9 @@
 // report.json a sweep leaves and picks its Pareto front. References are
 // cached by the content hash of the scene and their settings.
 // cached_reference_images renders (or finds) the reference pictures of one
-// scene; baked_multiply gives the product T b of a bake still in memory.
+// scene; baked_multiply gives the product T b of a bake still in memory;
+// probe_reference_error measures light probes' SH against the path tracer.
+#include "reference/probe_reference_error.h"
 #include "reference/reference_cache.h"
 #include "report/baked_multiply.h"
 #include "report/report_data.h"

@@ -38,6 +38,11 @@ inline constexpr const char* kGatherNearPosition = "gather_near_position.npy";
 inline constexpr const char* kGatherNearNormal = "gather_near_normal.npy";
 inline constexpr const char* kGatherNearAlbedo = "gather_near_albedo.npy";
 inline constexpr const char* kGatherNearPatch = "gather_near_patch.npy";
+// The light probes: their positions, and their directions' gather in the
+// files of the vertices' gather with this prefix instead of "gather_".
+inline constexpr const char* kProbePositions = "probe_position.npy";
+inline constexpr const char* kProbeGatherPrefix = "probe_gather_";
+inline constexpr const char* kGatherPrefix = "gather_";  // of the names above
 inline constexpr const char* kFormFactors = "F.npy";
 inline constexpr const char* kDenseTransport = "T.npy";
 inline constexpr const char* kLightsFirstHit = "lights_first_hit.npy";

@@ -21,6 +21,7 @@
 // mesh and checks the count.
 #include <filesystem>
 #include <optional>
+#include <string>
 
 #include "runtime/final_gather.h"
 
@@ -34,5 +35,15 @@ void write_final_gather(const std::filesystem::path& dir, const FinalGather& gat
 // which sample sources index).
 std::optional<FinalGather> read_final_gather(const std::filesystem::path& dir, std::size_t patches,
                                              std::size_t samples);
+
+// The same for another gather stored beside it, each file named as the
+// vertices' with "gather_" replaced by `prefix` (the light probes':
+// bake_file::kProbeGatherPrefix).
+void write_final_gather(const std::filesystem::path& dir, const FinalGather& gather,
+                        const char* prefix);
+// A vertices' gather file name (bake_file::kGather...) under `prefix`.
+std::string gather_file_name(const char* prefix, const char* vertex_name);
+std::optional<FinalGather> read_final_gather(const std::filesystem::path& dir, std::size_t patches,
+                                             std::size_t samples, const char* prefix);
 
 }  // namespace bounce

@@ -3,6 +3,7 @@
 #include "bake/stored_transport.h"
 #include "base/error.h"
 #include "folder/final_gather_files.h"
+#include "folder/light_probe_files.h"
 #include "scene/scene_loader.h"
 
 namespace fs = std::filesystem;
@@ -83,6 +84,7 @@ LightingSession::~LightingSession() = default;
 void LightingSession::start(const LightingSessionSettings& settings, Diagnostics* diagnostics) {
   tracer_ = std::make_unique<RayTracer>(*scene_);
   gather_ = read_final_gather(bake_->dir, bake_->size(), bake_->samples.samples.size());
+  probes_ = read_light_probes(bake_->dir, bake_->size(), bake_->samples.samples.size());
   relighter_ =
       std::make_unique<Relighter>(*tracer_, bake_->samples, bake_->patches,
                                   stored_transport(*bake_), settings.relighter, diagnostics);
@@ -204,6 +206,15 @@ void LightingSession::vertex_irradiance(std::vector<glm::vec3>& out) {
   relight(lit, nearest);
   out = std::move(lit.radiosity);
   for (std::size_t v = 0; v < out.size(); ++v) out[v] *= vertex_inverse_albedo_[v];
+}
+
+void LightingSession::probe_sh(std::vector<glm::vec3>& sh) {
+  if (!probes_) {
+    sh.clear();
+    return;
+  }
+  relighter_->gather_far(probes_->gather, probe_irradiance_);
+  fit_probe_sh(probe_irradiance_, sh);
 }
 
 SessionCamera LightingSession::camera(const CameraImageSettings& settings, int gather_rays,

@@ -32,6 +32,7 @@
 #include "runtime/area_lights.h"
 #include "runtime/camera_image.h"
 #include "runtime/final_gather.h"
+#include "runtime/light_probes.h"
 #include "runtime/mesh_transfer.h"
 #include "runtime/relighter.h"
 #include "scene/scene.h"
@@ -120,6 +121,14 @@ class LightingSession {
   // patches' T b over their albedo.
   void vertex_irradiance(std::vector<glm::vec3>& out);
 
+  // The bake's light probes (runtime/light_probes.h); nullopt when it has none.
+  const std::optional<LightProbes>& light_probes() const { return probes_; }
+  // The last frame at the probes: kShCoefficients irradiance SH coefficients
+  // per probe (probe p's coefficient j at p * kShCoefficients + j; the
+  // convention is runtime/light_probes.h's), from the same b + T b the
+  // vertices gather. Empty without probes.
+  void probe_sh(std::vector<glm::vec3>& sh);
+
   // The scene camera's pictures: see SessionCamera. `gather_rays` 0: the
   // nearest patches. Throws bounce::Error for a ray count outside 0..65536.
   SessionCamera camera(const CameraImageSettings& settings, int gather_rays,
@@ -135,6 +144,8 @@ class LightingSession {
   std::shared_ptr<const Scene> scene_;
   std::unique_ptr<RayTracer> tracer_;
   std::optional<FinalGather> gather_;
+  std::optional<LightProbes> probes_;
+  std::vector<glm::vec3> probe_irradiance_;  // per probe direction, kept between frames
   std::unique_ptr<Relighter> relighter_;
   std::vector<Light> lights_;
   std::vector<AreaLight> area_;

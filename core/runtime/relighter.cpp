@@ -77,7 +77,7 @@ void Relighter::reflected(std::vector<glm::vec3>& out) const {
   for (std::size_t p = 0; p < b.size(); ++p) out[p] = b[p] + tb[p];
 }
 
-void Relighter::gather(const FinalGather& gather, std::vector<glm::vec3>& irradiance) const {
+void Relighter::source_light(const FinalGather& gather) const {
   // The buffers live with the Relighter (and the product's padded light
   // with the thread): a frame reuses the last frame's memory instead of
   // paging in megabytes (the near sources' light alone is 7 MB on Sponza).
@@ -88,9 +88,20 @@ void Relighter::gather(const FinalGather& gather, std::vector<glm::vec3>& irradi
     sample_exitance(samples_, patches_, frame_.sample_irradiance(), indirect_, sample_light_);
   else
     sample_light_.clear();
+}
+
+void Relighter::gather(const FinalGather& gather, std::vector<glm::vec3>& irradiance) const {
+  source_light(gather);
   // The near sources' light goes straight into the product's buffer.
   gather.irradiance_lighting_near(reflected_, sample_light_, tracer_, lights_, area_, indirect_,
                                   irradiance, &near_seconds_, &near_area_cache_, &near_shadows_);
+}
+
+void Relighter::gather_far(const FinalGather& gather, std::vector<glm::vec3>& irradiance) const {
+  if (gather.near.size() > 0)
+    throw Error("final gather", "gather_far() is for gathers without near sources");
+  source_light(gather);
+  gather.irradiance(reflected_, sample_light_, irradiance);
 }
 
 }  // namespace bounce

@@ -56,6 +56,10 @@ class Relighter {
   // plus its patch's T b. One gather at a time: it works in buffers the
   // Relighter keeps from frame to frame.
   void gather(const FinalGather& gather, std::vector<glm::vec3>& irradiance) const;
+  // The same for a gather without near sources (the light probes'): it
+  // leaves the near sources' shadow state, which belongs to the vertices'
+  // gather, alone. Throws bounce::Error for a gather with near sources.
+  void gather_far(const FinalGather& gather, std::vector<glm::vec3>& irradiance) const;
 
   const RuntimeFrame& frame() const { return frame_; }
   const std::string& multiply_name() const { return multiplier_.what(); }
@@ -92,6 +96,9 @@ class Relighter {
   // gather stay the same.
   mutable AreaLightCache near_area_cache_;
   mutable ShadowBudget near_shadows_;
+  // The last frame's b + T b per patch and its samples' light, as `gather`
+  // reads them, into the buffers below.
+  void source_light(const FinalGather& gather) const;
   // gather()'s buffers, kept so that a frame does not allocate them again.
   mutable std::vector<glm::vec3> first_hit_, indirect_, reflected_, sample_light_;
   RuntimeFrame frame_;

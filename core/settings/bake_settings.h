@@ -71,6 +71,13 @@ struct BakeSettings {
   // every frame, whose light is the sample's (runtime/final_gather.h, spots);
   // 0: samples are lit at their centres.
   int final_gather_spots = FinalGatherSettings{}.spots;
+  // Light probes in the empty cells next to surfaces, gathered like the
+  // vertices (runtime/light_probes.h, runtime/light_probe_placement.h), and
+  // the most the grid may make: more is refused before any is traced. A
+  // probe holds about 2000 gather entries (1800-2300 on Sponza and the
+  // Cornell box), some 25 KB while the bake runs: 100000 are 2.5 GB.
+  bool light_probes = false;
+  int light_probes_max = 100000;
   std::uint64_t seed = 1;
   bool dump_matrices = false;
 

@@ -324,6 +324,33 @@ std::vector<SettingRow> make_rows() {
       .set = set_int<&S::final_gather_spots>,
   });
   rows.push_back({
+      .name = "light_probes",
+      .manifest_key = "light_probes",
+      .flag = "--light-probes",
+      .type = SettingType::Flag,
+      .help = "Place light probes in the empty voxels next to surfaces and store their gather "
+              "(probe_*.npy): each frame every probe's irradiance as SH L2, lit by the same "
+              "solution as the vertices, for objects that move",
+      .stage = BakeStage::Patches,
+      .get = get_flag<&S::light_probes>,
+      .set = set_flag<&S::light_probes>,
+  });
+  rows.push_back({
+      .name = "light_probes_max",
+      .manifest_key = "light_probes_max",
+      .flag = "--light-probes-max",
+      .type = SettingType::Int,
+      .min = 1,
+      .max = 16777216,
+      .help_shows_default = true,
+      .help = "Most light probes a bake may place: a grid with more empty voxels next to "
+              "surfaces is refused before any probe is traced (a probe holds about 2000 "
+              "gather entries, some 25 KB while baking and 15 KB in the folder)",
+      .stage = BakeStage::Patches,
+      .get = get_int<&S::light_probes_max>,
+      .set = set_int<&S::light_probes_max>,
+  });
+  rows.push_back({
       .name = "seed",
       .manifest_key = "seed",
       .flag = "--seed",

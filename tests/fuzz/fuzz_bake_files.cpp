@@ -7,7 +7,8 @@
 //             bake), read with BakeReader like `bounce solve` reads it;
 //   folder    the input's first byte picks one file of that bake and the rest
 //             replaces it; BakeReader reads the whole folder, then the stored
-//             final gather is read as `bounce solve` reads it.
+//             final gather and light probes are read as `bounce solve` and
+//             the lighting session read them.
 // Every input must either be read or throw bounce::Error; anything else
 // (crash, sanitizer report, another exception type such as std::bad_alloc, a
 // leak, an allocation beyond libFuzzer's -malloc_limit_mb) is a defect.
@@ -25,6 +26,7 @@
 #include "folder/bake_format.h"
 #include "folder/bake_reader.h"
 #include "folder/final_gather_files.h"
+#include "folder/light_probe_files.h"
 #include "fuzz_workdir.h"
 #include "io/npy.h"
 
@@ -70,7 +72,16 @@ const char* const kBakeFiles[] = {"manifest.json",
                                   bounce::bake_file::kGatherNearPosition,
                                   bounce::bake_file::kGatherNearNormal,
                                   bounce::bake_file::kGatherNearAlbedo,
-                                  bounce::bake_file::kGatherNearPatch};
+                                  bounce::bake_file::kGatherNearPatch,
+                                  bounce::bake_file::kProbePositions,
+                                  "probe_gather_first.npy",
+                                  "probe_gather_source.npy",
+                                  "probe_gather_weight.npy",
+                                  "probe_gather_cluster.npy",
+                                  "probe_gather_share.npy",
+                                  "probe_gather_seen_first.npy",
+                                  "probe_gather_seen_sample.npy",
+                                  "probe_gather_seen_weight.npy"};
 constexpr std::size_t kBakeFileCount = std::size(kBakeFiles);
 
 [[maybe_unused]] std::string read_all(const fs::path& path) {
@@ -101,6 +112,7 @@ Bake& bake() {
     const bounce::LoadedBake b =
         bounce::BakeReader::read(bake().dir, bounce::BakeReader::Dense::kRead);
     (void)bounce::read_final_gather(bake().dir, b.size(), b.samples.samples.size());
+    (void)bounce::read_light_probes(bake().dir, b.size(), b.samples.samples.size());
   } catch (const bounce::Error&) {
     // The expected way to refuse a damaged bake: one message naming the file.
   }

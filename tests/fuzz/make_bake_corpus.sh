@@ -2,7 +2,8 @@
 # Makes the bake the bake-folder fuzz targets start from (tests/fuzz/bake/)
 # and their seed corpora (tests/fuzz/corpus/fuzz_bake_*/) from real bakes:
 # the Cornell box (colour: three stored channels, BC1) and the furnace (grey:
-# one channel, BC4), both as small as the bake allows, with --dump-matrices so
+# one channel, BC4), both as small as the bake allows while it still has light
+# probes (3 voxels: an empty cell beside the surfaces), with --dump-matrices so
 # that T.npy is there too. Run it again when the bake format changes.
 #
 #   tests/fuzz/make_bake_corpus.sh [BOUNCE]   (default: build/release/app/bounce)
@@ -22,11 +23,14 @@ files=(manifest.json patches.npy samples.npy lights_first_hit.npy carried_polygo
   gather_first.npy gather_source.npy gather_weight.npy gather_cluster.npy gather_share.npy
   gather_seen_first.npy gather_seen_sample.npy gather_seen_weight.npy
   gather_spot_first.npy gather_spot_weight.npy
-  gather_near_position.npy gather_near_normal.npy gather_near_albedo.npy gather_near_patch.npy)
+  gather_near_position.npy gather_near_normal.npy gather_near_albedo.npy gather_near_patch.npy
+  probe_position.npy probe_gather_first.npy probe_gather_source.npy probe_gather_weight.npy
+  probe_gather_cluster.npy probe_gather_share.npy probe_gather_seen_first.npy
+  probe_gather_seen_sample.npy probe_gather_seen_weight.npy)
 
 for scene in cornell-box furnace; do
-  "$bounce" bake "resources/scenes/$scene" --voxel 2 --patches-per-voxel 1 --codec ours \
-    --dump-matrices --no-pictures --quiet --out "$tmp/$scene"
+  "$bounce" bake "resources/scenes/$scene" --voxel 3 --patches-per-voxel 1 --codec ours \
+    --dump-matrices --light-probes --no-pictures --quiet --out "$tmp/$scene"
   # No absolute paths of this machine in the committed files.
   sed -i "s|$root/||g" "$tmp/$scene/manifest.json"
 done

@@ -113,3 +113,31 @@ def test_relight(baked):
     assert not np.allclose(moved["patch_light"], light["patch_light"]), "moving the light changes it"
     with pytest.raises(bounce.Error, match="no-such-light"):
         bake.relight({"no-such-light": (0, 0, 0)})
+
+
+def test_light_probes(scene, baked, tmp_path):
+    """A bake with light_probes=True: each probe stands at the centre of an
+    empty cell that shares a face with an occupied one (voxels.npy and the
+    manifest's grid, read with numpy); relight() gives 9 RGB SH coefficients
+    per probe; a bake without probes gives none."""
+    out = str(tmp_path / "probes")
+    manifest = bounce.bake(scene, out, light_probes=True, **SMALL_DENSE_BAKE)
+    bake = bounce.open_bake(out)
+    positions = bake.probe_positions
+    assert positions.shape == (manifest["light_probes"]["probes"], 3)
+    assert positions.shape[0] > 0, "the Cornell box has room for probes"
+    grid = manifest["grid"]
+    cell = (positions - np.array(grid["origin"])) / grid["cell_size"] - 0.5
+    ijk = np.rint(cell).astype(int)
+    assert np.abs(cell - ijk).max() < 1e-3, "probes stand at cell centres"
+    occupied = {tuple(int(c) for c in v[0:3]) for v in np.load(os.path.join(out, "voxels.npy"))}
+    for c in map(tuple, ijk):
+        assert c not in occupied, f"probe in occupied cell {c}"
+        neighbours = [tuple(np.add(c, d)) for d in np.vstack([np.eye(3, dtype=int), -np.eye(3, dtype=int)])]
+        assert any(n in occupied for n in neighbours), f"probe cell {c} is next to no surface"
+
+    sh = bake.relight()["probe_sh"]
+    assert sh.shape == (positions.shape[0], 9, 3)
+    assert np.all(np.isfinite(sh))
+    assert sh[:, 0, :].min() > 0, "every probe receives some bounced light"
+    assert bounce.open_bake(baked[0]).relight()["probe_sh"].shape == (0, 9, 3)

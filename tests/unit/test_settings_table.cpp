@@ -33,6 +33,8 @@ const std::map<std::string, Expected>& expected() {
       {"final_gather_near", {"--final-gather-near", BakeStage::Patches}},
       {"final_gather_near_min_rays", {"--final-gather-near-min-rays", BakeStage::Patches}},
       {"final_gather_spots", {"--final-gather-spots", BakeStage::Patches}},
+      {"light_probes", {"--light-probes", BakeStage::Patches}},
+      {"light_probes_max", {"--light-probes-max", BakeStage::Patches}},
       {"seed", {"--seed", BakeStage::Geometry}},
       {"bounces", {"--bounces", BakeStage::Transport}},
       {"gemm", {"--gemm", BakeStage::Transport}},
@@ -140,7 +142,7 @@ TEST(SettingsTable, OutOfRangeValuesNameTheSetting) {
       expect_rejected(s, row.name);
     }
   }
-  EXPECT_EQ(rows_with_range, 14);
+  EXPECT_EQ(rows_with_range, 15);
   // Spot checks against the documented ranges.
   BakeSettings s;
   s.error_budget = 1.0;
