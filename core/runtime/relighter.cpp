@@ -45,6 +45,7 @@ Relighter::Relighter(const RayTracer& tracer, const SampleSet& samples, const Pa
 
 void Relighter::light(const std::vector<Light>& lights, const std::vector<AreaLight>& area) {
   frame_.solve(lights, area);
+  reflected_fresh_ = sample_light_fresh_ = false;
   lights_ = lights;
   area_ = area;
 }
@@ -81,13 +82,19 @@ void Relighter::source_light(const FinalGather& gather) const {
   // The buffers live with the Relighter (and the product's padded light
   // with the thread): a frame reuses the last frame's memory instead of
   // paging in megabytes (the near sources' light alone is 7 MB on Sponza).
-  first_hit_and_indirect(first_hit_, indirect_);
-  reflected_.resize(first_hit_.size());
-  for (std::size_t p = 0; p < first_hit_.size(); ++p) reflected_[p] = first_hit_[p] + indirect_[p];
-  if (gather.samples > 0)
+  // Each is worked out once a frame: the vertices' and the probes' gathers
+  // read the same light.
+  if (!reflected_fresh_) {
+    first_hit_and_indirect(first_hit_, indirect_);
+    reflected_.resize(first_hit_.size());
+    for (std::size_t p = 0; p < first_hit_.size(); ++p)
+      reflected_[p] = first_hit_[p] + indirect_[p];
+    reflected_fresh_ = true;
+  }
+  if (gather.samples > 0 && !sample_light_fresh_) {
     sample_exitance(samples_, patches_, frame_.sample_irradiance(), indirect_, sample_light_);
-  else
-    sample_light_.clear();
+    sample_light_fresh_ = true;
+  }
 }
 
 void Relighter::gather(const FinalGather& gather, std::vector<glm::vec3>& irradiance) const {

@@ -101,6 +101,9 @@ class Relighter {
   void source_light(const FinalGather& gather) const;
   // gather()'s buffers, kept so that a frame does not allocate them again.
   mutable std::vector<glm::vec3> first_hit_, indirect_, reflected_, sample_light_;
+  // Whether reflected_ (with first_hit_ and indirect_) and sample_light_
+  // hold this frame's light; light() starts a frame.
+  mutable bool reflected_fresh_ = false, sample_light_fresh_ = false;
   RuntimeFrame frame_;
 };
 
