@@ -69,7 +69,7 @@ void print_transport_report(std::FILE* out, const json& m) {
 
 void print_bake_report(std::FILE* out, const json& m) {
   const json& c = m["counts"];
-  const json& s = m["settings"];
+  const json& s = m["settings"]["resolved"];
   const json& g = m["grid"];
   std::fprintf(out, "\nBake of '%s' (%s patches)\n", m["scene"]["name"].get<std::string>().c_str(),
                s["patch_mode"].get<std::string>().c_str());

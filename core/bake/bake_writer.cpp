@@ -219,8 +219,6 @@ json storage_json(const MatrixStorage& s, std::size_t probe_lights_total) {
   return m;
 }
 
-// Every setting by its manifest key (settings_table.h): unset ones as null,
-// choices and named values (bounces "auto", "inf") by name.
 // The light probes: the placement rule, how many, which were rejected and
 // why, and what their gather holds.
 json light_probes_json(const BakeResult& r) {
@@ -258,6 +256,8 @@ json light_probes_json(const BakeResult& r) {
                 g.seen_first.size() + g.seen_sample.size() + g.seen_weight.size())}};
 }
 
+// Every setting by its manifest key (settings_table.h): unset ones as null,
+// choices and named values (bounces "auto", "inf") by name.
 json settings_json(const BakeSettings& s) {
   json out = json::object();
   for (const SettingRow& row : settings_table()) {
@@ -333,27 +333,9 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                 {"meshes", scene.meshes.size()},
                 {"bounds", {{"min", vec(b.lo)}, {"max", vec(b.hi)}}},
                 {"lights", lights}};
-  const BakeSettings& s = r.settings;
-  m["settings"] = {{"voxel_resolution", s.voxel_resolution.value_or(0)},
-                   {"patches_total_target", s.patches_total ? json(*s.patches_total) : json()},
-                   {"patches_per_voxel", s.patches_per_voxel.value_or(0)},
-                   {"patch_mode", to_string(s.patch_mode)},
-                   {"samples_per_face", s.samples_per_face.value_or(0)},
-                   {"visibility_rays", s.visibility_rays},
-                   {"closure_rays", s.closure_rays},
-                   {"final_gather_rays", s.final_gather_rays},
-                   {"final_gather_near", s.final_gather_near},
-                   {"final_gather_near_min_rays", s.final_gather_near_min_rays},
-                   {"final_gather_spots", s.final_gather_spots},
-                   {"light_probes", s.light_probes},
-                   {"light_probes_max", s.light_probes_max},
-                   {"seed", s.seed},
-                   {"dump_matrices", s.dump_matrices},
-                   {"out_of_core", to_string(s.out_of_core)}};
-  // Every setting, as asked for and as the bake resolved it; the keys above
-  // are the resolved values readers of earlier bakes know.
-  m["settings"]["requested"] = settings_json(r.requested);
-  m["settings"]["resolved"] = settings_json(resolved_settings(r));
+  // Every setting once as asked for and once as the bake used it.
+  m["settings"] = {{"requested", settings_json(r.requested)},
+                   {"resolved", settings_json(resolved_settings(r))}};
   // Per mesh: its patch density and what it got, to check a density's effect.
   std::vector<std::size_t> mesh_patches(scene.meshes.size(), 0);
   for (const Patch& p : r.patches.patches)
@@ -384,7 +366,7 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                    {"centre_samples", r.samples.centre_samples},
                    {"cut_away_area", r.samples.cut_away_area},
                    {"voxels_without_samples", r.samples.voxels_without_samples}};
-  if (s.patch_mode == PatchMode::Virtual)
+  if (r.settings.patch_mode == PatchMode::Virtual)
     m["clustering"] = {{"feature_targets", r.clustering.feature_targets},
                        {"target_block_voxels", r.clustering.target_block},
                        {"voxels_above_target", r.clustering.voxels_above_target}};
@@ -459,7 +441,6 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
         {"entries", fg.source.size()},
         {"entries_per_vertex", static_cast<double>(fg.source.size()) /
                                    static_cast<double>(std::max<std::size_t>(1, fg.points()))},
-        {"rays_per_vertex", fg.rays},
         {"kept_per_vertex_max", FinalGatherSettings{}.kept},
         {"coverage", FinalGatherSettings{}.coverage},
         {"samples_kept_per_vertex_max",
@@ -479,15 +460,12 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                                        [&fg](std::uint32_t source) {
                                          return source >= fg.patches + fg.clusters + fg.samples;
                                        })},
-        {"near_distance_voxels", r.settings.final_gather_near},
         {"near_resolution_per_voxel", FinalGatherSettings{}.near_resolution},
-        {"near_min_rays", r.settings.final_gather_near_min_rays},
         // Spots (runtime/final_gather.h): points where the vertices' far
         // rays landed on each sample, lit every frame with the near sources.
         {"spots",
          {{"samples", non_empty_rows(fg.spot_first)},
           {"points", fg.spots()},
-          {"per_sample_max", r.settings.final_gather_spots},
           {"resolution_per_voxel", FinalGatherSettings{}.spot_resolution}}},
         {"clusters", fg.clusters},
         {"enclosed_vertices", fg.points_enclosed},

@@ -39,8 +39,8 @@ TEST_F(FurnaceBake, JsonOnStdoutIsTheManifestWritten) {
   EXPECT_EQ(summary, manifest);
   EXPECT_EQ(manifest["format"], "bounce-bake");
   EXPECT_EQ(manifest["scene"]["name"], "furnace");
-  EXPECT_EQ(manifest["settings"]["voxel_resolution"], 6);
-  EXPECT_EQ(manifest["settings"]["dump_matrices"], true);
+  EXPECT_EQ(manifest["settings"]["resolved"]["voxel_resolution"], 6);
+  EXPECT_EQ(manifest["settings"]["resolved"]["dump_matrices"], true);
   // A cube: 6 cells along every axis.
   EXPECT_EQ(manifest["grid"]["dims"], json::array({6, 6, 6}));
   EXPECT_EQ(manifest["counts"]["grid_cells"], 216);
@@ -204,16 +204,16 @@ TEST(BakeFolder, RebakingIntoTheSameOutReplacesThePreviousBake) {
   ASSERT_EQ(first.exit_code, 0) << first;
   const json m1 = read_manifest(out);
   ASSERT_TRUE(fs::exists(out / "F.npy"));
-  EXPECT_EQ(m1["settings"]["voxel_resolution"], 4);
+  EXPECT_EQ(m1["settings"]["resolved"]["voxel_resolution"], 4);
 
   const RunResult second = run({"bake", scene("furnace"), "--voxel", "6", "--patches-per-voxel",
                                 "1", "--quiet", "--out", out.string()},
                                tmp.path());
   ASSERT_EQ(second.exit_code, 0) << second;
   const json m2 = read_manifest(out);
-  EXPECT_EQ(m2["settings"]["voxel_resolution"], 6);
-  EXPECT_EQ(m2["settings"]["patches_per_voxel"], 1);
-  EXPECT_EQ(m2["settings"]["dump_matrices"], false);
+  EXPECT_EQ(m2["settings"]["resolved"]["voxel_resolution"], 6);
+  EXPECT_EQ(m2["settings"]["resolved"]["patches_per_voxel"], 1);
+  EXPECT_EQ(m2["settings"]["resolved"]["dump_matrices"], false);
   EXPECT_NE(m2["counts"], m1["counts"]);
   EXPECT_EQ(json(read_npy_f32(out / "patches.npy").shape[0]), m2["counts"]["patches"]);
   EXPECT_FALSE(fs::exists(out / "F.npy")) << "a file of the previous bake survived";
@@ -225,7 +225,7 @@ TEST(BakeFolder, RebakingIntoTheSameOutReplacesThePreviousBake) {
       run({"bake", scene("furnace"), "--voxel", "5", "--quiet", "--out", out.string() + "/"},
           tmp.path());
   ASSERT_EQ(third.exit_code, 0) << third;
-  EXPECT_EQ(read_manifest(out)["settings"]["voxel_resolution"], 5);
+  EXPECT_EQ(read_manifest(out)["settings"]["resolved"]["voxel_resolution"], 5);
   EXPECT_EQ(entries(tmp.path()), std::vector<std::string>{"bake"});
   EXPECT_EQ(entries(out), (std::vector<std::string>{"T.npy",
                                                     "T.png",

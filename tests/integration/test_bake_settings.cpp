@@ -1,5 +1,6 @@
 // Each bake option changes the bake the way its help text says, and the same
 // seed reproduces the same bytes.
+#include <algorithm>
 #include <map>
 
 #include "cli_harness.h"
@@ -56,13 +57,13 @@ TEST(BakeSettings, FinerVoxelGridGivesMorePatches) {
             fine.manifest["counts"]["occupied_voxels"]);
   // The resolution counts cells along the longest axis.
   for (const Bake* b : {&coarse, &fine}) {
-    const int res = b->manifest["settings"]["voxel_resolution"].get<int>();
+    const int res = b->manifest["settings"]["resolved"]["voxel_resolution"].get<int>();
     const json& dims = b->manifest["grid"]["dims"];
     EXPECT_EQ(std::max({dims[0].get<int>(), dims[1].get<int>(), dims[2].get<int>()}), res);
     EXPECT_EQ(read_npy_f32(b->dir / "patches.npy").shape[0], b->patches());
   }
-  EXPECT_EQ(coarse.manifest["settings"]["voxel_resolution"], 6);
-  EXPECT_EQ(fine.manifest["settings"]["voxel_resolution"], 10);
+  EXPECT_EQ(coarse.manifest["settings"]["resolved"]["voxel_resolution"], 6);
+  EXPECT_EQ(fine.manifest["settings"]["resolved"]["voxel_resolution"], 10);
 }
 
 TEST(BakeSettings, PatchesPerVoxelCapsThePatchesInEachVoxel) {
@@ -77,7 +78,7 @@ TEST(BakeSettings, PatchesPerVoxelCapsThePatchesInEachVoxel) {
   EXPECT_EQ(one.manifest["counts"]["occupied_voxels"], three.manifest["counts"]["occupied_voxels"]);
   for (const auto& [b, cap] : {std::pair{&one, 1u}, std::pair{&three, 3u}}) {
     const std::string what = "--patches-per-voxel " + std::to_string(cap);
-    EXPECT_EQ(b->manifest["settings"]["patches_per_voxel"], cap);
+    EXPECT_EQ(b->manifest["settings"]["resolved"]["patches_per_voxel"], cap);
     const auto p = read_npy_f32(b->dir / "patches.npy");
     expect_valid_patches(p, what);
     patches_per_voxel(*b);  // checks voxels.npy's patch counts
@@ -132,7 +133,7 @@ TEST_P(PatchModes, ProduceValidPatches) {
   o.timeout = std::chrono::seconds(180);
   const Bake b = bake(tmp, "bake", scene(c.scene), options, o);
   ASSERT_FALSE(b.manifest.is_null());
-  EXPECT_EQ(b.manifest["settings"]["patch_mode"], c.mode);
+  EXPECT_EQ(b.manifest["settings"]["resolved"]["patch_mode"], c.mode);
   const auto p = read_npy_f32(b.dir / "patches.npy");
   EXPECT_EQ(p.shape[0], b.patches());
   expect_valid_patches(p, c.scene + " --patches " + c.mode);
@@ -173,7 +174,7 @@ TEST(BakeSettings, PatchesTotalLandsNearTheTarget) {
   TempDir tmp;
   const Bake b = bake(tmp, "total", scene("cornell-box"), {"--patches-total", "600"});
   ASSERT_FALSE(b.manifest.is_null());
-  EXPECT_EQ(b.manifest["settings"]["patches_total_target"], 600);
+  EXPECT_EQ(b.manifest["settings"]["resolved"]["patches_total_target"], 600);
   EXPECT_GE(static_cast<double>(b.patches()), 600.0 / 1.6);
   EXPECT_LE(static_cast<double>(b.patches()), 600.0 * 1.6);
   EXPECT_EQ(read_npy_f32(b.dir / "patches.npy").shape[0], b.patches());
@@ -237,8 +238,8 @@ TEST(BakeSettings, DifferentSeedsGiveDifferentSamples) {
   const Bake b = bake(tmp, "seed2", scene("cornell-box"), {"--voxel", "6", "--seed", "2"});
   ASSERT_FALSE(a.manifest.is_null());
   ASSERT_FALSE(b.manifest.is_null());
-  EXPECT_EQ(a.manifest["settings"]["seed"], 1);
-  EXPECT_EQ(b.manifest["settings"]["seed"], 2);
+  EXPECT_EQ(a.manifest["settings"]["resolved"]["seed"], 1);
+  EXPECT_EQ(b.manifest["settings"]["resolved"]["seed"], 2);
   EXPECT_FALSE(read_text(a.dir / "samples.npy") == read_text(b.dir / "samples.npy"))
       << "samples.npy is the same for seeds 1 and 2";
 }
@@ -256,7 +257,7 @@ TEST(BakeSettings, SceneBakeDefaultsApplyUnlessTheCommandLineOverrides) {
 })");
   const Bake defaults = bake(tmp, "defaults", dir.string(), {});
   ASSERT_FALSE(defaults.manifest.is_null());
-  const json& s = defaults.manifest["settings"];
+  const json& s = defaults.manifest["settings"]["resolved"];
   EXPECT_EQ(s["voxel_resolution"], 5) << s.dump();
   EXPECT_EQ(s["patches_per_voxel"], 1) << "scene.json bake.patches_per_voxel ignored: " << s.dump();
   EXPECT_EQ(s["samples_per_face"], 2) << "scene.json bake.samples_per_face ignored: " << s.dump();
@@ -265,7 +266,7 @@ TEST(BakeSettings, SceneBakeDefaultsApplyUnlessTheCommandLineOverrides) {
       bake(tmp, "overridden", dir.string(),
            {"--voxel", "4", "--patches-per-voxel", "2", "--samples-per-face", "3"});
   ASSERT_FALSE(overridden.manifest.is_null());
-  const json& o = overridden.manifest["settings"];
+  const json& o = overridden.manifest["settings"]["resolved"];
   EXPECT_EQ(o["voxel_resolution"], 4) << o.dump();
   EXPECT_EQ(o["patches_per_voxel"], 2) << o.dump();
   EXPECT_EQ(o["samples_per_face"], 3) << o.dump();
@@ -373,7 +374,10 @@ TEST(BakeSettings, EveryOptionRoundTripsIntoTheManifest) {
   // Resolved: the grid the patch target chose, the scene's bake block (3 per
   // voxel) and the built-in 4 x 4 rays per face, the codec's own ordering
   // and the kept fraction the budget found.
-  EXPECT_EQ(used_b["voxel_resolution"], b.manifest["settings"]["voxel_resolution"]);
+  // The grid's resolution is the cell count along its longest axis.
+  const json& dims = b.manifest["grid"]["dims"];
+  EXPECT_EQ(used_b["voxel_resolution"].get<int>(),
+            std::max({dims[0].get<int>(), dims[1].get<int>(), dims[2].get<int>()}));
   EXPECT_GE(used_b["voxel_resolution"].get<int>(), 1) << used_b.dump(2);
   EXPECT_EQ(used_b["patches_total_target"], 60);
   EXPECT_EQ(used_b["patches_per_voxel"], 3);

@@ -19,7 +19,7 @@ TEST(BakeBatch, BrokenSceneFailsAloneWithExitCode2AndASummaryTable) {
     ASSERT_TRUE(fs::exists(dir / name / "manifest.json")) << name << " not baked:\n" << r;
     const json m = read_manifest(dir / name);
     EXPECT_EQ(m["scene"]["name"], name);
-    EXPECT_EQ(m["settings"]["voxel_resolution"], 4);
+    EXPECT_EQ(m["settings"]["resolved"]["voxel_resolution"], 4);
     const auto patches = read_npy_f32(dir / name / "patches.npy");
     EXPECT_EQ(json(patches.shape[0]), m["counts"]["patches"]) << name;
   }

@@ -16,7 +16,6 @@ json comparable(json m) {
   m.erase("stages");
   m.erase("total_seconds");
   m.erase("memory");
-  m["settings"].erase("out_of_core");
   m["settings"]["requested"].erase("out_of_core");
   m["settings"]["resolved"].erase("out_of_core");
   std::function<void(json&)> strip = [&](json& j) {

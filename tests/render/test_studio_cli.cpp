@@ -60,8 +60,8 @@ TEST_F(StudioCli, SettingsChangeThePatchCount) {
   std::ifstream in(dir / "bake" / "manifest.json");
   const nlohmann::json coarse = nlohmann::json::parse(in);
   const nlohmann::json fine = fixture_manifest();
-  EXPECT_EQ(coarse["settings"]["voxel_resolution"], 2);
-  EXPECT_EQ(fine["settings"]["voxel_resolution"], 4);
+  EXPECT_EQ(coarse["settings"]["resolved"]["voxel_resolution"], 2);
+  EXPECT_EQ(fine["settings"]["resolved"]["voxel_resolution"], 4);
   EXPECT_LT(coarse["counts"]["patches"].get<int>(), fine["counts"]["patches"].get<int>());
   EXPECT_LT(coarse["counts"]["occupied_voxels"].get<int>(),
             fine["counts"]["occupied_voxels"].get<int>());
