@@ -10,6 +10,7 @@
 #include "bake/bake_steps.h"
 #include "runtime/direct_light.h"
 #include "runtime/final_gather_build.h"
+#include "runtime/light_probe_gather.h"
 #include "runtime/mesh_transfer.h"
 #include "runtime/seen_first_hit.h"
 
@@ -187,34 +188,18 @@ void final_gather_step(BakeRun& run) {
 
 bool places_light_probes(const BakeRun& run) { return run.result.settings.light_probes; }
 
-// The probes' directions gather as the vertices do, with the vertices' rays
-// and seed, without near sources or spots: a probe stands half a voxel or
-// more from any surface, twice the near sources' reach.
 void light_probes_step(BakeRun& run) {
   BakeResult& r = run.result;
   r.probe_placement = place_light_probes(*run.tracer, r.voxels,
                                          static_cast<std::size_t>(r.settings.light_probes_max),
                                          "light_probes_max", &run.progress);
-  r.light_probes = LightProbes{};
-  r.light_probes.position = std::move(r.probe_placement.position);
-  r.probe_placement.position.clear();
-  std::vector<glm::vec3> points, normals;
-  points.reserve(r.light_probes.size() * kProbeDirections);
-  normals.reserve(points.capacity());
-  for (const glm::vec3& p : r.light_probes.position)
-    for (const glm::vec3& d : probe_directions()) {
-      points.push_back(p);
-      normals.push_back(d);
-    }
   const SurfacePatchLookup lookup(r.voxels, r.samples, r.patch_of_sample);
-  FinalGatherSettings fg;
-  fg.rays =
+  const int rays =
       r.settings.final_gather_rays > 0 ? r.settings.final_gather_rays : FinalGatherSettings{}.rays;
-  fg.near = 0.0f;
-  fg.spots = 0;
-  fg.seed = r.settings.seed;
-  r.light_probes.gather = build_final_gather(*run.tracer, lookup, r.patches.patches, r.voxels.grid,
-                                             points, normals, fg, &run.progress);
+  r.light_probes = gather_light_probes(*run.tracer, lookup, r.patches.patches, r.voxels.grid,
+                                       std::move(r.probe_placement.position), rays, r.settings.seed,
+                                       &run.progress);
+  r.probe_placement.position.clear();
 }
 
 // Rows a little above 1 are the quadrature error of the near field (~1%):
