@@ -252,6 +252,27 @@ PYBIND11_MODULE(bounce, m) {
           "light probe (p x 9 x 3, p = 0 without probes): probe_sh, the irradiance of light "
           "reflected at least once as real SH L2 (docs/bake-format.md, Light probes).")
       .def(
+          "probe_sh_at",
+          [](OpenedBake& b, const std::array<float, 3>& point) {
+            std::array<glm::vec3, kShCoefficients> sh;
+            {
+              py::gil_scoped_release release;
+              sh = b.probe_sh_at(glm::vec3(point[0], point[1], point[2]));
+            }
+            py::array_t<float> out({static_cast<py::ssize_t>(kShCoefficients), py::ssize_t{3}});
+            std::copy_n(reinterpret_cast<const float*>(sh.data()), 3 * kShCoefficients,
+                        out.mutable_data());
+            return out;
+          },
+          py::arg("point"),
+          "probe_sh_at(point) -> float32 array 9 x 3.\n"
+          "The irradiance SH at point (x, y, z) in the empty space, in the last frame "
+          "(relight() or camera_image(); before either, the scene's own lights): the light "
+          "probes around it that see it, blended trilinearly by distance, so no light crosses "
+          "a wall; row j is coefficient j (R, G, B) of light reflected at least once as real "
+          "SH L2 (docs/bake-format.md, Light probes). All zero when no probe within two voxels "
+          "sees the point. Raises for a bake without probes.")
+      .def(
           "camera_image",
           [](OpenedBake& b, int width, int height, int samples, int gather_rays) {
             CameraImageSettings settings;

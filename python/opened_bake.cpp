@@ -21,6 +21,7 @@ RelitFrame OpenedBake::relight(const std::map<std::string, glm::vec3>& moved) {
   session_.reset_lights();
   for (const auto& [name, position] : moved) session_.move_light(name, position);
   session_.light();
+  lit_ = true;
   const RuntimeFrame& frame = session_.frame();
   RelitFrame out;
   out.first_hit = frame.first_hit();
@@ -35,7 +36,19 @@ RelitFrame OpenedBake::relight(const std::map<std::string, glm::vec3>& moved) {
 CameraImages OpenedBake::camera_images(const CameraImageSettings& settings, int gather_rays) {
   session_.reset_lights();
   session_.light();
+  lit_ = true;
   return session_.camera(settings, gather_rays).images();
+}
+
+std::array<glm::vec3, kShCoefficients> OpenedBake::probe_sh_at(const glm::vec3& point) {
+  if (!lit_) {
+    session_.reset_lights();
+    session_.light();
+    lit_ = true;
+  }
+  std::array<glm::vec3, kShCoefficients> sh;
+  session_.probe_sh_at(point, sh);
+  return sh;
 }
 
 }  // namespace bounce::python

@@ -3,6 +3,7 @@
 // (bounce/relight.h) with the calls the module exposes. relight() lights the
 // patches and the lit mesh's vertices with the scene's lights, some of them
 // moved; camera_images() renders the scene camera.
+#include <array>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -51,8 +52,15 @@ class OpenedBake {
   // or ray count.
   CameraImages camera_images(const CameraImageSettings& settings, int gather_rays);
 
+  // The irradiance SH at `point` in the last frame (relight() or
+  // camera_images(); before either, the scene's own lights), blended from
+  // the probes that see it; zero when none does. Throws bounce::Error
+  // without probes.
+  std::array<glm::vec3, kShCoefficients> probe_sh_at(const glm::vec3& point);
+
  private:
   LightingSession session_;
+  bool lit_ = false;  // a frame has been lit
 };
 
 }  // namespace bounce::python

@@ -359,6 +359,16 @@ void run_solve(const SolveOptions& opt) {
   // The graph recorded E, b and T b per patch in this layout.
   write_npy(out / "patch_light.npy", session.frame().record(), {n, 3, 3});
   r.files.push_back("patch_light.npy");
+  if (session.light_probes()) {
+    // The probes' irradiance SH of this light setting, for an engine's own
+    // moving objects (docs/bake-format.md, "Light probes").
+    std::vector<glm::vec3> sh;
+    session.probe_sh(sh);
+    write_npy(out / "probe_sh.npy",
+              std::span<const float>(reinterpret_cast<const float*>(sh.data()), 3 * sh.size()),
+              {sh.size() / kShCoefficients, kShCoefficients, 3});
+    r.files.push_back("probe_sh.npy");
+  }
 
   std::optional<std::vector<glm::vec3>> exact;
   if (opt.compare_exact) {

@@ -8,6 +8,8 @@
 //   std::vector<glm::vec3> sh;                              // baked with --light-probes:
 //   session.probe_sh(sh);                                   // 9 RGB SH per probe
 //   // positions: session.light_probes()->position
+//   std::array<glm::vec3, 9> at;                            // a moving object's light:
+//   session.probe_sh_at({0.0f, 1.0f, 0.0f}, at);            // the probes that see it
 //
 // Light probes (runtime/light_probes.h): session.light_probes()->position
 // holds each probe's position (float x, y, z) and probe_sh() its irradiance
@@ -18,6 +20,8 @@
 // light reflected at least once (the engine adds its lights' direct light).
 // three.js's and Unity's radiance coefficients are c_j / A_l, A = pi,
 // 2 pi / 3, pi / 4 for l = 0, 1, 2 (docs/bake-format.md, "Light probes").
+// probe_sh_at() blends the SH of the probes around a point that see it, so
+// no light crosses a wall (runtime/probe_interpolation.h).
 //
 // LightingSession (relight/lighting_session.h) is what every front end
 // opens: it reads and checks the folder, loads the scene the bake was made
@@ -48,5 +52,6 @@
 #include "runtime/mesh_transfer.h"
 #include "runtime/patch_gather.h"
 #include "runtime/patch_lighting.h"
+#include "runtime/probe_interpolation.h"
 #include "runtime/relighter.h"
 #include "runtime/transport_multiplier.h"

@@ -85,6 +85,9 @@ void LightingSession::start(const LightingSessionSettings& settings, Diagnostics
   tracer_ = std::make_unique<RayTracer>(*scene_);
   gather_ = read_final_gather(bake_->dir, bake_->size(), bake_->samples.samples.size());
   probes_ = read_light_probes(bake_->dir, bake_->size(), bake_->samples.samples.size());
+  if (probes_)
+    probe_interpolator_ =
+        std::make_unique<ProbeInterpolator>(probes_->position, bake_->description.grid, *tracer_);
   relighter_ =
       std::make_unique<Relighter>(*tracer_, bake_->samples, bake_->patches,
                                   stored_transport(*bake_), settings.relighter, diagnostics);
@@ -118,7 +121,10 @@ void LightingSession::use_lights(std::vector<Light> lights) {
   area_.clear();
 }
 
-void LightingSession::light() { relighter_->light(lights_, area_); }
+void LightingSession::light() {
+  relighter_->light(lights_, area_);
+  frame_probe_sh_stale_ = true;
+}
 
 const LitMesh& LightingSession::mesh(Progress* progress) {
   if (mesh_) return *mesh_;
@@ -215,6 +221,20 @@ void LightingSession::probe_sh(std::vector<glm::vec3>& sh) {
   }
   relighter_->gather_far(probes_->gather, probe_irradiance_);
   fit_probe_sh(probe_irradiance_, sh);
+}
+
+ProbeBlend LightingSession::probe_sh_at(const glm::vec3& point,
+                                        std::array<glm::vec3, kShCoefficients>& sh,
+                                        ProbeVisibility visibility) {
+  if (!probe_interpolator_)
+    throw Error(bake_->dir.string(), "has no light probes (bake with --light-probes)");
+  // A moving object asks every frame, often many times: the probes' gather
+  // is the frame's cost, the blend a few rays.
+  if (frame_probe_sh_stale_) {
+    probe_sh(frame_probe_sh_);
+    frame_probe_sh_stale_ = false;
+  }
+  return probe_interpolator_->sh_at(point, frame_probe_sh_, sh, visibility);
 }
 
 SessionCamera LightingSession::camera(const CameraImageSettings& settings, int gather_rays,

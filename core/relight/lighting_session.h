@@ -17,6 +17,7 @@
 // (SessionCamera).
 //
 // Not thread-safe: one call at a time.
+#include <array>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -34,6 +35,7 @@
 #include "runtime/final_gather.h"
 #include "runtime/light_probes.h"
 #include "runtime/mesh_transfer.h"
+#include "runtime/probe_interpolation.h"
 #include "runtime/relighter.h"
 #include "scene/scene.h"
 
@@ -128,6 +130,14 @@ class LightingSession {
   // convention is runtime/light_probes.h's), from the same b + T b the
   // vertices gather. Empty without probes.
   void probe_sh(std::vector<glm::vec3>& sh);
+  // The last frame's irradiance SH at `point` in the empty space, blended
+  // from the probes around it that see it (runtime/probe_interpolation.h):
+  // a handful of occlusion rays; the probes' SH is worked out again only
+  // when light() ran since the last call. Returns the blend (count 0 and
+  // `sh` zero when no probe within reach sees the point). Throws
+  // bounce::Error when the bake has no probes.
+  ProbeBlend probe_sh_at(const glm::vec3& point, std::array<glm::vec3, kShCoefficients>& sh,
+                         ProbeVisibility visibility = ProbeVisibility::kTested);
 
   // The scene camera's pictures: see SessionCamera. `gather_rays` 0: the
   // nearest patches. Throws bounce::Error for a ray count outside 0..65536.
@@ -146,6 +156,9 @@ class LightingSession {
   std::optional<FinalGather> gather_;
   std::optional<LightProbes> probes_;
   std::vector<glm::vec3> probe_irradiance_;  // per probe direction, kept between frames
+  std::unique_ptr<ProbeInterpolator> probe_interpolator_;
+  std::vector<glm::vec3> frame_probe_sh_;  // the probes' SH of the last frame
+  bool frame_probe_sh_stale_ = true;       // light() ran since it was worked out
   std::unique_ptr<Relighter> relighter_;
   std::vector<Light> lights_;
   std::vector<AreaLight> area_;

@@ -1,0 +1,161 @@
+#include "runtime/probe_interpolation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "base/error.h"
+
+namespace bounce {
+
+namespace {
+
+// A probe's position is its cell's centre up to float rounding; a fraction
+// of a cell closer to a whole cell than this is that rounding, not an
+// offset, so a point given at a probe's position takes that probe alone.
+constexpr float kSnap = 1e-4f;
+// The wider search: cells within this many of the point's own (5 x 5 x 5),
+// at most this many rays, nearest probe first.
+constexpr int kReach = 2;
+constexpr int kReachRays = 16;
+
+std::uint64_t linear(const TransferGrid& g, const glm::ivec3& c) {
+  return (static_cast<std::uint64_t>(c.z) * static_cast<std::uint64_t>(g.dims.y) +
+          static_cast<std::uint64_t>(c.y)) *
+             static_cast<std::uint64_t>(g.dims.x) +
+         static_cast<std::uint64_t>(c.x);
+}
+
+bool inside(const TransferGrid& g, const glm::ivec3& c) {
+  return c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x < g.dims.x && c.y < g.dims.y && c.z < g.dims.z;
+}
+
+void normalise(ProbeBlend& b) {
+  float total = 0.0f;
+  for (std::size_t i = 0; i < b.count; ++i) total += b.weight[i];
+  if (total <= 0.0f) {
+    b.count = 0;
+    return;
+  }
+  for (std::size_t i = 0; i < b.count; ++i) b.weight[i] /= total;
+}
+
+}  // namespace
+
+ProbeInterpolator::ProbeInterpolator(const std::vector<glm::vec3>& positions,
+                                     const TransferGrid& grid, const RayTracer& tracer)
+    : positions_(positions), grid_(grid), tracer_(tracer) {
+  cells_.reserve(positions.size());
+  for (std::size_t p = 0; p < positions.size(); ++p) {
+    const glm::vec3 u = (positions[p] - grid.origin) / grid.cell_size - 0.5f;
+    const glm::vec3 whole = glm::round(u);
+    const glm::ivec3 c(whole);
+    if (glm::any(glm::greaterThan(glm::abs(u - whole), glm::vec3(1e-3f))) || !inside(grid, c))
+      throw Error("light probes", "probe " + std::to_string(p) +
+                                      " is not at the centre of a cell of the bake's grid");
+    cells_.emplace_back(linear(grid, c), static_cast<std::uint32_t>(p));
+  }
+  std::sort(cells_.begin(), cells_.end());
+  for (std::size_t i = 1; i < cells_.size(); ++i)
+    if (cells_[i].first == cells_[i - 1].first)
+      throw Error("light probes", "probes " + std::to_string(cells_[i - 1].second) + " and " +
+                                      std::to_string(cells_[i].second) + " share a cell");
+}
+
+std::int64_t ProbeInterpolator::probe_in(const glm::ivec3& c) const {
+  if (!inside(grid_, c)) return -1;
+  const std::uint64_t key = linear(grid_, c);
+  const auto it =
+      std::lower_bound(cells_.begin(), cells_.end(), std::make_pair(key, std::uint32_t{0}));
+  return it != cells_.end() && it->first == key ? static_cast<std::int64_t>(it->second) : -1;
+}
+
+// A surface anywhere on the segment is a wall between: the probe's light
+// there is not the point's. Both ends stand off surfaces (a probe by half a
+// voxel), so the segment's ends need no margin beyond the tracer's epsilon.
+bool ProbeInterpolator::sees(const glm::vec3& point, std::uint32_t probe) const {
+  const glm::vec3 d = positions_[probe] - point;
+  const float length = glm::length(d);
+  const float eps = tracer_.epsilon();
+  if (length <= 2.0f * eps) return true;
+  return !tracer_.occluded(point, d / length, eps, length - eps);
+}
+
+void ProbeInterpolator::trilinear(const glm::vec3& point, ProbeVisibility visibility,
+                                  ProbeBlend& out) const {
+  const glm::vec3 u = (point - grid_.origin) / grid_.cell_size - 0.5f;
+  const glm::vec3 base = glm::floor(u);
+  glm::vec3 f = u - base;
+  for (int a = 0; a < 3; ++a) {
+    if (f[a] < kSnap) f[a] = 0.0f;
+    if (f[a] > 1.0f - kSnap) f[a] = 1.0f;
+  }
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::ivec3 step(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
+    float w = 1.0f;
+    for (int a = 0; a < 3; ++a) w *= step[a] ? f[a] : 1.0f - f[a];
+    if (w <= 0.0f) continue;  // no share in the blend: no ray either
+    const std::int64_t p = probe_in(glm::ivec3(base) + step);
+    if (p < 0) continue;
+    const auto probe = static_cast<std::uint32_t>(p);
+    if (visibility == ProbeVisibility::kTested) {
+      ++out.rays;
+      if (!sees(point, probe)) continue;
+    }
+    out.probe[out.count] = probe;
+    out.weight[out.count] = w;
+    ++out.count;
+  }
+  normalise(out);
+}
+
+void ProbeInterpolator::nearest_in_reach(const glm::vec3& point, ProbeVisibility visibility,
+                                         ProbeBlend& out) const {
+  const glm::ivec3 centre = grid_.cell_of(point);
+  std::vector<std::pair<float, std::uint32_t>> near;
+  for (int z = -kReach; z <= kReach; ++z)
+    for (int y = -kReach; y <= kReach; ++y)
+      for (int x = -kReach; x <= kReach; ++x) {
+        const std::int64_t p = probe_in(centre + glm::ivec3(x, y, z));
+        if (p < 0) continue;
+        const auto probe = static_cast<std::uint32_t>(p);
+        const glm::vec3 d = positions_[probe] - point;
+        near.emplace_back(glm::dot(d, d), probe);
+      }
+  std::sort(near.begin(), near.end());
+  const std::size_t tries = std::min<std::size_t>(near.size(), kReachRays);
+  for (std::size_t i = 0; i < tries; ++i) {
+    if (visibility == ProbeVisibility::kTested) {
+      ++out.rays;
+      if (!sees(point, near[i].second)) continue;
+    }
+    out.probe[0] = near[i].second;
+    out.weight[0] = 1.0f;
+    out.count = 1;
+    out.widened = true;
+    return;
+  }
+}
+
+ProbeBlend ProbeInterpolator::blend(const glm::vec3& point, ProbeVisibility visibility) const {
+  ProbeBlend out;
+  trilinear(point, visibility, out);
+  if (out.count == 0) nearest_in_reach(point, visibility, out);
+  return out;
+}
+
+ProbeBlend ProbeInterpolator::sh_at(const glm::vec3& point, const std::vector<glm::vec3>& sh,
+                                    std::array<glm::vec3, kShCoefficients>& out,
+                                    ProbeVisibility visibility) const {
+  if (sh.size() != positions_.size() * kShCoefficients)
+    throw Error("light probes", std::to_string(sh.size()) + " SH coefficients for " +
+                                    std::to_string(positions_.size()) + " probes");
+  const ProbeBlend b = blend(point, visibility);
+  out.fill(glm::vec3(0.0f));
+  for (std::size_t i = 0; i < b.count; ++i)
+    for (std::size_t j = 0; j < kShCoefficients; ++j)
+      out[j] += b.weight[i] * sh[b.probe[i] * kShCoefficients + j];
+  return b;
+}
+
+}  // namespace bounce

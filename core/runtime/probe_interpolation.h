@@ -1,0 +1,77 @@
+#pragma once
+// Light probes' irradiance at any point of the empty space: a blend of the
+// probes around it that can see it. Probes sit at the centres of voxel cells
+// of the bake's grid (runtime/light_probe_placement.h), so the 2 x 2 x 2
+// cells whose centres surround a point hold its candidates, weighted
+// trilinearly. A wall thinner than a voxel leaves probes on both of its
+// sides within one such block, so a blend of the weights alone carries the
+// lit side's light through the wall: each candidate whose segment to the
+// point meets a surface is dropped and the others' weights renormalised.
+// When none is left (the point stands in a wall's cell, the probes of the
+// block all behind the wall), the nearest probe that sees the point within
+// two cells stands in; when there is none either, the blend is empty.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "raytrace/ray_tracer.h"
+#include "runtime/light_probes.h"
+#include "runtime/transfer_grid.h"
+
+namespace bounce {
+
+// Which probes light a point, and how much each.
+struct ProbeBlend {
+  static constexpr std::size_t kMaxProbes = 8;
+  std::array<std::uint32_t, kMaxProbes> probe{};
+  std::array<float, kMaxProbes> weight{};  // sum to 1 when count > 0
+  std::size_t count = 0;
+  // From the wider search: no probe of the trilinear block sees the point.
+  bool widened = false;
+  int rays = 0;  // occlusion rays traced
+};
+
+// Whether a candidate probe must see the point. kIgnored is the blend that
+// leaks through thin walls, kept to measure what the test prevents.
+enum class ProbeVisibility : std::uint8_t { kTested, kIgnored };
+
+class ProbeInterpolator {
+ public:
+  // `positions`: the probes, each at the centre of a cell of `grid`.
+  // Throws bounce::Error naming the probe when one is not at a cell centre
+  // or two share a cell. The tracer must outlive the interpolator.
+  ProbeInterpolator(const std::vector<glm::vec3>& positions, const TransferGrid& grid,
+                    const RayTracer& tracer);
+
+  ProbeBlend blend(const glm::vec3& point,
+                   ProbeVisibility visibility = ProbeVisibility::kTested) const;
+
+  // The irradiance SH at `point`: the blend of the probes' `sh`
+  // (kShCoefficients per probe, the convention of runtime/light_probes.h).
+  // Returns the blend; its count is 0 and `out` zero when no probe sees
+  // the point.
+  ProbeBlend sh_at(const glm::vec3& point, const std::vector<glm::vec3>& sh,
+                   std::array<glm::vec3, kShCoefficients>& out,
+                   ProbeVisibility visibility = ProbeVisibility::kTested) const;
+
+  std::size_t size() const { return positions_.size(); }
+
+ private:
+  // The probe in cell `c`, or -1 (also for cells outside the grid).
+  std::int64_t probe_in(const glm::ivec3& c) const;
+  bool sees(const glm::vec3& point, std::uint32_t probe) const;
+  void trilinear(const glm::vec3& point, ProbeVisibility visibility, ProbeBlend& out) const;
+  void nearest_in_reach(const glm::vec3& point, ProbeVisibility visibility, ProbeBlend& out) const;
+
+  std::vector<glm::vec3> positions_;
+  TransferGrid grid_;
+  const RayTracer& tracer_;
+  // (linear cell index, probe), sorted by cell.
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> cells_;
+};
+
+}  // namespace bounce

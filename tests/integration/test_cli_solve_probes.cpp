@@ -1,0 +1,63 @@
+// `bounce solve` on a bake with light probes writes probe_sh.npy: the
+// probes' irradiance SH for its light setting (docs/bake-format.md, "Light
+// probes"), the values LightingSession::probe_sh gives for the same lights.
+// A bake without probes has no such file.
+#include "cli_harness.h"
+#include "relight/lighting_session.h"
+
+namespace bounce::itest {
+namespace {
+
+TEST(SolveProbes, ProbeShIsTheSessionsForTheSameLight) {
+  TempDir tmp;
+  const fs::path bake = tmp / "bake";
+  const RunResult baked =
+      run({"bake", scene("cornell-box"), "--voxel", "6", "--codec", "dense", "--light-probes",
+           "--no-pictures", "--quiet", "--out", bake.string()},
+          tmp.path(), 120.0);
+  ASSERT_EQ(baked.exit_code, 0) << baked;
+  const glm::vec3 moved(-0.4f, 1.5f, 0.2f);
+  const RunResult solved =
+      run({"solve", bake.string(), "--light", "ceiling-point:-0.4,1.5,0.2", "--no-images",
+           "--no-mesh", "--quiet", "--out", (tmp / "solve").string()},
+          tmp.path(), 120.0);
+  ASSERT_EQ(solved.exit_code, 0) << solved;
+  const NpyArray<float> written = read_npy_f32(tmp / "solve" / "probe_sh.npy");
+
+  LightingSession session(bake);
+  session.move_light("ceiling-point", moved);
+  session.light();
+  std::vector<glm::vec3> sh;
+  session.probe_sh(sh);
+  ASSERT_FALSE(sh.empty());
+  ASSERT_EQ(written.shape, (std::vector<std::size_t>{sh.size() / kShCoefficients, 9, 3}));
+  double largest = 0.0;
+  for (const glm::vec3& c : sh)
+    largest =
+        std::max({largest, std::abs(double(c.x)), std::abs(double(c.y)), std::abs(double(c.z))});
+  ASSERT_GT(largest, 0.0);
+  // The same product in another process: equal to float rounding of sums
+  // whose order may follow the thread count.
+  for (std::size_t i = 0; i < sh.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      ASSERT_NEAR(written.data[3 * i + static_cast<std::size_t>(c)], sh[i][c], 1e-5 * largest)
+          << "probe " << i / kShCoefficients << " coefficient " << i % kShCoefficients;
+
+  // Without probes: no file.
+  const fs::path plain = tmp / "plain";
+  ASSERT_EQ(run({"bake", scene("cornell-box"), "--voxel", "4", "--codec", "dense", "--no-pictures",
+                 "--quiet", "--out", plain.string()},
+                tmp.path(), 120.0)
+                .exit_code,
+            0);
+  ASSERT_EQ(run({"solve", plain.string(), "--no-images", "--no-mesh", "--quiet", "--out",
+                 (tmp / "plain-solve").string()},
+                tmp.path(), 120.0)
+                .exit_code,
+            0);
+  EXPECT_TRUE(fs::exists(tmp / "plain-solve" / "patch_light.npy"));
+  EXPECT_FALSE(fs::exists(tmp / "plain-solve" / "probe_sh.npy"));
+}
+
+}  // namespace
+}  // namespace bounce::itest
