@@ -72,6 +72,14 @@ void main() {
     colour = vec4(linear_output ? vec3(0.0) : background, 1.0);
     return;
   }
+  // A light probe of the overlay (preview_sphere.frag): the light its SH
+  // gives a white surface, whatever the passes; no direct light, no
+  // occlusion, since neither is in the probe's light.
+  if (albedo.a > 1.5) {
+    vec3 e = texture(g_indirect, uv).rgb;
+    colour = vec4(linear_output ? e : srgb(exposure * e), 1.0);
+    return;
+  }
   vec3 p = texture(g_position, uv).xyz;
   vec3 n = normalize(texture(g_normal, uv).xyz);
   vec3 light = vec3(0.0);

@@ -51,7 +51,8 @@ PreviewLighting::PreviewLighting(std::shared_ptr<const BakeViewData> data)
 
 PreviewLighting::~PreviewLighting() = default;
 
-PreviewLighting::Solve PreviewLighting::solve(const glm::vec3& light_position, bool settle) {
+PreviewLighting::Solve PreviewLighting::solve(const glm::vec3& light_position, bool settle,
+                                              const glm::vec3& sphere_position) {
   Solve s;
   s.light_position = light_position;
   session_->move_light(light_.name, light_position);
@@ -66,8 +67,28 @@ PreviewLighting::Solve PreviewLighting::solve(const glm::vec3& light_position, b
     s.transfer_seconds = since(t);
     s.settled = session_->relighter().shadows_settled();
   } while (settle && !s.settled);
+  s.sphere_position = sphere_position;
+  if (has_probes()) {
+    const auto t = Clock::now();
+    session_->probe_sh(s.probe_sh);
+    s.sphere_sh = sh_at(sphere_position);
+    s.probe_seconds = since(t);
+  }
   return s;
 }
+
+const std::vector<glm::vec3>& PreviewLighting::probe_positions() const {
+  static const std::vector<glm::vec3> none;
+  return has_probes() ? session_->light_probes()->position : none;
+}
+
+std::array<glm::vec3, kShCoefficients> PreviewLighting::sh_at(const glm::vec3& point) {
+  std::array<glm::vec3, kShCoefficients> sh{};
+  if (has_probes()) session_->probe_sh_at(point, sh);
+  return sh;
+}
+
+float PreviewLighting::cell_size() const { return session_->description().grid.cell_size; }
 
 LitMesh PreviewLighting::lit_mesh(const glm::vec3& light_position) {
   // Settled first: the lit mesh gathers with the near sources' shadows.

@@ -17,6 +17,7 @@
 //
 // Not thread-safe: one solve() at a time (on the view jobs or the UI
 // thread, never both).
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -41,6 +42,13 @@ class PreviewLighting {
     // The near sources' shadows are exact for this light position (else
     // more solves there make them so; see kShadowFrames).
     bool settled = true;
+    // With a bake's light probes: kShCoefficients irradiance SH coefficients
+    // per probe (LightingSession::probe_sh), and the SH at the probe-lit
+    // sphere's centre blended from them (LightingSession::probe_sh_at).
+    std::vector<glm::vec3> probe_sh;
+    glm::vec3 sphere_position{0.0f};
+    std::array<glm::vec3, kShCoefficients> sphere_sh{};
+    double probe_seconds = 0.0;  // the probes' gather, fit and the sphere's blend
   };
 
   // A moving light's shadow rays to the final gather's near sources are
@@ -58,7 +66,18 @@ class PreviewLighting {
 
   // One frame with the light at `light_position`; `settle`: as many more
   // there as its shadows need to be exact (at most kShadowFrames in all).
-  Solve solve(const glm::vec3& light_position, bool settle = false);
+  // With light probes, the sphere's SH is blended at `sphere_position`.
+  Solve solve(const glm::vec3& light_position, bool settle = false,
+              const glm::vec3& sphere_position = glm::vec3(0.0f));
+
+  // The bake's light probes: none when it was baked without them.
+  bool has_probes() const { return session_->light_probes().has_value(); }
+  const std::vector<glm::vec3>& probe_positions() const;
+  // The SH at `point` blended from the last solve's probes (zero without
+  // probes), as the sphere gets it when it moves and the light does not.
+  std::array<glm::vec3, kShCoefficients> sh_at(const glm::vec3& point);
+  // The bake's voxel edge: the probes stand at least this far apart.
+  float cell_size() const;
 
   // The whole light leaving each vertex with the light at `light_position`:
   // emission + albedo x (direct + indirect irradiance), what `bounce solve`

@@ -84,6 +84,7 @@ void PreviewWidget::render_gbuffer(const glm::mat4& view, const glm::mat4& proje
                      glm::value_ptr(projection));
   draw_mesh(*programs_.gbuffer);
   glDisable(GL_CULL_FACE);
+  draw_spheres(view, projection);
   glDisable(GL_DEPTH_TEST);
 }
 
@@ -280,6 +281,10 @@ void PreviewWidget::draw_overlay() {
                  .arg(light_position_.y, 0, 'f', 2)
                  .arg(light_position_.z, 0, 'f', 2)
                  .arg(solved_light_ == light_position_ ? QString() : tr(" (solving)"));
+    if (has_probes())
+      lines << tr("%1 light probes, %2 ms (gather, SH fit, sphere blend)")
+                   .arg(probe_count())
+                   .arg(1e3 * probe_seconds_, 0, 'f', 2);
     lines << tr("direct %1  indirect %2  AO %3")
                  .arg(passes_.direct ? "on" : "off")
                  .arg(passes_.indirect ? "on" : "off")

@@ -16,6 +16,8 @@ PreviewView::PreviewView(ViewJobs& jobs, QWidget* parent)
       indirect_(new QCheckBox(tr("Indirect"), this)),
       ao_(new QCheckBox(tr("Ambient occlusion"), this)),
       normal_maps_(new QCheckBox(tr("Normal maps"), this)),
+      probes_(new QCheckBox(tr("Light probes"), this)),
+      sphere_(new QCheckBox(tr("Probe-lit sphere"), this)),
       status_(new QLabel(this)) {
   direct_->setToolTip(tr("Light straight from the light, shadowed by the shadow map (PCF)"));
   indirect_->setToolTip(
@@ -24,18 +26,26 @@ PreviewView::PreviewView(ViewJobs& jobs, QWidget* parent)
   ao_->setToolTip(tr("Screen-space ambient occlusion (32 samples, blurred) on the indirect light"));
   normal_maps_->setToolTip(
       tr("Shade with the materials' normal maps (the bake lights the flat surface)"));
+  probes_->setToolTip(
+      tr("Each light probe as a small sphere showing the light its SH gives a white "
+         "surface facing each way (bake with --light-probes)"));
+  sphere_->setToolTip(
+      tr("A grey sphere lit by the probes around it, as a moving object would be: Shift + drag "
+         "moves it"));
   for (QCheckBox* box : {direct_, indirect_, ao_, normal_maps_}) {
     box->setChecked(true);
     connect(box, &QCheckBox::toggled, this, &PreviewView::apply_switches);
   }
-  status_->setText(
-      tr("Drag: orbit. Right drag or wheel: zoom. Ctrl + drag: move the light "
-         "(Ctrl + wheel: nearer or farther)."));
+  connect(probes_, &QCheckBox::toggled, preview_, &PreviewWidget::set_probes_shown);
+  connect(sphere_, &QCheckBox::toggled, preview_, &PreviewWidget::set_sphere_shown);
+  show_help();
   auto* row = new QHBoxLayout;
   row->addWidget(direct_);
   row->addWidget(indirect_);
   row->addWidget(ao_);
   row->addWidget(normal_maps_);
+  row->addWidget(probes_);
+  row->addWidget(sphere_);
   row->addSpacing(16);
   row->addWidget(status_, 1);
   auto* layout = new QVBoxLayout(this);
@@ -54,12 +64,19 @@ void PreviewView::apply_switches() {
   preview_->set_passes(p);
 }
 
+void PreviewView::show_help() {
+  const bool probes = preview_->has_probes();
+  for (QCheckBox* box : {probes_, sphere_}) box->setEnabled(probes);
+  status_->setText(tr("Drag: orbit. Right drag or wheel: zoom. Ctrl + drag: move the light "
+                      "(Ctrl + wheel: nearer or farther).%1")
+                       .arg(probes ? tr(" Shift + drag: move the sphere.")
+                                   : tr(" No light probes in this bake.")));
+}
+
 void PreviewView::set_data(std::shared_ptr<const BakeViewData> bake) {
   try {
     preview_->set_data(std::move(bake));
-    status_->setText(
-        tr("Drag: orbit. Right drag or wheel: zoom. Ctrl + drag: move the light "
-           "(Ctrl + wheel: nearer or farther)."));
+    show_help();
   } catch (const std::exception& e) {
     preview_->clear();
     status_->setText(tr("No preview: %1").arg(QString::fromStdString(e.what())));

@@ -1,7 +1,8 @@
 #pragma once
 // The studio's Preview tab: the live preview (PreviewWidget) under a row of
-// switches for its passes (direct, indirect, ambient occlusion) and a line
-// on how to move the light and the camera.
+// switches for its passes (direct, indirect, ambient occlusion), for the
+// light probes' overlay and the probe-lit sphere, and a line on how to move
+// the light, the sphere and the camera.
 #include <memory>
 
 #include <QWidget>
@@ -28,12 +29,15 @@ class PreviewView : public QWidget {
 
  private:
   void apply_switches();
+  void show_help();
 
   PreviewWidget* preview_;
   QCheckBox* direct_;
   QCheckBox* indirect_;
   QCheckBox* ao_;
   QCheckBox* normal_maps_;
+  QCheckBox* probes_;
+  QCheckBox* sphere_;
   QLabel* status_;
 };
 

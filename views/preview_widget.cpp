@@ -32,10 +32,7 @@
 namespace bounce::views {
 
 struct PreviewWidget::SolveResult {
-  glm::vec3 light_position{0.0f};
-  std::vector<glm::vec3> vertex_indirect;
-  double frame_seconds = 0.0, transfer_seconds = 0.0;
-  bool settled = true;
+  PreviewLighting::Solve solve;
 };
 
 PreviewWidget::PreviewWidget(ViewJobs& jobs, QWidget* parent) : QOpenGLWidget(parent), jobs_(jobs) {
@@ -81,6 +78,9 @@ void PreviewWidget::clear() {
   lighting_.reset();
   data_.reset();
   vertex_indirect_.clear();
+  probe_sh_.clear();
+  sphere_sh_ = {};
+  spheres_dirty_ = true;
   exposure_full_.reset();
   exposure_indirect_.reset();
   mesh_dirty_ = true;
@@ -101,12 +101,14 @@ void PreviewWidget::set_data(std::shared_ptr<const BakeViewData> bake) {
   // pays it (a solve where the light already is traces no shadow rays);
   // then the light is settled there.
   const glm::vec3 nudge(1e-3f * glm::length(lighting_->scene().bounds().extent()));
-  PreviewLighting::Solve s = lighting_->solve(light_position_ + nudge);
-  const double first = s.frame_seconds + s.transfer_seconds;
-  s = lighting_->solve(light_position_);
-  solve_on_worker_ = std::min(first, s.frame_seconds + s.transfer_seconds) > kUiSolveBudget;
-  if (!s.settled) s = lighting_->solve(light_position_, true);
-  apply({s.light_position, s.vertex_irradiance, s.frame_seconds, s.transfer_seconds, s.settled});
+  place_sphere();
+  PreviewLighting::Solve s = lighting_->solve(light_position_ + nudge, false, sphere_position_);
+  const double first = s.frame_seconds + s.transfer_seconds + s.probe_seconds;
+  s = lighting_->solve(light_position_, false, sphere_position_);
+  solve_on_worker_ =
+      std::min(first, s.frame_seconds + s.transfer_seconds + s.probe_seconds) > kUiSolveBudget;
+  if (!s.settled) s = lighting_->solve(light_position_, true, sphere_position_);
+  apply({std::move(s)});
   mesh_dirty_ = true;
   update();
 }
@@ -142,16 +144,14 @@ void PreviewWidget::set_light_position(const glm::vec3& position, bool wait) {
 void PreviewWidget::solve_at(const glm::vec3& position, bool wait) {
   if (wait || !solve_on_worker_) {
     std::lock_guard<std::mutex> lock(*lighting_mutex_);
-    const PreviewLighting::Solve s = lighting_->solve(position, wait);
-    apply({s.light_position, s.vertex_irradiance, s.frame_seconds, s.transfer_seconds, s.settled});
+    apply({lighting_->solve(position, wait, sphere_position_)});
   } else {
     jobs_.run<SolveResult>(
         this, kSolveJob,
-        [lighting = lighting_, mutex = lighting_mutex_, position](const ViewJobs::KeepGoing&) {
+        [lighting = lighting_, mutex = lighting_mutex_, position,
+         sphere = sphere_position_](const ViewJobs::KeepGoing&) {
           std::lock_guard<std::mutex> lock(*mutex);
-          const PreviewLighting::Solve s = lighting->solve(position);
-          return SolveResult{s.light_position, s.vertex_irradiance, s.frame_seconds,
-                             s.transfer_seconds, s.settled};
+          return SolveResult{lighting->solve(position, false, sphere)};
         },
         [this](SolveResult r) { apply(std::move(r)); },
         [this](const QString& message) {
@@ -163,12 +163,19 @@ void PreviewWidget::solve_at(const glm::vec3& position, bool wait) {
 }
 
 void PreviewWidget::apply(SolveResult result) {
-  solved_light_ = result.light_position;
-  solved_settled_ = result.settled;
-  vertex_indirect_ = std::move(result.vertex_indirect);
-  frame_seconds_ = result.frame_seconds;
-  transfer_seconds_ = result.transfer_seconds;
+  PreviewLighting::Solve& s = result.solve;
+  solved_light_ = s.light_position;
+  solved_settled_ = s.settled;
+  vertex_indirect_ = std::move(s.vertex_irradiance);
+  frame_seconds_ = s.frame_seconds;
+  transfer_seconds_ = s.transfer_seconds;
+  probe_seconds_ = s.probe_seconds;
   indirect_dirty_ = true;
+  probe_sh_ = std::move(s.probe_sh);
+  sphere_sh_ = s.sphere_sh;
+  spheres_dirty_ = true;
+  // The sphere moved while this light was solved: blend it where it is now.
+  if (s.sphere_position != sphere_position_) set_sphere_position(sphere_position_);
   update();
   emit solved();
   // Where the light stopped, solve again until its shadows are exact; from
@@ -197,12 +204,16 @@ QPointF PreviewWidget::project(const glm::vec3& world) const {
   return {p.x, p.y};
 }
 
+glm::vec3 PreviewWidget::inside_scene(const glm::vec3& p) const {
+  const Bounds b = lighting_->scene().bounds();
+  // Inside the scene, a little off its outer surfaces.
+  const glm::vec3 margin = 0.01f * b.extent();
+  return glm::clamp(p, b.lo + margin, b.hi - margin);
+}
+
 void PreviewWidget::move_light_by(const glm::vec3& delta) {
   if (!lighting_) return;
-  const Bounds b = lighting_->scene().bounds();
-  // Stay inside the scene, a little off its outer surfaces.
-  const glm::vec3 margin = 0.01f * b.extent();
-  set_light_position(glm::clamp(light_position_ + delta, b.lo + margin, b.hi - margin));
+  set_light_position(inside_scene(light_position_ + delta));
 }
 
 void PreviewWidget::mousePressEvent(QMouseEvent* event) { last_mouse_ = event->pos(); }
@@ -211,7 +222,13 @@ void PreviewWidget::mouseMoveEvent(QMouseEvent* event) {
   const QPoint d = event->pos() - last_mouse_;
   last_mouse_ = event->pos();
   if (!lighting_) return;
-  if ((event->buttons() & Qt::LeftButton) && (event->modifiers() & Qt::ControlModifier)) {
+  if ((event->buttons() & Qt::LeftButton) && (event->modifiers() & Qt::ShiftModifier) &&
+      sphere_shown_) {
+    const float per_pixel = camera_.pixel_size_at(sphere_position_, height());
+    set_sphere_position(inside_scene(sphere_position_ +
+                                     per_pixel * (static_cast<float>(d.x()) * camera_.right_axis() -
+                                                  static_cast<float>(d.y()) * camera_.up_axis())));
+  } else if ((event->buttons() & Qt::LeftButton) && (event->modifiers() & Qt::ControlModifier)) {
     // Move the light with the mouse: one pixel is what a pixel spans at the
     // light's distance from the eye.
     const float per_pixel = camera_.pixel_size_at(light_position_, height());

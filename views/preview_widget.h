@@ -28,6 +28,16 @@
 // closer, Ctrl + left drag moves the light in the plane facing the camera,
 // Ctrl + wheel moves it towards or away from the camera. The light stays
 // inside the scene's bounds.
+//
+// With a bake's light probes (runtime/light_probes.h) the preview can show
+// them, each a small sphere showing the light its SH L2 irradiance
+// gives a white surface facing each way, and a grey sphere standing for a
+// moving object, lit by the probes around it (blended where it is, through
+// the visibility test of LightingSession::probe_sh_at) and by the light's
+// direct light; Shift + left drag moves it in the plane facing the camera.
+// Both follow the light live. The sphere casts no shadow and does not light
+// the scene: probes light what moves, not the walls.
+#include <array>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -42,6 +52,7 @@
 #include "orbit_camera.h"
 #include "preview_material_images.h"
 #include "preview_programs.h"
+#include "preview_spheres.h"
 #include "preview_targets.h"
 
 namespace bounce::views {
@@ -79,6 +90,20 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   void set_passes(Passes passes);
   Passes passes() const { return passes_; }
   void set_overlay(bool on);
+
+  // The bake's light probes, and whether they are drawn.
+  bool has_probes() const;
+  std::size_t probe_count() const;
+  void set_probes_shown(bool on);
+  bool probes_shown() const { return probes_shown_; }
+  // The probe-lit sphere: shown or not, where, and the SH it is lit with.
+  // Moving it blends the SH there from the probes' last frame.
+  void set_sphere_shown(bool on);
+  bool sphere_shown() const { return sphere_shown_; }
+  void set_sphere_position(const glm::vec3& position);
+  glm::vec3 sphere_position() const { return sphere_position_; }
+  float sphere_radius() const;
+  const std::array<glm::vec3, kShCoefficients>& sphere_sh() const { return sphere_sh_; }
 
   // Moves the light. wait: solve on this thread now (tests, screenshots);
   // otherwise as the solve policy says (see above).
@@ -147,6 +172,9 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   void reset_camera();
   float aspect() const;  // width / height
   void move_light_by(const glm::vec3& delta);
+  glm::vec3 inside_scene(const glm::vec3& p) const;  // clamped a little inside the bounds
+  void draw_spheres(const glm::mat4& view, const glm::mat4& projection);
+  void place_sphere();  // by the probe nearest the scene's centre
 
   // The one job of this widget: the light solved at its latest position.
   static constexpr int kSolveJob = 0;
@@ -164,6 +192,11 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   glm::vec3 light_position_{0.0f}, solved_light_{0.0f};
   bool solved_settled_ = true;
   std::vector<glm::vec3> vertex_indirect_;  // indirect irradiance per mesh vertex
+  bool probes_shown_ = false, sphere_shown_ = false;
+  glm::vec3 sphere_position_{0.0f};
+  std::vector<glm::vec3> probe_sh_;  // the last solve's, kShCoefficients per probe
+  std::array<glm::vec3, kShCoefficients> sphere_sh_{};
+  double probe_seconds_ = 0.0;
   double frame_seconds_ = 0.0, transfer_seconds_ = 0.0;
 
   OrbitCamera camera_;
@@ -174,7 +207,8 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   double last_paint_ = -1.0, mean_interval_ = 0.0;
 
   // OpenGL objects (0: not made).
-  bool gl_ready_ = false, mesh_dirty_ = false, indirect_dirty_ = false, shadow_dirty_ = true;
+  bool gl_ready_ = false, mesh_dirty_ = false, indirect_dirty_ = false, shadow_dirty_ = true,
+       spheres_dirty_ = true;
   QString gl_error_;
   PreviewPrograms programs_;
   GLuint mesh_vao_ = 0, static_vbo_ = 0, indirect_vbo_ = 0, empty_vao_ = 0;
@@ -193,6 +227,7 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   PreviewMaterialImages material_images_{*this};  // every image draws_ names, each once
   GLuint shadow_fbo_ = 0, shadow_cube_ = 0;
   PreviewTargets targets_{*this};
+  PreviewSpheres spheres_{*this};
   GLuint noise_texture_ = 0;
   std::vector<glm::vec3> ao_kernel_;
   // Set from the first frame drawn after set_data, then fixed (see render()).

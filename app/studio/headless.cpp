@@ -61,6 +61,9 @@ void take_screenshot(const ScreenshotRequest& r) {
     throw Error("--light", "moves the preview's light: use it with --view preview");
   if (!r.passes.isEmpty() && r.view != "preview")
     throw Error("--passes", "switches the preview's passes: use it with --view preview");
+  if ((r.probes || r.has_sphere) && r.view != "preview")
+    throw Error(r.probes ? "--probes" : "--sphere",
+                "draws in the preview's picture: use it with --view preview");
   preview_passes(r.passes);  // bad names fail before any bake
   if (r.width < 64 || r.height < 64 || r.width > 8192 || r.height > 8192)
     throw Error("--size", "must be WxH with each side between 64 and 8192");
@@ -130,6 +133,14 @@ void take_screenshot(const ScreenshotRequest& r) {
     v->set_data(data);
     v->set_passes(preview_passes(r.passes));
     if (r.has_light) v->set_light_position({r.light_x, r.light_y, r.light_z}, true);
+    if ((r.probes || r.has_sphere) && !v->has_probes())
+      throw Error(r.input.toStdString(),
+                  "has no light probes to draw: bake it with --light-probes");
+    v->set_probes_shown(r.probes);
+    if (r.has_sphere) {
+      v->set_sphere_position({r.sphere_x, r.sphere_y, r.sphere_z});
+      v->set_sphere_shown(true);
+    }
     view = v;
   } else if (r.view == "error") {
     auto* v = new views::ErrorView(jobs);

@@ -24,6 +24,9 @@ struct ScreenshotRequest {
   QString passes;          // preview view: comma-separated direct, indirect, ao (empty: all)
   bool has_light = false;  // preview view: move the light to (light_x, light_y, light_z)
   float light_x = 0.0f, light_y = 0.0f, light_z = 0.0f;
+  bool probes = false;      // preview view: draw the light probes (a bake with them)
+  bool has_sphere = false;  // preview view: the probe-lit sphere at (sphere_x, ...)
+  float sphere_x = 0.0f, sphere_y = 0.0f, sphere_z = 0.0f;
 };
 
 // Throws bounce::Error for bad requests and failed bakes or renders.

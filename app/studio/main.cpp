@@ -1,6 +1,5 @@
 // bounce-studio: the desktop editor, or (with --screenshot) one view rendered
 // to a PNG without user interaction.
-#include <cmath>
 #include <cstdio>
 
 #include <QVTKOpenGLNativeWidget.h>
@@ -12,6 +11,7 @@
 #include "bounce/error.h"
 #include "headless.h"
 #include "main_window.h"
+#include "screenshot_options.h"
 #include "vtk_error_capture.h"
 
 namespace {
@@ -46,36 +46,8 @@ int main(int argc, char** argv) {
   parser.addHelpOption();
   parser.addVersionOption();
   parser.addPositionalArgument("input", "Scene (folder, scene.json or mesh) or bake folder");
-  const QCommandLineOption screenshot("screenshot", "Render one view to this PNG and exit.",
-                                      "out.png");
-  const QCommandLineOption view(
-      "view", "View for --screenshot: voxels, patches, matrix, error, preview or report.", "view",
-      "voxels");
-  const QCommandLineOption size("size", "Picture size for --screenshot, WxH.", "WxH", "1024x768");
-  const QCommandLineOption voxel("voxel", "Bake with this many voxels along the longest side.",
-                                 "N");
-  const QCommandLineOption patches_total("patches-total", "Bake for about this many patches.", "N");
-  const QCommandLineOption codec("codec", "Matrix storage: auto, dense, paper or ours.", "codec");
-  const QCommandLineOption size_limit(
-      "size-limit",
-      "Largest compressed matrix the error budget's search may give, as a share of dense.", "F");
-  const QCommandLineOption bake_out("bake-out", "Keep the bake folder of --screenshot here.",
-                                    "dir");
-  const QCommandLineOption pick("pick-patch", "Patches view: pick this patch, as a click would.",
-                                "index");
-  const QCommandLineOption light("light", "Preview view: move the scene's light to x,y,z first.",
-                                 "x,y,z");
-  const QCommandLineOption report(
-      "report", "Report view: show this report.json (default: run the quick sweep on the scene).",
-      "report.json");
-  const QCommandLineOption passes(
-      "passes", "Preview view: the passes to show, any of direct,indirect,ao (default: all).",
-      "list");
-  const QCommandLineOption compare_codec(
-      "compare-codec", "Error view: re-compress the bake with paper or ours and show that.",
-      "codec");
-  parser.addOptions({screenshot, view, size, voxel, patches_total, codec, size_limit, bake_out,
-                     pick, light, report, passes, compare_codec});
+  const bounce::studio::ScreenshotOptions screenshot;
+  screenshot.add_to(parser);
   if (asks_for_help_or_version(argc, argv)) {
     QCoreApplication core(argc, argv);
     name_application();
@@ -90,59 +62,9 @@ int main(int argc, char** argv) {
   parser.process(app);
   const QStringList inputs = parser.positionalArguments();
 
-  auto integer = [&](const QCommandLineOption& option, int fallback) {
-    if (!parser.isSet(option)) return fallback;
-    bool ok = false;
-    const int v = parser.value(option).toInt(&ok);
-    if (!ok || v < 0)
-      throw bounce::Error(
-          "--" + option.names().front().toStdString(),
-          "must be a whole number >= 0, got '" + parser.value(option).toStdString() + "'");
-    return v;
-  };
-
   try {
-    if (parser.isSet(screenshot)) {
-      if (inputs.size() != 1)
-        throw bounce::Error("--screenshot", "needs exactly one scene or bake folder");
-      if (parser.isSet(voxel) && parser.isSet(patches_total))
-        throw bounce::Error("--patches-total", "cannot be combined with --voxel");
-      bounce::studio::ScreenshotRequest r;
-      r.input = inputs.front();
-      r.screenshot = parser.value(screenshot);
-      r.view = parser.value(view);
-      const QStringList wh = parser.value(size).split('x');
-      bool ok_w = false, ok_h = false;
-      if (wh.size() == 2) {
-        r.width = wh[0].toInt(&ok_w);
-        r.height = wh[1].toInt(&ok_h);
-      }
-      if (!ok_w || !ok_h)
-        throw bounce::Error(
-            "--size", "must be WxH, e.g. 1024x768, got '" + parser.value(size).toStdString() + "'");
-      r.voxel = integer(voxel, 0);
-      r.patches_total = integer(patches_total, 0);
-      r.codec = parser.value(codec);
-      r.size_limit = parser.value(size_limit);
-      r.bake_out = parser.value(bake_out);
-      r.pick_patch = integer(pick, -1);
-      r.compare_codec = parser.value(compare_codec);
-      r.report = parser.value(report);
-      r.passes = parser.value(passes);
-      if (parser.isSet(light)) {
-        const QStringList xyz = parser.value(light).split(',');
-        bool ok = xyz.size() == 3;
-        float* coordinate[3] = {&r.light_x, &r.light_y, &r.light_z};
-        for (int k = 0; ok && k < 3; ++k) {
-          *coordinate[k] = xyz[k].toFloat(&ok);
-          ok = ok && std::isfinite(*coordinate[k]);
-        }
-        if (!ok)
-          throw bounce::Error("--light", "must be x,y,z (three numbers), got '" +
-                                             parser.value(light).toStdString() + "'");
-        r.has_light = true;
-      }
-      bounce::studio::take_screenshot(r);
+    if (screenshot.requested(parser)) {
+      bounce::studio::take_screenshot(screenshot.read(parser, inputs));
       return 0;
     }
     bounce::studio::MainWindow window;

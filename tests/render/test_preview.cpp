@@ -9,36 +9,11 @@
 
 #include <QElapsedTimer>
 
-#include "preview_widget.h"
-#include "render_support.h"
-#include "view_jobs.h"
+#include "preview_test_support.h"
 
 namespace bounce::render_test {
 
 namespace {
-
-struct Rgb {
-  double r = 0, g = 0, b = 0;
-  double luminance() const { return 0.2126 * r + 0.7152 * g + 0.0722 * b; }
-};
-
-// Mean 8-bit colour of the (2h+1)^2 pixels around `at`.
-Rgb mean_around(const QImage& image, QPointF at, int h = 3) {
-  Rgb sum;
-  int n = 0;
-  const QImage im = image.convertToFormat(QImage::Format_RGB32);
-  for (int y = static_cast<int>(at.y()) - h; y <= static_cast<int>(at.y()) + h; ++y)
-    for (int x = static_cast<int>(at.x()) - h; x <= static_cast<int>(at.x()) + h; ++x) {
-      if (x < 0 || y < 0 || x >= im.width() || y >= im.height()) continue;
-      const QRgb c = im.pixel(x, y);
-      sum.r += qRed(c);
-      sum.g += qGreen(c);
-      sum.b += qBlue(c);
-      ++n;
-    }
-  if (n > 0) sum = {sum.r / n, sum.g / n, sum.b / n};
-  return sum;
-}
 
 // Mean luminance of the columns [x0, x1) of the picture.
 double mean_luminance(const QImage& image, int x0, int x1) {
@@ -54,28 +29,12 @@ double mean_luminance(const QImage& image, int x0, int x1) {
 
 }  // namespace
 
-class Preview : public RenderTest {
+class Preview : public PreviewOfBake {
  protected:
   void SetUp() override {
-    RenderTest::SetUp();
-    data_ = load_fixture();
-    ASSERT_TRUE(data_->scene) << "the fixture's scene is not on disk";
-    view_.resize(400, 300);
-    view_.set_overlay(false);  // text would land on the pixels compared
-    view_.show();
-    settle();
-    view_.set_data(data_);
-    settle();
+    PreviewOfBake::SetUp();
+    open(BOUNCE_RENDER_BAKE);
   }
-  QImage shot(views::PreviewWidget::Passes passes) {
-    view_.set_passes(passes);
-    const QImage image = view_.render_image();
-    EXPECT_TRUE(view_.gl_error().isEmpty()) << view_.gl_error().toStdString();
-    return image;
-  }
-  std::shared_ptr<const views::BakeViewData> data_;
-  views::ViewJobs jobs_;
-  views::PreviewWidget view_{jobs_};
 };
 
 TEST_F(Preview, RendersTheLitBox) {
@@ -260,24 +219,6 @@ TEST_F(Preview, AmbientOcclusionDarkensCorners) {
 // x = -1, z = -1) times Kd 0.9; the fence (z = 1, x in [-1, 1], y in [0, 1])
 // is cut by fence-mask.png into 4 x 4 squares, solid where column + row
 // (counted from the top left) is even.
-// The preview at 400 x 300 without overlay on the bake folder `bake`.
-class PreviewOfBake : public RenderTest {
- protected:
-  void open(const char* bake) {
-    data_ = views::load_bake_view_data(bake);
-    ASSERT_TRUE(data_->scene) << "the scene of " << bake << " is not on disk";
-    view_.resize(400, 300);
-    view_.set_overlay(false);
-    view_.show();
-    settle();
-    view_.set_data(data_);
-    settle();
-  }
-  std::shared_ptr<const views::BakeViewData> data_;
-  views::ViewJobs jobs_;
-  views::PreviewWidget view_{jobs_};
-};
-
 class TexturedPreview : public PreviewOfBake {
  protected:
   void SetUp() override {

@@ -97,6 +97,10 @@ TEST_F(StudioCli, BadOptionsFailWithOneLine) {
     std::string args, names;
   } cases[] = {
       {fixture_bake().string() + shot + " --view nonsense", "--view"},
+      {fixture_bake().string() + shot + " --view preview --sphere 0,1", "--sphere"},
+      {fixture_bake().string() + shot + " --view voxels --probes", "--probes"},
+      // The fixture was baked without light probes.
+      {fixture_bake().string() + shot + " --view preview --probes", "--light-probes"},
   };
   for (const auto& c : cases) {
     const CommandRun r = run_studio(c.args);
