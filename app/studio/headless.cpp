@@ -46,9 +46,8 @@ views::PreviewWidget::Passes preview_passes(const QString& list) {
   return p;
 }
 
-}  // namespace
-
-void take_screenshot(const ScreenshotRequest& r) {
+// Every option against the view it belongs to, before any bake.
+void check_request(const ScreenshotRequest& r) {
   if (r.view != "voxels" && r.view != "patches" && r.view != "matrix" && r.view != "error" &&
       r.view != "preview" && r.view != "report")
     throw Error("--view", "must be voxels, patches, matrix, error, preview or report, got '" +
@@ -67,55 +66,89 @@ void take_screenshot(const ScreenshotRequest& r) {
   preview_passes(r.passes);  // bad names fail before any bake
   if (r.width < 64 || r.height < 64 || r.width > 8192 || r.height > 8192)
     throw Error("--size", "must be WxH with each side between 64 and 8192");
-  if (r.view == "report") {
-    take_report_screenshot(r);
-    return;
-  }
+}
 
-  std::shared_ptr<const views::BakeViewData> data;
-  QTemporaryDir temp;
-  if (is_bake_folder(r.input.toStdString())) {
-    data = views::load_bake_view_data(r.input.toStdString());
-  } else {
-    // The same mapping from options to BakeSettings as the window's panel.
-    SettingsPanel panel;
-    if (r.voxel > 0) panel.set_grid(SettingsPanel::GridChoice::VoxelSize, r.voxel);
-    if (r.patches_total > 0)
-      panel.set_grid(SettingsPanel::GridChoice::PatchesTotal, r.patches_total);
-    for (const auto& [option, setting, text] :
-         {std::tuple<const char*, const char*, QString>{"--codec", "codec", r.codec},
-          {"--size-limit", "size_limit", r.size_limit}}) {
-      if (text.isEmpty()) continue;
-      try {
-        // The panel's spin boxes would clamp a value out of range: check it
-        // as a bake would first, so a wrong value is an error, not another bake.
-        const SettingRow& row = setting_row(setting);
-        BakeSettings check;
-        row.set(check, parse_setting(row, text.toStdString()));
-        check.validate();
-        panel.set(setting, text.toStdString());
-      } catch (const BakeSettings::InvalidSetting& e) {
-        throw Error(option, e.what());
-      }
+// The bake folder given, or the scene baked (into --bake-out or `temp`).
+std::shared_ptr<const views::BakeViewData> load_or_bake(const ScreenshotRequest& r,
+                                                        const QTemporaryDir& temp) {
+  if (is_bake_folder(r.input.toStdString()))
+    return views::load_bake_view_data(r.input.toStdString());
+  // The same mapping from options to BakeSettings as the window's panel.
+  SettingsPanel panel;
+  if (r.voxel > 0) panel.set_grid(SettingsPanel::GridChoice::VoxelSize, r.voxel);
+  if (r.patches_total > 0) panel.set_grid(SettingsPanel::GridChoice::PatchesTotal, r.patches_total);
+  for (const auto& [option, setting, text] :
+       {std::tuple<const char*, const char*, QString>{"--codec", "codec", r.codec},
+        {"--size-limit", "size_limit", r.size_limit}}) {
+    if (text.isEmpty()) continue;
+    try {
+      // The panel's spin boxes would clamp a value out of range: check it
+      // as a bake would first, so a wrong value is an error, not another bake.
+      const SettingRow& row = setting_row(setting);
+      BakeSettings check;
+      row.set(check, parse_setting(row, text.toStdString()));
+      check.validate();
+      panel.set(setting, text.toStdString());
+    } catch (const BakeSettings::InvalidSetting& e) {
+      throw Error(option, e.what());
     }
-    if (r.bake_out.isEmpty() && !temp.isValid())
-      throw Error("--bake-out", "no temporary folder available; give one");
-    const QString folder = r.bake_out.isEmpty() ? temp.path() + "/bake" : r.bake_out;
-    Progress progress;
-    data =
-        run_bake_job(r.input.toStdString(), panel.settings(), folder.toStdString(), progress).data;
   }
+  if (r.bake_out.isEmpty() && !temp.isValid())
+    throw Error("--bake-out", "no temporary folder available; give one");
+  const QString folder = r.bake_out.isEmpty() ? temp.path() + "/bake" : r.bake_out;
+  Progress progress;
+  return run_bake_job(r.input.toStdString(), panel.settings(), folder.toStdString(), progress).data;
+}
 
-  // The views' computations run here; the picture is taken once they are
-  // shown.
-  views::ViewJobs jobs;
-  QWidget* view = nullptr;
-  std::unique_ptr<QWidget> owner;
+// The views own themselves through `owner` from the start, so that an error
+// while setting one up deletes it.
+void make_preview_view(const ScreenshotRequest& r, std::shared_ptr<const views::BakeViewData> data,
+                       views::ViewJobs& jobs, std::unique_ptr<QWidget>& owner) {
+  auto* v = new views::PreviewWidget(jobs);
+  owner.reset(v);
+  v->set_data(data);
+  v->set_passes(preview_passes(r.passes));
+  if (r.has_light) v->set_light_position({r.light_x, r.light_y, r.light_z}, true);
+  if ((r.probes || r.has_sphere) && !v->has_probes())
+    throw Error(r.input.toStdString(), "has no light probes to draw: bake it with --light-probes");
+  v->set_probes_shown(r.probes);
+  if (r.has_sphere) {
+    v->set_sphere_position({r.sphere_x, r.sphere_y, r.sphere_z});
+    v->set_sphere_shown(true);
+  }
+}
+
+void make_error_view(const ScreenshotRequest& r, std::shared_ptr<const views::BakeViewData> data,
+                     views::ViewJobs& jobs, std::unique_ptr<QWidget>& owner) {
+  auto* v = new views::ErrorView(jobs);
+  owner.reset(v);
+  v->set_data(data);
+  if (!r.compare_codec.isEmpty()) {
+    if (r.compare_codec != "paper" && r.compare_codec != "ours")
+      throw Error("--compare-codec",
+                  "must be paper or ours, got '" + r.compare_codec.toStdString() + "'");
+    // The comparison runs on the view jobs: wait for it.
+    bool done = false;
+    QString failure;
+    QObject::connect(v, &views::ErrorView::comparison_ready, [&] { done = true; });
+    QObject::connect(v, &views::ErrorView::comparison_failed, [&](const QString& why) {
+      failure = why;
+      done = true;
+    });
+    v->compare(
+        r.compare_codec == "paper" ? CodecChoice::LargestEntries : CodecChoice::LightWeighted,
+        std::nullopt);
+    while (!done) QApplication::processEvents(QEventLoop::WaitForMoreEvents);
+    if (!failure.isEmpty()) throw Error("--compare-codec", failure.toStdString());
+  }
+}
+
+void make_view(const ScreenshotRequest& r, std::shared_ptr<const views::BakeViewData> data,
+               views::ViewJobs& jobs, std::unique_ptr<QWidget>& owner) {
   if (r.view == "voxels") {
     auto* v = new views::VoxelView;
     owner.reset(v);
     v->set_data(data);
-    view = v;
   } else if (r.view == "patches") {
     auto* v = new views::PatchView(jobs);
     owner.reset(v);
@@ -126,52 +159,19 @@ void take_screenshot(const ScreenshotRequest& r) {
                                         " patches, got " + std::to_string(r.pick_patch));
       v->select_patch(r.pick_patch);
     }
-    view = v;
   } else if (r.view == "preview") {
-    auto* v = new views::PreviewWidget(jobs);
-    owner.reset(v);
-    v->set_data(data);
-    v->set_passes(preview_passes(r.passes));
-    if (r.has_light) v->set_light_position({r.light_x, r.light_y, r.light_z}, true);
-    if ((r.probes || r.has_sphere) && !v->has_probes())
-      throw Error(r.input.toStdString(),
-                  "has no light probes to draw: bake it with --light-probes");
-    v->set_probes_shown(r.probes);
-    if (r.has_sphere) {
-      v->set_sphere_position({r.sphere_x, r.sphere_y, r.sphere_z});
-      v->set_sphere_shown(true);
-    }
-    view = v;
+    make_preview_view(r, std::move(data), jobs, owner);
   } else if (r.view == "error") {
-    auto* v = new views::ErrorView(jobs);
-    owner.reset(v);
-    v->set_data(data);
-    if (!r.compare_codec.isEmpty()) {
-      if (r.compare_codec != "paper" && r.compare_codec != "ours")
-        throw Error("--compare-codec",
-                    "must be paper or ours, got '" + r.compare_codec.toStdString() + "'");
-      // The comparison runs on the view jobs: wait for it.
-      bool done = false;
-      QString failure;
-      QObject::connect(v, &views::ErrorView::comparison_ready, [&] { done = true; });
-      QObject::connect(v, &views::ErrorView::comparison_failed, [&](const QString& why) {
-        failure = why;
-        done = true;
-      });
-      v->compare(
-          r.compare_codec == "paper" ? CodecChoice::LargestEntries : CodecChoice::LightWeighted,
-          std::nullopt);
-      while (!done) QApplication::processEvents(QEventLoop::WaitForMoreEvents);
-      if (!failure.isEmpty()) throw Error("--compare-codec", failure.toStdString());
-    }
-    view = v;
+    make_error_view(r, std::move(data), jobs, owner);
   } else {
     auto* v = new views::MatrixView;
     owner.reset(v);
     v->set_data(data);
-    view = v;
   }
-  jobs.wait_idle();
+}
+
+// The view at the requested size, once shown and fitted, as a picture.
+QImage capture(QWidget* view, const ScreenshotRequest& r) {
   view->resize(r.width, r.height);
   view->show();
   settle();
@@ -181,15 +181,32 @@ void take_screenshot(const ScreenshotRequest& r) {
     e->block_panel()->fit();
   }
   settle();
-  QImage image;
   if (auto* p = dynamic_cast<views::PreviewWidget*>(view)) {
-    p->measure_frame_ms(10);    // so the overlay's frame rate is a measured one
-    image = p->render_image();  // grabFramebuffer: the GL picture with its overlay
+    p->measure_frame_ms(10);           // so the overlay's frame rate is a measured one
+    QImage image = p->render_image();  // grabFramebuffer: the GL picture with its overlay
     if (!p->gl_error().isEmpty()) throw Error("preview", p->gl_error().toStdString());
-  } else {
-    image = view->grab().toImage();
+    return image;
   }
-  save_view_png(image, r.screenshot);
+  return view->grab().toImage();
+}
+
+}  // namespace
+
+void take_screenshot(const ScreenshotRequest& r) {
+  check_request(r);
+  if (r.view == "report") {
+    take_report_screenshot(r);
+    return;
+  }
+  QTemporaryDir temp;
+  std::shared_ptr<const views::BakeViewData> data = load_or_bake(r, temp);
+  // The views' computations run here; the picture is taken once they are
+  // shown.
+  views::ViewJobs jobs;
+  std::unique_ptr<QWidget> owner;
+  make_view(r, std::move(data), jobs, owner);
+  jobs.wait_idle();
+  save_view_png(capture(owner.get(), r), r.screenshot);
 }
 
 void save_view_png(const QImage& image, const QString& path) {
