@@ -55,8 +55,9 @@ std::string table(const std::vector<ReportRow>& rows) {
   t << "| mode | patches | bounces | codec | bake s | update ms (direct + T b) | matrix KiB | "
        "compression: worst-light error | "
        "indirect rel. RMSE | full rel. RMSE | full PSNR dB | full SSIM | vertex rel. RMSE | "
-       "layout error (picture / vertex) | mean level (picture / vertex) | Pareto |\n";
-  t << "|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
+       "layout error (picture / vertex) | mean level (picture / vertex) | "
+       "probes rel. RMSE (level), count | Pareto |\n";
+  t << "|---|---:|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|:---:|\n";
   for (const ReportRow& r : rows) {
     t << "| " << r.mode << " | " << r.patches << " | " << r.bounces << " | " << r.codec << " | "
       << fixed(r.bake_seconds, 2) << " | " << fixed(r.update_ms(), 2) << " ("
@@ -67,7 +68,11 @@ std::string table(const std::vector<ReportRow>& rows) {
       << fixed(r.full.ssim, 4) << " | " << fixed(r.vertex_error, 4) << " | "
       << fixed(r.layout_indirect_error, 4) << " / " << fixed(r.layout_vertex_error, 4) << " | "
       << fixed(r.indirect_level, 3) << " / " << fixed(r.vertex_level, 3) << " | "
-      << (r.pareto ? "*" : "") << " |\n";
+      << (r.probe_level > 0.0 || r.probe_error > 0.0
+              ? fixed(r.probe_error, 4) + " (" + fixed(r.probe_level, 3) + "), " +
+                    std::to_string(r.probes)
+              : std::string("-"))
+      << " | " << (r.pareto ? "*" : "") << " |\n";
   }
   return t.str();
 }
@@ -345,6 +350,11 @@ void register_report(CLI::App& app) {
                   "from the patches it sees through ray-traced form factors; default) or nearest "
                   "(a weighted mean of the patches around it)")
       ->check(CLI::IsMember({"final-gather", "nearest"}));
+  cmd->add_flag("--no-light-probes{false}", opt->sweep.light_probes,
+                "Leave out the light probes' column (by default every row is baked with light "
+                "probes, and their SH, blended at up to 64 points of the empty space, is "
+                "measured against the reference's indirect irradiance there for the six axis "
+                "normals)");
   cmd->add_option("--seed", opt->sweep.seed,
                   "Sampling seed of every bake (default 1, as bounce bake); run a few to see how "
                   "much one row depends on where the samples fell");

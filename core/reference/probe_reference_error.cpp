@@ -13,30 +13,35 @@ namespace {
 constexpr std::size_t kAxes = 6;  // the first six probe_directions()
 }  // namespace
 
-ProbeReferenceError probe_reference_error(const ReferencePathTracer& reference,
-                                          const std::vector<glm::vec3>& positions,
-                                          const std::vector<glm::vec3>& sh, std::size_t max_probes,
-                                          Progress* progress) {
-  if (sh.size() != positions.size() * kShCoefficients)
-    throw Error("light probes", std::to_string(sh.size()) + " SH coefficients for " +
-                                    std::to_string(positions.size()) + " probes");
-  ProbeReferenceError out;
-  out.samples = reference.settings().samples;
-  if (positions.empty() || max_probes == 0) return out;
-  const std::size_t stride = (positions.size() + max_probes - 1) / max_probes;
+std::vector<ReferencePoint> probe_reference_points(const std::vector<glm::vec3>& positions,
+                                                   std::size_t max_probes,
+                                                   std::vector<glm::vec3>& chosen) {
   std::vector<ReferencePoint> points;
-  std::vector<std::size_t> probe_of_point;
-  for (std::size_t p = 0; p < positions.size(); p += stride)
-    for (std::size_t k = 0; k < kAxes; ++k) {
+  chosen.clear();
+  if (positions.empty() || max_probes == 0) return points;
+  const std::size_t stride = (positions.size() + max_probes - 1) / max_probes;
+  for (std::size_t p = 0; p < positions.size(); p += stride) {
+    chosen.push_back(positions[p]);
+    for (std::size_t k = 0; k < kAxes; ++k)
       points.push_back({positions[p], probe_directions()[k], glm::vec3(0.0f), glm::vec3(0.0f)});
-      probe_of_point.push_back(p);
-    }
+  }
+  return points;
+}
+
+ProbeReferenceError compare_probe_sh(const std::vector<ReferencePoint>& points,
+                                     const PointReference& ref, const std::vector<glm::vec3>& sh) {
+  if (sh.size() * kAxes != points.size() * kShCoefficients ||
+      ref.indirect_irradiance.size() != points.size())
+    throw Error("light probes", std::to_string(sh.size()) + " SH coefficients and " +
+                                    std::to_string(ref.indirect_irradiance.size()) +
+                                    " reference values for " + std::to_string(points.size()) +
+                                    " points");
+  ProbeReferenceError out;
+  out.samples = ref.samples;
   out.probes_measured = points.size() / kAxes;
-  const PointReference ref = reference.estimate_points(points, progress);
   double diff_sq = 0.0, ref_sq = 0.0, var = 0.0, probe_sum = 0.0, ref_sum = 0.0;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const glm::vec3 e =
-        sh_irradiance(sh.data() + probe_of_point[i] * kShCoefficients, points[i].normal);
+    const glm::vec3 e = sh_irradiance(sh.data() + (i / kAxes) * kShCoefficients, points[i].normal);
     for (int c = 0; c < 3; ++c) {
       const double r = ref.indirect_irradiance[i][c];
       diff_sq += (e[c] - r) * (e[c] - r);
@@ -52,6 +57,26 @@ ProbeReferenceError probe_reference_error(const ReferencePathTracer& reference,
   out.noise_corrected_rmse = std::sqrt(std::max(0.0, (diff_sq - var) / ref_sq));
   out.level = ref_sum > 0.0 ? probe_sum / ref_sum : 0.0;
   return out;
+}
+
+ProbeReferenceError probe_reference_error(const ReferencePathTracer& reference,
+                                          const std::vector<glm::vec3>& positions,
+                                          const std::vector<glm::vec3>& sh, std::size_t max_probes,
+                                          Progress* progress) {
+  if (sh.size() != positions.size() * kShCoefficients)
+    throw Error("light probes", std::to_string(sh.size()) + " SH coefficients for " +
+                                    std::to_string(positions.size()) + " probes");
+  std::vector<glm::vec3> chosen;
+  const std::vector<ReferencePoint> points = probe_reference_points(positions, max_probes, chosen);
+  ProbeReferenceError out;
+  out.samples = reference.settings().samples;
+  if (points.empty()) return out;
+  const std::size_t stride = (positions.size() + max_probes - 1) / max_probes;
+  std::vector<glm::vec3> chosen_sh;
+  for (std::size_t p = 0; p < positions.size(); p += stride)
+    chosen_sh.insert(chosen_sh.end(), sh.begin() + static_cast<std::ptrdiff_t>(p * kShCoefficients),
+                     sh.begin() + static_cast<std::ptrdiff_t>((p + 1) * kShCoefficients));
+  return compare_probe_sh(points, reference.estimate_points(points, progress), chosen_sh);
 }
 
 }  // namespace bounce

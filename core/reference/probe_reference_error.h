@@ -27,6 +27,20 @@ struct ProbeReferenceError {
   double level = 0.0;
 };
 
+// The points the reference is estimated at for probes at `positions`: every
+// k-th position, k chosen so that at most `max_probes` are, each with the
+// six axis normals (probe p's normal k at 6 p + k), and the positions chosen.
+std::vector<ReferencePoint> probe_reference_points(const std::vector<glm::vec3>& positions,
+                                                   std::size_t max_probes,
+                                                   std::vector<glm::vec3>& chosen);
+
+// `sh` (kShCoefficients per chosen position) against `reference` at
+// `points` (probe_reference_points). Throws bounce::Error when the sizes
+// differ.
+ProbeReferenceError compare_probe_sh(const std::vector<ReferencePoint>& points,
+                                     const PointReference& reference,
+                                     const std::vector<glm::vec3>& sh);
+
 // Measures every k-th probe, k chosen so that at most `max_probes` are.
 // `sh` holds kShCoefficients per probe. Throws bounce::Error when the sizes
 // differ; Cancelled when progress asks to stop.

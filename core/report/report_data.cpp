@@ -94,6 +94,7 @@ ordered_json report_to_json(const ReportData& report) {
                     {"width", r.width},
                     {"height", r.height},
                     {"vertices", r.vertices},
+                    {"probe_points", r.probe_points},
                     {"images_from_cache", r.images_from_cache},
                     {"vertices_from_cache", r.vertices_from_cache},
                     {"cache", r.cache},
@@ -129,6 +130,9 @@ ordered_json report_to_json(const ReportData& report) {
          {"vertex_indirect_level", row.vertex_level},
          {"layout_image_indirect_level", row.layout_indirect_level},
          {"layout_vertex_indirect_level", row.layout_vertex_level},
+         {"probe_noise_corrected_relative_rmse", row.probe_error},
+         {"probe_level", row.probe_level},
+         {"probes", row.probes},
          {"vertex_indirect",
           {{"relative_rmse", row.vertex.relative_rmse},
            {"mean_relative", row.vertex.mean_relative},
@@ -153,6 +157,7 @@ ReportData report_from_json(const json& j, const std::string& where) {
     d.reference.width = r.value("width", 0);
     d.reference.height = r.value("height", 0);
     d.reference.vertices = r.value("vertices", std::size_t{0});
+    d.reference.probe_points = r.value("probe_points", std::size_t{0});
     d.reference.images_from_cache = r.value("images_from_cache", false);
     d.reference.vertices_from_cache = r.value("vertices_from_cache", false);
     d.reference.cache = r.value("cache", std::string());
@@ -193,6 +198,10 @@ ReportData report_from_json(const json& j, const std::string& where) {
       row.vertex_level = jr.value("vertex_indirect_level", 0.0);
       row.layout_indirect_level = jr.value("layout_image_indirect_level", 0.0);
       row.layout_vertex_level = jr.value("layout_vertex_indirect_level", 0.0);
+      // Reports from before the probe column have none (0).
+      row.probe_error = jr.value("probe_noise_corrected_relative_rmse", 0.0);
+      row.probe_level = jr.value("probe_level", 0.0);
+      row.probes = jr.value("probes", std::size_t{0});
       const json& v = jr.at("vertex_indirect");
       row.vertex.relative_rmse = v.at("relative_rmse").get<double>();
       row.vertex.mean_relative = v.at("mean_relative").get<double>();

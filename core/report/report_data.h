@@ -52,6 +52,11 @@ struct ReportRow {
   // over the picture's covered pixels (R+G+B) and over the vertices.
   double indirect_level = 0.0, vertex_level = 0.0;
   double layout_indirect_level = 0.0, layout_vertex_level = 0.0;  // with exact patch values
+  // The light probes' SH blended at the report's probe points against the
+  // reference there (report/report_probes.h): relative RMSE with the
+  // reference's noise taken out, and the mean level. 0: not measured.
+  double probe_error = 0.0, probe_level = 0.0;
+  std::size_t probes = 0;  // the row's light probes
   bool pareto = false;
   double update_ms() const { return direct_ms + multiply_ms; }
 };
@@ -61,6 +66,7 @@ struct ReportReference {
   int samples_per_pixel = 0, samples_per_vertex = 0;
   int width = 0, height = 0;
   std::size_t vertices = 0;
+  std::size_t probe_points = 0;  // points of the probe column, 0 without it
   bool images_from_cache = false, vertices_from_cache = false;
   std::string cache;
   double seconds = 0.0;

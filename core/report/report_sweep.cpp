@@ -1,11 +1,14 @@
 #include "report/report_sweep.h"
 
+#include <optional>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "bake/bake.h"
 #include "bake/matrix_storage.h"
@@ -16,6 +19,7 @@
 #include "reference/reference_cache.h"
 #include "report/baked_multiply.h"
 #include "report/exact_patch_light.h"
+#include "report/report_probes.h"
 #include "runtime/camera_image.h"
 #include "runtime/final_gather.h"
 #include "runtime/final_gather_build.h"
@@ -189,6 +193,12 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
   rr.seconds = since(t);
   rr.noise_floor_full = noise_floor(ref.full, ref.full_variance, mask);
   rr.noise_floor_indirect = noise_floor(ref.indirect, ref.indirect_variance, mask);
+  std::optional<ReportProbes> probe_column;
+  if (opt.light_probes) {
+    if (log) log("light probes: reference at the evaluation points");
+    probe_column.emplace(tracer, pt, opt.eval_grid, cache, &progress);
+    rr.probe_points = probe_column->points();
+  }
 
   // The pictures' settings, and for the final gather the points it gathers
   // at: the camera's primary hits (with the direct image, the same for every
@@ -229,6 +239,7 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
       bs.codec = CodecChoice::Dense;
       bs.pictures = false;
       bs.seed = opt.seed;
+      bs.light_probes = opt.light_probes;
       // OpenBLAS: no OpenCL kernel compile inside a timing sweep.
       bs.transport.backend = TransportSettings::Backend::OpenBLAS;
       bs.transport.bounces = bounces.front();
@@ -240,7 +251,7 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
           transport_first = s.seconds;
         else if (s.name == "evaluation lights")
           probe_seconds = s.seconds;
-        else if (s.name != "compress")
+        else if (s.name != "compress" && s.name != "light probes")  // probes: off by default
           shared += s.seconds;
       }
       const TransferGrid grid = TransferGrid::from(bake.voxels.grid);
@@ -376,11 +387,18 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
           std::vector<glm::vec3> reflected(light.indirect.size());
           for (std::size_t p = 0; p < reflected.size(); ++p)
             reflected[p] = light.first_hit[p] + light.indirect[p];
+          const std::vector<glm::vec3> sample_light =
+              sample_exitance(bake.samples, bake.patches, light.sample_irradiance, light.indirect);
           const Measured m = measure(
-              light.indirect, reflected,
-              sample_exitance(bake.samples, bake.patches, light.sample_irradiance, light.indirect),
+              light.indirect, reflected, sample_light,
               near_exitance(pixel_gather.near, &tracer, scene.lights, area, light.indirect),
               near_exitance(vertex_gather.near, &tracer, scene.lights, area, light.indirect));
+          if (probe_column) {
+            const ProbeReferenceError pe = probe_column->measure(bake, reflected, sample_light);
+            row.probe_error = pe.noise_corrected_rmse;
+            row.probe_level = pe.level;
+            row.probes = bake.light_probes.size();
+          }
           row.full = m.full;
           row.indirect = m.indirect;
           row.vertex = m.vertex;

@@ -42,6 +42,8 @@ struct ReportSweepSettings {
   int eval_grid = 0;          // evaluation mesh: the scene refined on this many cells
   std::uint64_t seed = 1;     // sampling seed of every bake (BakeSettings::seed)
   std::string transfer;       // final-gather (default) or nearest
+  // Bake every row with light probes and measure them (report/report_probes.h).
+  bool light_probes = true;
 
   // The defaults of `bounce report`, or its --quick ones (seconds, for tests
   // and the studio): fills what is empty or zero.

@@ -36,7 +36,8 @@ TEST(CliReport, QuickSweepOnTheCornellBox) {
 
   std::map<std::string, std::map<std::string, double>> power;  // setting -> bounces -> T b power
   bool any_pareto = false;
-  std::map<std::string, std::map<std::string, double>> layout;  // bake -> key -> error
+  std::map<std::string, std::map<std::string, double>> layout;       // bake -> key -> error
+  std::map<std::string, std::map<std::string, double>> probe_level;  // setting -> bounces -> level
   for (const json& row : report.at("rows")) {
     // The compression's own light error: none for the exact matrix, some
     // for the compressed ones.
@@ -81,10 +82,28 @@ TEST(CliReport, QuickSweepOnTheCornellBox) {
     EXPECT_GT(row.at("update_ms").get<double>(), 0.0);
     EXPECT_GT(row.at("matrix_bytes").get<std::size_t>(), 0u);
     any_pareto = any_pareto || row.at("pareto").get<bool>();
-    if (row.at("codec") == "dense")
-      power[row.at("mode").get<std::string>() + std::to_string(row.at("patches").get<int>())]
-           [row.at("bounces").get<std::string>()] = row.at("indirect_power").get<double>();
+    // The light probes' column: measured on every row; a grid with no probe
+    // gives every point nothing, which is all of the reference's light.
+    const double probe_error = row.at("probe_noise_corrected_relative_rmse").get<double>();
+    EXPECT_TRUE(std::isfinite(probe_error) && probe_error >= 0.0) << row.dump();
+    if (row.at("probes").get<std::size_t>() > 0)
+      EXPECT_GT(row.at("probe_level").get<double>(), 0.0) << row.dump();
+    else
+      EXPECT_NEAR(probe_error, 1.0, 1e-9) << row.dump();
+    if (row.at("codec") == "dense") {
+      const std::string setting =
+          row.at("mode").get<std::string>() + std::to_string(row.at("patches").get<int>());
+      power[setting][row.at("bounces").get<std::string>()] = row.at("indirect_power").get<double>();
+      if (row.at("probes").get<std::size_t>() > 0)
+        probe_level[setting][row.at("bounces").get<std::string>()] =
+            row.at("probe_level").get<double>();
+    }
   }
+  EXPECT_GT(report.at("reference").at("probe_points").get<std::size_t>(), 0u);
+  // The probes hold light reflected at least once: more bounces, more light
+  // at every probe, against the same reference.
+  for (const auto& [setting, level] : probe_level)
+    EXPECT_LT(level.at("1"), level.at("inf")) << setting;
   EXPECT_TRUE(any_pareto);
   ASSERT_EQ(power.size(), 4u);
   for (const auto& [setting, p] : power) {
@@ -99,10 +118,11 @@ TEST(CliReport, QuickSweepOnTheCornellBox) {
   }
 
   // Second run, one row: the reference is read back from the cache.
-  const RunResult again = run({"report", scene("cornell-box"), "--quick", "--modes", "virtual",
-                               "--patches", "60", "--bounces", "inf", "--codecs", "dense", "--json",
-                               "--out", (dir / "again").string(), "--cache", cache.string()},
-                              dir.path(), 120.0);
+  const RunResult again =
+      run({"report", scene("cornell-box"), "--quick", "--modes", "virtual", "--patches", "60",
+           "--bounces", "inf", "--codecs", "dense", "--json", "--no-light-probes", "--out",
+           (dir / "again").string(), "--cache", cache.string()},
+          dir.path(), 120.0);
   ASSERT_EQ(again.exit_code, 0) << again;
   const json second = parse_json(again.out);
   EXPECT_TRUE(second.at("reference").at("images_from_cache").get<bool>());
@@ -110,6 +130,9 @@ TEST(CliReport, QuickSweepOnTheCornellBox) {
   EXPECT_EQ(second.at("reference").at("noise_floor_indirect_relative_rmse"),
             report.at("reference").at("noise_floor_indirect_relative_rmse"));
   EXPECT_EQ(second.at("rows").size(), 1u);
+  // Without the probes' column.
+  EXPECT_EQ(second.at("reference").at("probe_points").get<std::size_t>(), 0u);
+  EXPECT_EQ(second.at("rows").at(0).at("probe_level").get<double>(), 0.0);
 }
 
 TEST(CliReport, BakeWithReferencePrintsItsErrorAndRunTime) {

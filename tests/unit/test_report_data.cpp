@@ -92,6 +92,10 @@ TEST(ReportData, JsonRoundTripAndErrorsNameTheFile) {
   d.rows[1].layout_indirect_error = 0.125;
   d.rows[1].layout_vertex_error = 0.25;
   d.rows[1].compression_light_error = 0.0175;
+  d.rows[1].probe_error = 0.0625;
+  d.rows[1].probe_level = 0.96875;
+  d.rows[1].probes = 138;
+  d.reference.probe_points = 46;
   mark_pareto(d.rows);
   const ReportData back = report_from_json(report_to_json(d), "test");
   EXPECT_EQ(back.scene_name, "box");
@@ -113,6 +117,11 @@ TEST(ReportData, JsonRoundTripAndErrorsNameTheFile) {
   EXPECT_EQ(back.rows[0].compression_light_error, 0.0);
   EXPECT_EQ(back.rows[0].layout_indirect_error, 0.0);
   EXPECT_EQ(back.rows[0].pareto, d.rows[0].pareto);
+  EXPECT_EQ(back.rows[1].probe_error, 0.0625);
+  EXPECT_EQ(back.rows[1].probe_level, 0.96875);
+  EXPECT_EQ(back.rows[1].probes, 138u);
+  EXPECT_EQ(back.rows[0].probes, 0u);
+  EXPECT_EQ(back.reference.probe_points, 46u);
 
   const test::ScratchDir dir("bounce-report-data");
   const auto bad = dir / "report.json";
