@@ -188,9 +188,9 @@ TEST_F(ThinWall, DarkSideNextToTheWallGetsNoLightFromTheLitSide) {
       "thin wall: lit-side level %.4g; lit point relative RMSE %.4f (reference noise %.4f); "
       "dark point: reference up to %.3g, blend off by up to %.3g (the blended probes' own "
       "error %.3g, %.1f%% of the lit level), naive blend off by at least %.3g (%.1f%%); "
-      "rays %d%s\n",
+      "rays %d, stage %d\n",
       level, lit_rmse, lit_noise, ref_dark_max, dark_max, probes_own, 100.0 * probes_own / level,
-      naive_min, 100.0 * naive_min / level, tested.rays, tested.widened ? " (widened)" : "");
+      naive_min, 100.0 * naive_min / level, tested.rays, static_cast<int>(tested.stage));
   // No path reaches the dark side: the reference there is zero to its noise.
   EXPECT_LT(ref_dark_max, 1e-3 * level);
   // The blend at the point is off by no more than its probes are at their
@@ -230,7 +230,7 @@ TEST_F(ThinWall, WeightsSumToOneAndStayOnThePointsSide) {
   const std::vector<glm::vec3>& positions = session.light_probes()->position;
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> x(0.02f, 1.98f), yz(0.02f, 0.98f);
-  int blends = 0, widened = 0;
+  int blends = 0, stages[4] = {0, 0, 0, 0}, rays = 0;
   for (int i = 0; i < 2000; ++i) {
     const glm::vec3 point(x(rng), yz(rng), yz(rng));
     if (point.x > kWallDark - 1e-3f && point.x < kWallLit + 1e-3f) continue;  // in the wall
@@ -247,9 +247,13 @@ TEST_F(ThinWall, WeightsSumToOneAndStayOnThePointsSide) {
     }
     EXPECT_NEAR(total, 1.0f, 1e-5f);
     ++blends;
-    widened += b.widened ? 1 : 0;
+    ++stages[static_cast<int>(b.stage)];
+    rays += b.rays;
   }
-  std::printf("%d blends, %d from the wider search\n", blends, widened);
+  std::printf(
+      "%d blends: %d trilinear, %d from the 27 cells, %d from the nearest probe; %.1f rays "
+      "each\n",
+      blends, stages[0], stages[1], stages[2], static_cast<double>(rays) / blends);
 }
 
 }  // namespace
