@@ -72,7 +72,7 @@ std::filesystem::path write_thin_wall_scene(const std::filesystem::path& dir) {
 }
 
 // One bake for every test: the room at 8 voxels with probes, lit once.
-class ThinWall : public ::testing::Test {
+class ProbeInterpolationThinWall : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     dir_ = std::make_unique<test::ScratchDir>("bounce-probe-interp");
@@ -97,8 +97,8 @@ class ThinWall : public ::testing::Test {
   static std::unique_ptr<test::ScratchDir> dir_;
   static std::unique_ptr<LightingSession> session_;
 };
-std::unique_ptr<test::ScratchDir> ThinWall::dir_;
-std::unique_ptr<LightingSession> ThinWall::session_;
+std::unique_ptr<test::ScratchDir> ProbeInterpolationThinWall::dir_;
+std::unique_ptr<LightingSession> ProbeInterpolationThinWall::session_;
 
 struct AxisIrradiance {
   glm::vec3 value[6];
@@ -121,7 +121,7 @@ PointReference reference_at(const RayTracer& tracer, const glm::vec3& point) {
   return ReferencePathTracer(tracer, rs).estimate_points(points);
 }
 
-TEST_F(ThinWall, DarkSideNextToTheWallGetsNoLightFromTheLitSide) {
+TEST_F(ProbeInterpolationThinWall, DarkSideNextToTheWallGetsNoLightFromTheLitSide) {
   LightingSession& session = *session_;
   const glm::vec3 dark(1.14f, 0.45f, 0.55f), lit(1.18f, 0.45f, 0.55f);
   const std::vector<glm::vec3>& positions = session.light_probes()->position;
@@ -208,7 +208,7 @@ TEST_F(ThinWall, DarkSideNextToTheWallGetsNoLightFromTheLitSide) {
   EXPECT_LT(lit_rmse, std::sqrt(0.2 * 0.2 + lit_noise * lit_noise));
 }
 
-TEST_F(ThinWall, AtAProbeTheBlendIsThatProbeExactly) {
+TEST_F(ProbeInterpolationThinWall, AtAProbeTheBlendIsThatProbeExactly) {
   LightingSession& session = *session_;
   const std::vector<glm::vec3>& positions = session.light_probes()->position;
   std::vector<glm::vec3> all;
@@ -225,7 +225,7 @@ TEST_F(ThinWall, AtAProbeTheBlendIsThatProbeExactly) {
   }
 }
 
-TEST_F(ThinWall, WeightsSumToOneAndStayOnThePointsSide) {
+TEST_F(ProbeInterpolationThinWall, WeightsSumToOneAndStayOnThePointsSide) {
   LightingSession& session = *session_;
   const std::vector<glm::vec3>& positions = session.light_probes()->position;
   std::mt19937 rng(7);
