@@ -219,8 +219,17 @@ void LightingSession::probe_sh(std::vector<glm::vec3>& sh) {
     sh.clear();
     return;
   }
+  refresh_probe_sh();
+  sh = frame_probe_sh_;
+}
+
+// The probes' gather is the frame's cost of its probes; the frame changes
+// only in light(), so one gather serves every call until the next.
+void LightingSession::refresh_probe_sh() {
+  if (!frame_probe_sh_stale_) return;
   relighter_->gather_far(probes_->gather, probe_irradiance_);
-  fit_probe_sh(probe_irradiance_, sh);
+  fit_probe_sh(probe_irradiance_, frame_probe_sh_);
+  frame_probe_sh_stale_ = false;
 }
 
 ProbeBlend LightingSession::probe_sh_at(const glm::vec3& point,
@@ -228,12 +237,7 @@ ProbeBlend LightingSession::probe_sh_at(const glm::vec3& point,
                                         ProbeVisibility visibility) {
   if (!probe_interpolator_)
     throw Error(bake_->dir.string(), "has no light probes (bake with --light-probes)");
-  // A moving object asks every frame, often many times: the probes' gather
-  // is the frame's cost, the blend a few rays.
-  if (frame_probe_sh_stale_) {
-    probe_sh(frame_probe_sh_);
-    frame_probe_sh_stale_ = false;
-  }
+  refresh_probe_sh();
   return probe_interpolator_->sh_at(point, frame_probe_sh_, sh, visibility);
 }
 
