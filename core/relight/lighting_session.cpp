@@ -85,9 +85,6 @@ void LightingSession::start(const LightingSessionSettings& settings, Diagnostics
   tracer_ = std::make_unique<RayTracer>(*scene_);
   gather_ = read_final_gather(bake_->dir, bake_->size(), bake_->samples.samples.size());
   probes_ = read_light_probes(bake_->dir, bake_->size(), bake_->samples.samples.size());
-  if (probes_)
-    probe_interpolator_ =
-        std::make_unique<ProbeInterpolator>(probes_->position, bake_->description.grid, *tracer_);
   relighter_ =
       std::make_unique<Relighter>(*tracer_, bake_->samples, bake_->patches,
                                   stored_transport(*bake_), settings.relighter, diagnostics);
@@ -235,8 +232,12 @@ void LightingSession::refresh_probe_sh() {
 ProbeBlend LightingSession::probe_sh_at(const glm::vec3& point,
                                         std::array<glm::vec3, kShCoefficients>& sh,
                                         ProbeVisibility visibility) {
+  if (!probes_) throw Error(bake_->dir.string(), "has no light probes (bake with --light-probes)");
+  // Built on first use: a session that never asks still opens a bake whose
+  // probes the index would refuse (not at the grid's cell centres).
   if (!probe_interpolator_)
-    throw Error(bake_->dir.string(), "has no light probes (bake with --light-probes)");
+    probe_interpolator_ =
+        std::make_unique<ProbeInterpolator>(probes_->position, bake_->description.grid, *tracer_);
   refresh_probe_sh();
   return probe_interpolator_->sh_at(point, frame_probe_sh_, sh, visibility);
 }

@@ -135,7 +135,8 @@ class LightingSession {
   // a handful of occlusion rays; the probes' SH is worked out again only
   // when light() ran since the last call. Returns the blend (count 0 and
   // `sh` zero when no probe within reach sees the point). Throws
-  // bounce::Error when the bake has no probes.
+  // bounce::Error when the bake has no probes, or (on the first call) when
+  // they do not stand at the centres of the grid's cells.
   ProbeBlend probe_sh_at(const glm::vec3& point, std::array<glm::vec3, kShCoefficients>& sh,
                          ProbeVisibility visibility = ProbeVisibility::kTested);
 
