@@ -85,9 +85,6 @@ void LightingSession::start(const LightingSessionSettings& settings, Diagnostics
   tracer_ = std::make_unique<RayTracer>(*scene_);
   gather_ = read_final_gather(bake_->dir, bake_->size(), bake_->samples.samples.size());
   probes_ = read_light_probes(bake_->dir, bake_->size(), bake_->samples.samples.size());
-  if (probes_)
-    probe_interpolator_ =
-        std::make_unique<ProbeInterpolator>(probes_->position, bake_->description.grid, *tracer_);
   relighter_ =
       std::make_unique<Relighter>(*tracer_, bake_->samples, bake_->patches,
                                   stored_transport(*bake_), settings.relighter, diagnostics);
@@ -219,21 +216,29 @@ void LightingSession::probe_sh(std::vector<glm::vec3>& sh) {
     sh.clear();
     return;
   }
+  refresh_probe_sh();
+  sh = frame_probe_sh_;
+}
+
+// The probes' gather is the frame's cost of its probes; the frame changes
+// only in light(), so one gather serves every call until the next.
+void LightingSession::refresh_probe_sh() {
+  if (!frame_probe_sh_stale_) return;
   relighter_->gather_far(probes_->gather, probe_irradiance_);
-  fit_probe_sh(probe_irradiance_, sh);
+  fit_probe_sh(probe_irradiance_, frame_probe_sh_);
+  frame_probe_sh_stale_ = false;
 }
 
 ProbeBlend LightingSession::probe_sh_at(const glm::vec3& point,
                                         std::array<glm::vec3, kShCoefficients>& sh,
                                         ProbeVisibility visibility) {
+  if (!probes_) throw Error(bake_->dir.string(), "has no light probes (bake with --light-probes)");
+  // Built on first use: a session that never asks still opens a bake whose
+  // probes the index would refuse (not at the grid's cell centres).
   if (!probe_interpolator_)
-    throw Error(bake_->dir.string(), "has no light probes (bake with --light-probes)");
-  // A moving object asks every frame, often many times: the probes' gather
-  // is the frame's cost, the blend a few rays.
-  if (frame_probe_sh_stale_) {
-    probe_sh(frame_probe_sh_);
-    frame_probe_sh_stale_ = false;
-  }
+    probe_interpolator_ =
+        std::make_unique<ProbeInterpolator>(probes_->position, bake_->description.grid, *tracer_);
+  refresh_probe_sh();
   return probe_interpolator_->sh_at(point, frame_probe_sh_, sh, visibility);
 }
 

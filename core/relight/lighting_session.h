@@ -128,14 +128,15 @@ class LightingSession {
   // The last frame at the probes: kShCoefficients irradiance SH coefficients
   // per probe (probe p's coefficient j at p * kShCoefficients + j; the
   // convention is runtime/light_probes.h's), from the same b + T b the
-  // vertices gather. Empty without probes.
+  // vertices gather, worked out once per frame. Empty without probes.
   void probe_sh(std::vector<glm::vec3>& sh);
   // The last frame's irradiance SH at `point` in the empty space, blended
   // from the probes around it that see it (runtime/probe_interpolation.h):
   // a handful of occlusion rays; the probes' SH is worked out again only
   // when light() ran since the last call. Returns the blend (count 0 and
   // `sh` zero when no probe within reach sees the point). Throws
-  // bounce::Error when the bake has no probes.
+  // bounce::Error when the bake has no probes, or (on the first call) when
+  // they do not stand at the centres of the grid's cells.
   ProbeBlend probe_sh_at(const glm::vec3& point, std::array<glm::vec3, kShCoefficients>& sh,
                          ProbeVisibility visibility = ProbeVisibility::kTested);
 
@@ -146,6 +147,8 @@ class LightingSession {
 
  private:
   void start(const LightingSessionSettings& settings, Diagnostics* diagnostics);
+  // Gathers the probes' SH of the frame when light() ran since the last time.
+  void refresh_probe_sh();
   LitMesh lit_from_gathered(const std::vector<glm::vec3>& gathered, Progress* progress);
   // The nearest patches' light on the mesh: `patch_exitance` is emission + b + T b.
   LitMesh lit_from_nearest(const std::vector<glm::vec3>& patch_exitance, Progress* progress);

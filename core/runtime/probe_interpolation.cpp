@@ -14,7 +14,7 @@ namespace {
 // of a cell closer to a whole cell than this is that rounding, not an
 // offset, so a point given at a probe's position takes that probe alone.
 constexpr float kSnap = 1e-4f;
-// The wider search: cells within this many of the point's own (5 x 5 x 5),
+// The last resort: cells within this many of the point's own (5 x 5 x 5),
 // at most this many rays, nearest probe first.
 constexpr int kReach = 2;
 constexpr int kReachRays = 16;
@@ -81,6 +81,18 @@ bool ProbeInterpolator::sees(const glm::vec3& point, std::uint32_t probe) const 
   return !tracer_.occluded(point, d / length, eps, length - eps);
 }
 
+void ProbeInterpolator::consider(const glm::vec3& point, std::uint32_t probe, float weight,
+                                 ProbeVisibility visibility, ProbeBlend& out) const {
+  if (weight <= 0.0f) return;  // no share in the blend: no ray either
+  if (visibility == ProbeVisibility::kTested) {
+    ++out.rays;
+    if (!sees(point, probe)) return;
+  }
+  out.probe[out.count] = probe;
+  out.weight[out.count] = weight;
+  ++out.count;
+}
+
 void ProbeInterpolator::trilinear(const glm::vec3& point, ProbeVisibility visibility,
                                   ProbeBlend& out) const {
   const glm::vec3 u = (point - grid_.origin) / grid_.cell_size - 0.5f;
@@ -94,19 +106,32 @@ void ProbeInterpolator::trilinear(const glm::vec3& point, ProbeVisibility visibi
     const glm::ivec3 step(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
     float w = 1.0f;
     for (int a = 0; a < 3; ++a) w *= step[a] ? f[a] : 1.0f - f[a];
-    if (w <= 0.0f) continue;  // no share in the blend: no ray either
     const std::int64_t p = probe_in(glm::ivec3(base) + step);
-    if (p < 0) continue;
-    const auto probe = static_cast<std::uint32_t>(p);
-    if (visibility == ProbeVisibility::kTested) {
-      ++out.rays;
-      if (!sees(point, probe)) continue;
-    }
-    out.probe[out.count] = probe;
-    out.weight[out.count] = w;
-    ++out.count;
+    if (p >= 0) consider(point, static_cast<std::uint32_t>(p), w, visibility, out);
   }
   normalise(out);
+  if (out.count > 0) out.stage = ProbeBlend::Stage::kTrilinear;
+}
+
+// The probes of the 27 cells around the point's own are at most 1.5 cells
+// from it along each axis: a tent of half-width 2 cells gives each of them
+// a share that falls off with distance and never reaches 0.
+void ProbeInterpolator::neighbourhood(const glm::vec3& point, ProbeVisibility visibility,
+                                      ProbeBlend& out) const {
+  const glm::ivec3 centre = grid_.cell_of(point);
+  for (int z = -1; z <= 1; ++z)
+    for (int y = -1; y <= 1; ++y)
+      for (int x = -1; x <= 1; ++x) {
+        const std::int64_t p = probe_in(centre + glm::ivec3(x, y, z));
+        if (p < 0) continue;
+        const glm::vec3 d =
+            glm::abs(positions_[static_cast<std::size_t>(p)] - point) / grid_.cell_size;
+        float w = 1.0f;
+        for (int a = 0; a < 3; ++a) w *= std::max(0.0f, 1.0f - 0.5f * d[a]);
+        consider(point, static_cast<std::uint32_t>(p), w, visibility, out);
+      }
+  normalise(out);
+  if (out.count > 0) out.stage = ProbeBlend::Stage::kNeighbourhood;
 }
 
 void ProbeInterpolator::nearest_in_reach(const glm::vec3& point, ProbeVisibility visibility,
@@ -132,7 +157,7 @@ void ProbeInterpolator::nearest_in_reach(const glm::vec3& point, ProbeVisibility
     out.probe[0] = near[i].second;
     out.weight[0] = 1.0f;
     out.count = 1;
-    out.widened = true;
+    out.stage = ProbeBlend::Stage::kNearest;
     return;
   }
 }
@@ -140,6 +165,7 @@ void ProbeInterpolator::nearest_in_reach(const glm::vec3& point, ProbeVisibility
 ProbeBlend ProbeInterpolator::blend(const glm::vec3& point, ProbeVisibility visibility) const {
   ProbeBlend out;
   trilinear(point, visibility, out);
+  if (out.count == 0) neighbourhood(point, visibility, out);
   if (out.count == 0) nearest_in_reach(point, visibility, out);
   return out;
 }

@@ -7,9 +7,13 @@
 // sides within one such block, so a blend of the weights alone carries the
 // lit side's light through the wall: each candidate whose segment to the
 // point meets a surface is dropped and the others' weights renormalised.
-// When none is left (the point stands in a wall's cell, the probes of the
-// block all behind the wall), the nearest probe that sees the point within
-// two cells stands in; when there is none either, the blend is empty.
+// When none is left (a point within half a voxel of a surface, whose block
+// reaches into the surface's occupied cells; a point in a wall's cell, the
+// block's probes all behind the wall), the probes of the 3 x 3 x 3 cells
+// around the point's own that see it are blended with a tent twice as
+// wide, so that an object moving along a floor still blends its
+// neighbours; when none of those sees it either, the nearest probe within
+// two cells that does stands in, and failing that the blend is empty.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -26,12 +30,15 @@ namespace bounce {
 
 // Which probes light a point, and how much each.
 struct ProbeBlend {
-  static constexpr std::size_t kMaxProbes = 8;
+  // How the probes were found: the trilinear block, the wider tent over
+  // the 3 x 3 x 3 cells around the point's own, the nearest in reach, or
+  // none (no probe within two cells sees the point).
+  enum class Stage : std::uint8_t { kTrilinear, kNeighbourhood, kNearest, kNone };
+  static constexpr std::size_t kMaxProbes = 27;
   std::array<std::uint32_t, kMaxProbes> probe{};
   std::array<float, kMaxProbes> weight{};  // sum to 1 when count > 0
   std::size_t count = 0;
-  // From the wider search: no probe of the trilinear block sees the point.
-  bool widened = false;
+  Stage stage = Stage::kNone;
   int rays = 0;  // occlusion rays traced
 };
 
@@ -64,7 +71,11 @@ class ProbeInterpolator {
   // The probe in cell `c`, or -1 (also for cells outside the grid).
   std::int64_t probe_in(const glm::ivec3& c) const;
   bool sees(const glm::vec3& point, std::uint32_t probe) const;
+  // Adds the probe if it has a weight and (when tested) sees the point.
+  void consider(const glm::vec3& point, std::uint32_t probe, float weight,
+                ProbeVisibility visibility, ProbeBlend& out) const;
   void trilinear(const glm::vec3& point, ProbeVisibility visibility, ProbeBlend& out) const;
+  void neighbourhood(const glm::vec3& point, ProbeVisibility visibility, ProbeBlend& out) const;
   void nearest_in_reach(const glm::vec3& point, ProbeVisibility visibility, ProbeBlend& out) const;
 
   std::vector<glm::vec3> positions_;

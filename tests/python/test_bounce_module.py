@@ -141,3 +141,18 @@ def test_light_probes(scene, baked, tmp_path):
     assert np.all(np.isfinite(sh))
     assert sh[:, 0, :].min() > 0, "every probe receives some bounced light"
     assert bounce.open_bake(baked[0]).relight()["probe_sh"].shape == (0, 9, 3)
+
+    # Between the probes: at a probe, that probe's SH exactly; halfway
+    # between two neighbours, a blend of probes, so within their range.
+    for i in range(0, positions.shape[0], max(1, positions.shape[0] // 8)):
+        at = bake.probe_sh_at(positions[i])
+        assert at.shape == (9, 3) and at.dtype == np.float32
+        assert np.array_equal(at, sh[i]), f"probe {i}'s own SH"
+    step = grid["cell_size"] * np.array([1.0, 0.0, 0.0])
+    pair = next(i for i in range(positions.shape[0])
+                if np.abs(positions - (positions[i] + step)).max(axis=1).min() < 1e-4)
+    between = bake.probe_sh_at(positions[pair] + 0.5 * step)
+    assert np.all(between >= sh.min(axis=0) - 1e-6) and np.all(between <= sh.max(axis=0) + 1e-6)
+    assert between[0, 0] > 0, "the blend is lit"
+    with pytest.raises(bounce.Error):
+        bounce.open_bake(baked[0]).probe_sh_at((0.0, 1.0, 0.0))
