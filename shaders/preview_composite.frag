@@ -72,7 +72,7 @@ void main() {
     colour = vec4(linear_output ? vec3(0.0) : background, 1.0);
     return;
   }
-  // A light probe of the overlay (preview_sphere.frag): the light its SH
+  // A light probe of the overlay (preview_shape.frag): the light its SH
   // gives a white surface, whatever the passes; no direct light, no
   // occlusion, since neither is in the probe's light.
   if (albedo.a > 1.5) {

@@ -68,8 +68,9 @@ void PreviewWidget::initializeGL() {
 
 void PreviewWidget::release_gl() {
   targets_.release();
-  spheres_.release();
-  spheres_dirty_ = true;
+  probe_spheres_.release();
+  object_.release();
+  shapes_dirty_ = true;
   if (mesh_vao_) glDeleteVertexArrays(1, &mesh_vao_);
   if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
   if (static_vbo_) glDeleteBuffers(1, &static_vbo_);

@@ -84,7 +84,7 @@ void PreviewWidget::render_gbuffer(const glm::mat4& view, const glm::mat4& proje
                      glm::value_ptr(projection));
   draw_mesh(*programs_.gbuffer);
   glDisable(GL_CULL_FACE);
-  draw_spheres(view, projection);
+  draw_shapes(view, projection);
   glDisable(GL_DEPTH_TEST);
 }
 

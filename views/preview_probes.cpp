@@ -1,8 +1,11 @@
 // The preview's light probes: the overlay of probe spheres and the
-// probe-lit sphere that stands for a moving object (preview_widget.h).
+// probe-lit object (a sphere or a loaded mesh) that stands for a moving
+// thing (preview_widget.h).
 #include <algorithm>
 #include <limits>
 #include <mutex>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <QOpenGLShaderProgram>
@@ -10,6 +13,7 @@
 
 #include "bounce/scene.h"
 #include "preview_lighting.h"
+#include "preview_object_mesh.h"
 #include "preview_widget.h"
 
 namespace bounce::views {
@@ -36,13 +40,13 @@ std::size_t PreviewWidget::probe_count() const {
 
 void PreviewWidget::set_probes_shown(bool on) {
   probes_shown_ = on;
-  spheres_dirty_ = true;
+  shapes_dirty_ = true;
   update();
 }
 
 void PreviewWidget::set_sphere_shown(bool on) {
   sphere_shown_ = on;
-  spheres_dirty_ = true;
+  shapes_dirty_ = true;
   update();
 }
 
@@ -58,7 +62,7 @@ void PreviewWidget::set_sphere_position(const glm::vec3& position) {
     std::lock_guard<std::mutex> lock(*lighting_mutex_);
     sphere_sh_ = lighting_->sh_at(position);
   }
-  spheres_dirty_ = true;
+  shapes_dirty_ = true;
   update();
 }
 
@@ -76,32 +80,50 @@ void PreviewWidget::place_sphere() {
   }
 }
 
-// Into the G-buffer after the scene, so the composite lights the spheres
-// with the same direct light, occlusion and exposure.
-void PreviewWidget::draw_spheres(const glm::mat4& view, const glm::mat4& projection) {
+void PreviewWidget::load_object(const std::string& path) {
+  ObjectMesh mesh = load_object_mesh(path);
+  object_name_ = mesh.name;
+  object_.set_mesh(std::move(mesh.corners), std::move(mesh.normals));
+  shapes_dirty_ = true;
+  update();
+}
+
+void PreviewWidget::use_sphere() {
+  object_name_ = "sphere";
+  object_.set_mesh({}, {});
+  shapes_dirty_ = true;
+  update();
+}
+
+void PreviewWidget::upload_shapes() {
   const bool probes = probes_shown_ && has_probes();
-  const bool sphere = sphere_shown_ && has_probes();
-  if (!probes && !sphere) return;
-  if (spheres_dirty_) {
-    std::vector<SphereInstance> spheres;
-    if (sphere)
-      spheres.push_back({sphere_position_, sphere_radius(), kSphereAlbedo, false, sphere_sh_});
-    const std::vector<glm::vec3>& at = lighting_->probe_positions();
-    if (probes && probe_sh_.size() == at.size() * kShCoefficients)
-      for (std::size_t p = 0; p < at.size(); ++p) {
-        SphereInstance s{at[p], kProbeRadiusCells * lighting_->cell_size(), glm::vec3(0.0f), true};
-        std::copy_n(probe_sh_.begin() + static_cast<std::ptrdiff_t>(p * kShCoefficients),
-                    kShCoefficients, s.sh.begin());
-        spheres.push_back(s);
-      }
-    spheres_.set(spheres);
-    spheres_dirty_ = false;
-  }
-  programs_.sphere->bind();
-  glUniformMatrix4fv(programs_.sphere->uniformLocation("view"), 1, GL_FALSE, glm::value_ptr(view));
-  glUniformMatrix4fv(programs_.sphere->uniformLocation("projection"), 1, GL_FALSE,
+  std::vector<ShapeInstance> object, spheres;
+  if (sphere_shown_ && has_probes())
+    object.push_back({sphere_position_, sphere_radius(), kSphereAlbedo, false, sphere_sh_});
+  const std::vector<glm::vec3>& at = lighting_->probe_positions();
+  if (probes && probe_sh_.size() == at.size() * kShCoefficients)
+    for (std::size_t p = 0; p < at.size(); ++p) {
+      ShapeInstance s{at[p], kProbeRadiusCells * lighting_->cell_size(), glm::vec3(0.0f), true};
+      std::copy_n(probe_sh_.begin() + static_cast<std::ptrdiff_t>(p * kShCoefficients),
+                  kShCoefficients, s.sh.begin());
+      spheres.push_back(s);
+    }
+  object_.set(object);
+  probe_spheres_.set(spheres);
+  shapes_dirty_ = false;
+}
+
+// Into the G-buffer after the scene, so the composite lights the shapes
+// with the same direct light and exposure.
+void PreviewWidget::draw_shapes(const glm::mat4& view, const glm::mat4& projection) {
+  if (!(probes_shown_ || sphere_shown_) || !has_probes()) return;
+  if (shapes_dirty_) upload_shapes();
+  programs_.shape->bind();
+  glUniformMatrix4fv(programs_.shape->uniformLocation("view"), 1, GL_FALSE, glm::value_ptr(view));
+  glUniformMatrix4fv(programs_.shape->uniformLocation("projection"), 1, GL_FALSE,
                      glm::value_ptr(projection));
-  spheres_.draw(*programs_.sphere);
+  object_.draw(*programs_.shape);
+  probe_spheres_.draw(*programs_.shape);
 }
 
 }  // namespace bounce::views

@@ -33,7 +33,7 @@ PreviewPrograms PreviewPrograms::build() {
   PreviewPrograms p;
   p.shadow = link("preview_shadow.vert", "preview_shadow.frag");
   p.gbuffer = link("preview_gbuffer.vert", "preview_gbuffer.frag");
-  p.sphere = link("preview_sphere.vert", "preview_sphere.frag");
+  p.shape = link("preview_shape.vert", "preview_shape.frag");
   p.ssao = link("preview_fullscreen.vert", "preview_ssao.frag");
   p.blur = link("preview_fullscreen.vert", "preview_blur.frag");
   p.composite = link("preview_fullscreen.vert", "preview_composite.frag");

@@ -9,7 +9,7 @@
 namespace bounce::views {
 
 struct PreviewPrograms {
-  std::unique_ptr<QOpenGLShaderProgram> shadow, gbuffer, sphere, ssao, blur, composite;
+  std::unique_ptr<QOpenGLShaderProgram> shadow, gbuffer, shape, ssao, blur, composite;
 
   // Needs a current OpenGL 3.3 context. Throws bounce::Error naming the
   // shader (and the driver's log) when one does not compile or link.

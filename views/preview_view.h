@@ -11,6 +11,7 @@
 
 class QCheckBox;
 class QLabel;
+class QPushButton;
 
 namespace bounce::views {
 
@@ -30,6 +31,7 @@ class PreviewView : public QWidget {
  private:
   void apply_switches();
   void show_help();
+  void choose_object();
 
   PreviewWidget* preview_;
   QCheckBox* direct_;
@@ -38,6 +40,7 @@ class PreviewView : public QWidget {
   QCheckBox* normal_maps_;
   QCheckBox* probes_;
   QCheckBox* sphere_;
+  QPushButton* load_object_;
   QLabel* status_;
 };
 

@@ -80,7 +80,7 @@ void PreviewWidget::clear() {
   vertex_indirect_.clear();
   probe_sh_.clear();
   sphere_sh_ = {};
-  spheres_dirty_ = true;
+  shapes_dirty_ = true;
   exposure_full_.reset();
   exposure_indirect_.reset();
   mesh_dirty_ = true;
@@ -173,7 +173,7 @@ void PreviewWidget::apply(SolveResult result) {
   indirect_dirty_ = true;
   probe_sh_ = std::move(s.probe_sh);
   sphere_sh_ = s.sphere_sh;
-  spheres_dirty_ = true;
+  shapes_dirty_ = true;
   // The sphere moved while this light was solved: blend it where it is now.
   if (s.sphere_position != sphere_position_) set_sphere_position(sphere_position_);
   update();

@@ -31,16 +31,16 @@
 //
 // With a bake's light probes (runtime/light_probes.h) the preview can show
 // them, each a small sphere showing the light its SH L2 irradiance
-// gives a white surface facing each way, and a grey sphere standing for a
-// moving object, lit by the probes around it (blended where it is, through
-// the visibility test of LightingSession::probe_sh_at) and by the light's
-// direct light; Shift + left drag moves it in the plane facing the camera.
-// Both follow the light live. The sphere casts no shadow and does not light
-// the scene: probes light what moves, not the walls.
+// gives a white surface facing each way, and a grey object (a sphere, or a
+// mesh the user loads) standing for a moving thing, lit by the probes around it (blended where it
+// is, through the visibility test of LightingSession::probe_sh_at) and by the light's direct light;
+// Shift + left drag moves it in the plane facing the camera. Both follow the light live. The sphere
+// casts no shadow and does not light the scene: probes light what moves, not the walls.
 #include <array>
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 
 #include <QElapsedTimer>
 #include <QOpenGLFunctions_3_3_Core>
@@ -52,7 +52,7 @@
 #include "orbit_camera.h"
 #include "preview_material_images.h"
 #include "preview_programs.h"
-#include "preview_spheres.h"
+#include "preview_shapes.h"
 #include "preview_targets.h"
 
 namespace bounce::views {
@@ -104,6 +104,12 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   glm::vec3 sphere_position() const { return sphere_position_; }
   float sphere_radius() const;
   const std::array<glm::vec3, kShCoefficients>& sphere_sh() const { return sphere_sh_; }
+  // The moving object's shape: the mesh in `path` (scaled to the sphere's
+  // radius, centred where the sphere is), or the sphere again. Throws
+  // bounce::Error naming the file when it cannot be read.
+  void load_object(const std::string& path);
+  void use_sphere();
+  const std::string& object_name() const { return object_name_; }
 
   // Moves the light. wait: solve on this thread now (tests, screenshots);
   // otherwise as the solve policy says (see above).
@@ -173,7 +179,8 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   float aspect() const;  // width / height
   void move_light_by(const glm::vec3& delta);
   glm::vec3 inside_scene(const glm::vec3& p) const;  // clamped a little inside the bounds
-  void draw_spheres(const glm::mat4& view, const glm::mat4& projection);
+  void draw_shapes(const glm::mat4& view, const glm::mat4& projection);
+  void upload_shapes();
   void place_sphere();  // by the probe nearest the scene's centre
 
   // The one job of this widget: the light solved at its latest position.
@@ -208,7 +215,7 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
 
   // OpenGL objects (0: not made).
   bool gl_ready_ = false, mesh_dirty_ = false, indirect_dirty_ = false, shadow_dirty_ = true,
-       spheres_dirty_ = true;
+       shapes_dirty_ = true;
   QString gl_error_;
   PreviewPrograms programs_;
   GLuint mesh_vao_ = 0, static_vbo_ = 0, indirect_vbo_ = 0, empty_vao_ = 0;
@@ -227,7 +234,8 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   PreviewMaterialImages material_images_{*this};  // every image draws_ names, each once
   GLuint shadow_fbo_ = 0, shadow_cube_ = 0;
   PreviewTargets targets_{*this};
-  PreviewSpheres spheres_{*this};
+  PreviewShapes probe_spheres_{*this}, object_{*this};
+  std::string object_name_ = "sphere";
   GLuint noise_texture_ = 0;
   std::vector<glm::vec3> ao_kernel_;
   // Set from the first frame drawn after set_data, then fixed (see render()).

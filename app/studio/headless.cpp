@@ -60,8 +60,10 @@ void check_request(const ScreenshotRequest& r) {
     throw Error("--light", "moves the preview's light: use it with --view preview");
   if (!r.passes.isEmpty() && r.view != "preview")
     throw Error("--passes", "switches the preview's passes: use it with --view preview");
-  if ((r.probes || r.has_sphere) && r.view != "preview")
-    throw Error(r.probes ? "--probes" : "--sphere",
+  if ((r.probes || r.has_sphere || !r.object.isEmpty()) && r.view != "preview")
+    throw Error(r.probes       ? "--probes"
+                : r.has_sphere ? "--sphere"
+                               : "--object",
                 "draws in the preview's picture: use it with --view preview");
   preview_passes(r.passes);  // bad names fail before any bake
   if (r.width < 64 || r.height < 64 || r.width > 8192 || r.height > 8192)
@@ -109,13 +111,13 @@ void make_preview_view(const ScreenshotRequest& r, std::shared_ptr<const views::
   v->set_data(data);
   v->set_passes(preview_passes(r.passes));
   if (r.has_light) v->set_light_position({r.light_x, r.light_y, r.light_z}, true);
-  if ((r.probes || r.has_sphere) && !v->has_probes())
+  const bool object = r.has_sphere || !r.object.isEmpty();
+  if ((r.probes || object) && !v->has_probes())
     throw Error(r.input.toStdString(), "has no light probes to draw: bake it with --light-probes");
   v->set_probes_shown(r.probes);
-  if (r.has_sphere) {
-    v->set_sphere_position({r.sphere_x, r.sphere_y, r.sphere_z});
-    v->set_sphere_shown(true);
-  }
+  if (!r.object.isEmpty()) v->load_object(r.object.toStdString());
+  if (r.has_sphere) v->set_sphere_position({r.sphere_x, r.sphere_y, r.sphere_z});
+  v->set_sphere_shown(object);
 }
 
 void make_error_view(const ScreenshotRequest& r, std::shared_ptr<const views::BakeViewData> data,

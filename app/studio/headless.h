@@ -27,6 +27,7 @@ struct ScreenshotRequest {
   bool probes = false;      // preview view: draw the light probes (a bake with them)
   bool has_sphere = false;  // preview view: the probe-lit sphere at (sphere_x, ...)
   float sphere_x = 0.0f, sphere_y = 0.0f, sphere_z = 0.0f;
+  QString object;  // preview view: this mesh as the probe-lit object (empty: the sphere)
 };
 
 // Throws bounce::Error for bad requests and failed bakes or renders.

@@ -43,7 +43,8 @@ void point(const QCommandLineParser& parser, const QCommandLineOption& option, f
 
 void ScreenshotOptions::add_to(QCommandLineParser& parser) const {
   parser.addOptions({screenshot_, view_, size_, voxel_, patches_total_, codec_, size_limit_,
-                     bake_out_, pick_, light_, report_, passes_, probes_, sphere_, compare_codec_});
+                     bake_out_, pick_, light_, report_, passes_, probes_, sphere_, object_,
+                     compare_codec_});
 }
 
 ScreenshotRequest ScreenshotOptions::read(const QCommandLineParser& parser,
@@ -87,6 +88,7 @@ void ScreenshotOptions::read_preview(const QCommandLineParser& parser, Screensho
   r.has_sphere = parser.isSet(sphere_);
   if (r.has_sphere) point(parser, sphere_, r.sphere_x, r.sphere_y, r.sphere_z);
   r.probes = parser.isSet(probes_);
+  r.object = parser.value(object_);
 }
 
 }  // namespace bounce::studio

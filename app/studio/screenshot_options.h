@@ -50,6 +50,10 @@ class ScreenshotOptions {
   QCommandLineOption sphere_{
       "sphere", "Preview view: draw the probe-lit sphere at x,y,z (a bake with light probes).",
       "x,y,z"};
+  QCommandLineOption object_{"object",
+                             "Preview view: draw this mesh as the probe-lit object (at --sphere, "
+                             "else where the sphere starts).",
+                             "mesh"};
   QCommandLineOption compare_codec_{
       "compare-codec", "Error view: re-compress the bake with paper or ours and show that.",
       "codec"};

@@ -232,7 +232,8 @@ void LightingSession::refresh_probe_sh() {
 ProbeBlend LightingSession::probe_sh_at(const glm::vec3& point,
                                         std::array<glm::vec3, kShCoefficients>& sh,
                                         ProbeVisibility visibility) {
-  if (!probes_) throw Error(bake_->dir.string(), "has no light probes (bake with --light-probes)");
+  if (!probes_)
+    throw Error(bake_->dir.string(), "has no light probes (bake with the setting light_probes on)");
   // Built on first use: a session that never asks still opens a bake whose
   // probes the index would refuse (not at the grid's cell centres).
   if (!probe_interpolator_)

@@ -3,7 +3,10 @@
 // ceiling y = 2, back wall z = -1; the scene camera looks down -z, so -x is
 // the picture's left): the probe-lit sphere and the probes' overlay.
 #include <algorithm>
+#include <cmath>
+#include <string>
 
+#include "bounce/error.h"
 #include "bounce/relight.h"
 #include "preview_test_support.h"
 
@@ -106,6 +109,49 @@ TEST_F(ProbePreview, ProbeOverlayChangesWhenTheLightMoves) {
   // Each half's probes are brighter with the light on their side.
   EXPECT_GT(left_half[0], 1.1 * left_half[1]);
   EXPECT_GT(right_half[1], 1.1 * right_half[0]);
+}
+
+TEST_F(ProbePreview, ALoadedMeshTakesTheSpheresPlace) {
+  // Settled first: no later solve changes the light between the pictures.
+  view_.set_light_position({0.0f, 1.4f, 0.2f}, true);
+  view_.set_sphere_shown(true);
+  const glm::vec3 centre(0.0f, 1.0f, 0.3f);
+  view_.set_sphere_position(centre);
+  const QImage sphere = shot({});
+  const std::string bunny =
+      std::string(BOUNCE_RESOURCE_DIR) + "/scenes/cornell-bunny/stanford-bunny.obj";
+  view_.load_object(bunny);
+  EXPECT_EQ(view_.object_name(), "stanford-bunny");
+  const QImage loaded = shot({});
+  // The pixels around the object's place change (with the screen-space
+  // occlusion it casts, up to 5% of the scene's diagonal around it); the
+  // rest of the picture not.
+  const QPointF at = view_.project(centre);
+  const double r =
+      4.0 * (view_.project(centre + glm::vec3(view_.sphere_radius(), 0, 0)).x() - at.x());
+  std::size_t inside = 0, outside = 0;
+  const QImage a = sphere.convertToFormat(QImage::Format_RGB32);
+  const QImage b = loaded.convertToFormat(QImage::Format_RGB32);
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x) {
+      if (a.pixel(x, y) == b.pixel(x, y)) continue;
+      const bool near = std::hypot(x - at.x(), y - at.y()) <= r;
+      ++(near ? inside : outside);
+    }
+  EXPECT_GT(inside, 20u) << "the bunny looks like the sphere";
+  EXPECT_LT(outside, inside / 10 + 5)
+      << "the object changed pixels far from its place: " << outside << " of " << inside + outside;
+
+  // A file that is not a mesh: one error naming it, the object unchanged.
+  try {
+    view_.load_object("/nonexistent/object.obj");
+    ADD_FAILURE() << "a missing file was loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/object.obj"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(view_.object_name(), "stanford-bunny");
+  view_.use_sphere();
+  EXPECT_EQ(view_.object_name(), "sphere");
 }
 
 }  // namespace bounce::render_test

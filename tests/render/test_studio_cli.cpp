@@ -99,6 +99,7 @@ TEST_F(StudioCli, BadOptionsFailWithOneLine) {
       {fixture_bake().string() + shot + " --view nonsense", "--view"},
       {fixture_bake().string() + shot + " --view preview --sphere 0,1", "--sphere"},
       {fixture_bake().string() + shot + " --view voxels --probes", "--probes"},
+      {fixture_bake().string() + shot + " --view matrix --object x.obj", "--object"},
       // The fixture was baked without light probes.
       {fixture_bake().string() + shot + " --view preview --probes", "--light-probes"},
   };

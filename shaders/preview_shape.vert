@@ -1,11 +1,12 @@
 #version 330 core
-// The preview's spheres (views/preview_spheres.h) into the G-buffer: a unit
-// sphere instanced at each centre and radius, with the irradiance its SH L2
-// coefficients give for the surface normal, evaluated per vertex (SH L2
-// varies too slowly over a sphere for per-pixel evaluation to show). The
+// The preview's shapes (views/preview_shapes.h) into the G-buffer: a mesh
+// of unit size instanced at each centre and radius, with the irradiance its
+// SH L2 coefficients give for the surface normal, evaluated per vertex (SH
+// L2 varies too slowly for per-pixel evaluation to show). The
 // basis and order are runtime/light_probes.h's: E(n) = sum_j c_j Y_j(n),
 // the irradiance of light reflected at least once.
-layout(location = 0) in vec3 unit;  // a point of the unit sphere, also its normal
+layout(location = 0) in vec3 unit;      // a point of the mesh, within the unit ball
+layout(location = 12) in vec3 normal;  // unit
 layout(location = 1) in vec4 centre_radius;
 layout(location = 2) in vec4 albedo_probe;
 layout(location = 3) in vec3 sh0;
@@ -36,9 +37,9 @@ vec3 sh_irradiance(vec3 n) {
 void main() {
   vec4 p = view * vec4(centre_radius.xyz + centre_radius.w * unit, 1.0);
   view_position = p.xyz;
-  view_normal = mat3(view) * unit;
+  view_normal = mat3(view) * normal;
   // A fit can dip below zero where little light arrives: no negative light.
-  frag_irradiance = max(sh_irradiance(unit), vec3(0.0));
+  frag_irradiance = max(sh_irradiance(normal), vec3(0.0));
   frag_albedo_probe = albedo_probe;
   gl_Position = projection * p;
 }

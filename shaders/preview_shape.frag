@@ -1,7 +1,7 @@
 #version 330 core
-// The preview's spheres into the same G-buffer targets as the scene
+// The preview's shapes into the same G-buffer targets as the scene
 // (preview_gbuffer.frag's outputs). The SH irradiance goes to the indirect
-// target. The composite lights the moving sphere as it lights the walls,
+// target. The composite lights the moving object as it lights the walls,
 // albedo x (direct + indirect x occlusion); a probe of the overlay is marked
 // by an albedo alpha of 2, and the composite shows its irradiance as is,
 // the light a white surface would send out there.
