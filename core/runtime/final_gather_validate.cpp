@@ -55,8 +55,12 @@ void check_seen_weights(const FinalGather& g, const std::string& what) {
                             std::to_string(g.patches) + " patches");
     if (g.samples == 0) throw Error(what, "seen weights without the bake's sample count");
     for (std::size_t p = 0; p < g.patches; ++p) {
-      if (g.seen_first[p + 1] < g.seen_first[p])
-        throw Error(what, "the seen weights' row starts decrease at patch " + std::to_string(p));
+      // The last start equals the count, but one in between may run past it.
+      if (g.seen_first[p + 1] < g.seen_first[p] || g.seen_first[p + 1] > g.seen_sample.size())
+        throw Error(what,
+                    "the seen weights' row starts decrease or run past their entries at "
+                    "patch " +
+                        std::to_string(p));
       double total = 0.0;
       for (std::uint32_t k = g.seen_first[p]; k < g.seen_first[p + 1]; ++k) {
         if (g.seen_sample[k] >= g.samples ||
@@ -86,8 +90,9 @@ void check_spots(const FinalGather& g, const std::string& what) {
                             std::to_string(g.samples) + " samples and " +
                             std::to_string(g.near.size()) + " near sources");
     for (std::size_t s = 0; s < g.samples; ++s) {
-      if (g.spot_first[s + 1] < g.spot_first[s])
-        throw Error(what, "the spots' row starts decrease at sample " + std::to_string(s));
+      if (g.spot_first[s + 1] < g.spot_first[s] || g.spot_first[s + 1] > g.spot_weight.size())
+        throw Error(what, "the spots' row starts decrease or run past their weights at sample " +
+                              std::to_string(s));
       double total = 0.0;
       for (std::uint32_t k = g.spot_first[s]; k < g.spot_first[s + 1]; ++k) {
         if (!(g.spot_weight[k] >= 0.0f && g.spot_weight[k] <= 1.0f))
@@ -104,8 +109,10 @@ void check_spots(const FinalGather& g, const std::string& what) {
 // Each point's entries on a source that is there, their weights at most 1.
 void check_entries(const FinalGather& g, const std::string& what) {
   for (std::size_t i = 0; i + 1 < g.first.size(); ++i) {
-    if (g.first[i + 1] < g.first[i])
-      throw Error(what, "row offsets decrease at point " + std::to_string(i));
+    // The last offset equals the count, but one in between may run past it.
+    if (g.first[i + 1] < g.first[i] || g.first[i + 1] > g.source.size())
+      throw Error(what,
+                  "row offsets decrease or run past the entries at point " + std::to_string(i));
     double total = 0.0;
     for (std::uint64_t k = g.first[i]; k < g.first[i + 1]; ++k) {
       if (g.source[k] >= g.patches + g.clusters + g.samples + g.near.size())

@@ -288,6 +288,15 @@ TEST(FinalGather, ASampleWithSpotsCarriesTheirLight) {
   bad = g;
   bad.near.spot_count = 1;  // the near sources and the row starts disagree
   EXPECT_THROW(bad.validate("by hand"), Error);
+  // Row starts whose last value is right but one in between runs past the
+  // entries: one error, before any entry beyond the end is read (a fuzzed
+  // bake folder found this; under ASan a read past the end aborts).
+  bad = g;
+  bad.first = {0, 1, 9, 3, 4, 5};
+  EXPECT_THROW(bad.validate("by hand"), Error);
+  bad = g;
+  bad.spot_first = {0, 4, 2};
+  EXPECT_THROW(bad.validate("by hand"), Error);
 }
 
 TEST(FinalGather, NearSourcesLieOnTheFaceTheirRaysLandedOn) {
