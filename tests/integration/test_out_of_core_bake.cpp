@@ -3,7 +3,9 @@
 // bit: the same bake run both ways must leave byte-identical F.npy, T.npy
 // and compressed files and the same numbers in the manifest, and no
 // temporary file behind. A folder that cannot hold the files is one error
-// naming it, and no bake folder.
+// naming it, and no bake folder. Both runs use OpenBLAS: --gemm auto picks
+// a backend by timing, a loaded machine may pick CLBlast for one run only,
+// and the backends round differently.
 #include "cli_harness.h"
 
 namespace bounce::itest {
@@ -61,6 +63,8 @@ TEST_P(OutOfCoreBake, IsBitIdenticalToTheInMemoryBake) {
                                      mode,
                                      "--out-of-core-dir",
                                      matrices.string(),
+                                     "--gemm",
+                                     "openblas",
                                      "--out",
                                      out[mode].string()};
     args.insert(args.end(), GetParam().args.begin(), GetParam().args.end());
