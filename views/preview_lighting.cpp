@@ -52,7 +52,7 @@ PreviewLighting::PreviewLighting(std::shared_ptr<const BakeViewData> data)
 PreviewLighting::~PreviewLighting() = default;
 
 PreviewLighting::Solve PreviewLighting::solve(const glm::vec3& light_position, bool settle,
-                                              const glm::vec3& sphere_position) {
+                                              const std::optional<glm::vec3>& probes_at) {
   Solve s;
   s.light_position = light_position;
   session_->move_light(light_.name, light_position);
@@ -67,14 +67,18 @@ PreviewLighting::Solve PreviewLighting::solve(const glm::vec3& light_position, b
     s.transfer_seconds = since(t);
     s.settled = session_->relighter().shadows_settled();
   } while (settle && !s.settled);
-  s.sphere_position = sphere_position;
-  if (has_probes()) {
-    const auto t = Clock::now();
-    session_->probe_sh(s.probe_sh);
-    s.sphere_sh = sh_at(sphere_position);
-    s.probe_seconds = since(t);
-  }
+  if (probes_at) solve_probes(*probes_at, s);
   return s;
+}
+
+void PreviewLighting::solve_probes(const glm::vec3& sphere_position, Solve& s) {
+  s.sphere_position = sphere_position;
+  if (!has_probes()) return;
+  const auto t = Clock::now();
+  session_->probe_sh(s.probe_sh);
+  s.sphere_sh = sh_at(sphere_position);
+  s.probe_seconds = since(t);
+  s.probes_solved = true;
 }
 
 const std::vector<glm::vec3>& PreviewLighting::probe_positions() const {

@@ -46,6 +46,7 @@ class PreviewLighting {
     // per probe (LightingSession::probe_sh), and the SH at the probe-lit
     // sphere's centre blended from them (LightingSession::probe_sh_at).
     std::vector<glm::vec3> probe_sh;
+    bool probes_solved = false;  // probe_sh and sphere_sh are this light's
     glm::vec3 sphere_position{0.0f};
     std::array<glm::vec3, kShCoefficients> sphere_sh{};
     double probe_seconds = 0.0;  // the probes' gather, fit and the sphere's blend
@@ -66,9 +67,14 @@ class PreviewLighting {
 
   // One frame with the light at `light_position`; `settle`: as many more
   // there as its shadows need to be exact (at most kShadowFrames in all).
-  // With light probes, the sphere's SH is blended at `sphere_position`.
+  // With `probes_at` and a bake with light probes: the probes' SH too, and
+  // the sphere's blended at `probes_at` (without, a move skips them: they
+  // cost 1-2 ms a move on Sponza, for nothing when neither is shown).
   Solve solve(const glm::vec3& light_position, bool settle = false,
-              const glm::vec3& sphere_position = glm::vec3(0.0f));
+              const std::optional<glm::vec3>& probes_at = std::nullopt);
+  // The probes' SH for the last solve's light, and the sphere's at
+  // `sphere_position`, into `s` (nothing without probes).
+  void solve_probes(const glm::vec3& sphere_position, Solve& s);
 
   // The bake's light probes: none when it was baked without them.
   bool has_probes() const { return session_->light_probes().has_value(); }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,14 +41,35 @@ std::size_t PreviewWidget::probe_count() const {
 
 void PreviewWidget::set_probes_shown(bool on) {
   probes_shown_ = on;
+  if (on) refresh_probes();
   shapes_dirty_ = true;
   update();
 }
 
 void PreviewWidget::set_sphere_shown(bool on) {
   sphere_shown_ = on;
+  if (on) refresh_probes();
   shapes_dirty_ = true;
   update();
+}
+
+std::optional<glm::vec3> PreviewWidget::probes_wanted() const {
+  if ((probes_shown_ || sphere_shown_) && has_probes()) return sphere_position_;
+  return std::nullopt;
+}
+
+void PreviewWidget::refresh_probes() {
+  if (!has_probes() || probes_current_) return;
+  PreviewLighting::Solve s;
+  {
+    std::lock_guard<std::mutex> lock(*lighting_mutex_);
+    lighting_->solve_probes(sphere_position_, s);
+  }
+  probe_sh_ = std::move(s.probe_sh);
+  sphere_sh_ = s.sphere_sh;
+  probe_seconds_ = s.probe_seconds;
+  probes_current_ = true;
+  shapes_dirty_ = true;
 }
 
 float PreviewWidget::sphere_radius() const {

@@ -102,12 +102,15 @@ void PreviewWidget::set_data(std::shared_ptr<const BakeViewData> bake) {
   // then the light is settled there.
   const glm::vec3 nudge(1e-3f * glm::length(lighting_->scene().bounds().extent()));
   place_sphere();
-  PreviewLighting::Solve s = lighting_->solve(light_position_ + nudge, false, sphere_position_);
+  // Timed with the probes, as a move costs when they are shown.
+  const std::optional<glm::vec3> probes =
+      has_probes() ? std::optional(sphere_position_) : std::nullopt;
+  PreviewLighting::Solve s = lighting_->solve(light_position_ + nudge, false, probes);
   const double first = s.frame_seconds + s.transfer_seconds + s.probe_seconds;
-  s = lighting_->solve(light_position_, false, sphere_position_);
+  s = lighting_->solve(light_position_, false, probes);
   solve_on_worker_ =
       std::min(first, s.frame_seconds + s.transfer_seconds + s.probe_seconds) > kUiSolveBudget;
-  if (!s.settled) s = lighting_->solve(light_position_, true, sphere_position_);
+  if (!s.settled) s = lighting_->solve(light_position_, true, probes);
   apply({std::move(s)});
   mesh_dirty_ = true;
   update();
@@ -144,14 +147,14 @@ void PreviewWidget::set_light_position(const glm::vec3& position, bool wait) {
 void PreviewWidget::solve_at(const glm::vec3& position, bool wait) {
   if (wait || !solve_on_worker_) {
     std::lock_guard<std::mutex> lock(*lighting_mutex_);
-    apply({lighting_->solve(position, wait, sphere_position_)});
+    apply({lighting_->solve(position, wait, probes_wanted())});
   } else {
     jobs_.run<SolveResult>(
         this, kSolveJob,
         [lighting = lighting_, mutex = lighting_mutex_, position,
-         sphere = sphere_position_](const ViewJobs::KeepGoing&) {
+         probes = probes_wanted()](const ViewJobs::KeepGoing&) {
           std::lock_guard<std::mutex> lock(*mutex);
-          return SolveResult{lighting->solve(position, false, sphere)};
+          return SolveResult{lighting->solve(position, false, probes)};
         },
         [this](SolveResult r) { apply(std::move(r)); },
         [this](const QString& message) {
@@ -171,11 +174,16 @@ void PreviewWidget::apply(SolveResult result) {
   transfer_seconds_ = s.transfer_seconds;
   probe_seconds_ = s.probe_seconds;
   indirect_dirty_ = true;
-  probe_sh_ = std::move(s.probe_sh);
-  sphere_sh_ = s.sphere_sh;
-  shapes_dirty_ = true;
-  // The sphere moved while this light was solved: blend it where it is now.
-  if (s.sphere_position != sphere_position_) set_sphere_position(sphere_position_);
+  probes_current_ = s.probes_solved;
+  if (s.probes_solved) {
+    probe_sh_ = std::move(s.probe_sh);
+    sphere_sh_ = s.sphere_sh;
+    shapes_dirty_ = true;
+    // The sphere moved while this light was solved: blend it where it is now.
+    if (s.sphere_position != sphere_position_) set_sphere_position(sphere_position_);
+  } else if (probes_wanted()) {
+    refresh_probes();  // switched on while this light was solved without them
+  }
   update();
   emit solved();
   // Where the light stopped, solve again until its shadows are exact; from

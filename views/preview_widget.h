@@ -182,6 +182,12 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   void draw_shapes(const glm::mat4& view, const glm::mat4& projection);
   void upload_shapes();
   void place_sphere();  // by the probe nearest the scene's centre
+  // Where a solve blends the sphere's SH, when the probes or the object are
+  // shown; a solve without skips the probes.
+  std::optional<glm::vec3> probes_wanted() const;
+  // The probes' SH for the light last solved, when they are not: a probe
+  // view switched on after moves that skipped them.
+  void refresh_probes();
 
   // The one job of this widget: the light solved at its latest position.
   static constexpr int kSolveJob = 0;
@@ -202,6 +208,7 @@ class PreviewWidget : public QOpenGLWidget, protected QOpenGLFunctions_3_3_Core 
   bool probes_shown_ = false, sphere_shown_ = false;
   glm::vec3 sphere_position_{0.0f};
   std::vector<glm::vec3> probe_sh_;  // the last solve's, kShCoefficients per probe
+  bool probes_current_ = false;      // probe_sh_ is the last solved light's
   std::array<glm::vec3, kShCoefficients> sphere_sh_{};
   double probe_seconds_ = 0.0;
   double frame_seconds_ = 0.0, transfer_seconds_ = 0.0;

@@ -13,18 +13,20 @@ namespace {
 constexpr std::size_t kAxes = 6;  // the first six probe_directions()
 }  // namespace
 
-std::vector<ReferencePoint> probe_reference_points(const std::vector<glm::vec3>& positions,
-                                                   std::size_t max_probes,
-                                                   std::vector<glm::vec3>& chosen) {
+std::vector<std::size_t> probe_reference_choice(std::size_t count, std::size_t max_probes) {
+  std::vector<std::size_t> chosen;
+  if (count == 0 || max_probes == 0) return chosen;
+  const std::size_t stride = (count + max_probes - 1) / max_probes;
+  for (std::size_t p = 0; p < count; p += stride) chosen.push_back(p);
+  return chosen;
+}
+
+std::vector<ReferencePoint> probe_reference_points(const std::vector<glm::vec3>& positions) {
   std::vector<ReferencePoint> points;
-  chosen.clear();
-  if (positions.empty() || max_probes == 0) return points;
-  const std::size_t stride = (positions.size() + max_probes - 1) / max_probes;
-  for (std::size_t p = 0; p < positions.size(); p += stride) {
-    chosen.push_back(positions[p]);
+  points.reserve(positions.size() * kAxes);
+  for (const glm::vec3& at : positions)
     for (std::size_t k = 0; k < kAxes; ++k)
-      points.push_back({positions[p], probe_directions()[k], glm::vec3(0.0f), glm::vec3(0.0f)});
-  }
+      points.push_back({at, probe_directions()[k], glm::vec3(0.0f), glm::vec3(0.0f)});
   return points;
 }
 
@@ -66,16 +68,18 @@ ProbeReferenceError probe_reference_error(const ReferencePathTracer& reference,
   if (sh.size() != positions.size() * kShCoefficients)
     throw Error("light probes", std::to_string(sh.size()) + " SH coefficients for " +
                                     std::to_string(positions.size()) + " probes");
-  std::vector<glm::vec3> chosen;
-  const std::vector<ReferencePoint> points = probe_reference_points(positions, max_probes, chosen);
-  ProbeReferenceError out;
-  out.samples = reference.settings().samples;
-  if (points.empty()) return out;
-  const std::size_t stride = (positions.size() + max_probes - 1) / max_probes;
-  std::vector<glm::vec3> chosen_sh;
-  for (std::size_t p = 0; p < positions.size(); p += stride)
+  std::vector<glm::vec3> chosen, chosen_sh;
+  for (const std::size_t p : probe_reference_choice(positions.size(), max_probes)) {
+    chosen.push_back(positions[p]);
     chosen_sh.insert(chosen_sh.end(), sh.begin() + static_cast<std::ptrdiff_t>(p * kShCoefficients),
                      sh.begin() + static_cast<std::ptrdiff_t>((p + 1) * kShCoefficients));
+  }
+  if (chosen.empty()) {
+    ProbeReferenceError out;
+    out.samples = reference.settings().samples;
+    return out;
+  }
+  const std::vector<ReferencePoint> points = probe_reference_points(chosen);
   return compare_probe_sh(points, reference.estimate_points(points, progress), chosen_sh);
 }
 

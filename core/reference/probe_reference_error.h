@@ -27,21 +27,22 @@ struct ProbeReferenceError {
   double level = 0.0;
 };
 
-// The points the reference is estimated at for probes at `positions`: every
-// k-th position, k chosen so that at most `max_probes` are, each with the
-// six axis normals (probe p's normal k at 6 p + k), and the positions chosen.
-std::vector<ReferencePoint> probe_reference_points(const std::vector<glm::vec3>& positions,
-                                                   std::size_t max_probes,
-                                                   std::vector<glm::vec3>& chosen);
+// Which of `count` probes are measured: every k-th, k chosen so that at
+// most `max_probes` are.
+std::vector<std::size_t> probe_reference_choice(std::size_t count, std::size_t max_probes);
 
-// `sh` (kShCoefficients per chosen position) against `reference` at
-// `points` (probe_reference_points). Throws bounce::Error when the sizes
+// The points the reference is estimated at for probes at `positions`: each
+// with the six axis normals (probe p's normal k at 6 p + k).
+std::vector<ReferencePoint> probe_reference_points(const std::vector<glm::vec3>& positions);
+
+// `sh` (kShCoefficients per position) against `reference` at `points`
+// (probe_reference_points). Throws bounce::Error when the sizes
 // differ.
 ProbeReferenceError compare_probe_sh(const std::vector<ReferencePoint>& points,
                                      const PointReference& reference,
                                      const std::vector<glm::vec3>& sh);
 
-// Measures every k-th probe, k chosen so that at most `max_probes` are.
+// Measures the probes probe_reference_choice picks.
 // `sh` holds kShCoefficients per probe. Throws bounce::Error when the sizes
 // differ; Cancelled when progress asks to stop.
 ProbeReferenceError probe_reference_error(const ReferencePathTracer& reference,

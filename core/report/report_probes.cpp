@@ -18,7 +18,9 @@ ReportProbes::ReportProbes(const RayTracer& tracer, const ReferencePathTracer& r
   const Voxelization voxels = voxelize(scene, VoxelGrid(scene.bounds(), eval_grid), progress);
   const ProbePlacement placed =
       place_light_probes(tracer, voxels, voxels.grid.cell_count(), "eval_grid", progress);
-  points_ = probe_reference_points(placed.position, kReportProbePoints, positions_);
+  for (const std::size_t p : probe_reference_choice(placed.position.size(), kReportProbePoints))
+    positions_.push_back(placed.position[p]);
+  points_ = probe_reference_points(positions_);
   reference_ = cached_reference_points(reference, points_, cache, progress);
 }
 
