@@ -34,7 +34,7 @@ PreviewView::PreviewView(ViewJobs& jobs, QWidget* parent)
       tr("Shade with the materials' normal maps (the bake lights the flat surface)"));
   probes_->setToolTip(
       tr("Each light probe as a small sphere showing the light its SH gives a white "
-         "surface facing each way (bake with --light-probes)"));
+         "surface facing each way (bake with light probes on)"));
   sphere_->setToolTip(
       tr("A grey sphere (or the mesh loaded with Object…) lit by the probes around it, as a "
          "moving object would be: Shift + drag moves it"));

@@ -113,7 +113,8 @@ void make_preview_view(const ScreenshotRequest& r, std::shared_ptr<const views::
   if (r.has_light) v->set_light_position({r.light_x, r.light_y, r.light_z}, true);
   const bool object = r.has_sphere || !r.object.isEmpty();
   if ((r.probes || object) && !v->has_probes())
-    throw Error(r.input.toStdString(), "has no light probes to draw: bake it with --light-probes");
+    throw Error(r.input.toStdString(),
+                "has no light probes to draw: bake it with the setting light_probes on");
   v->set_probes_shown(r.probes);
   if (!r.object.isEmpty()) v->load_object(r.object.toStdString());
   if (r.has_sphere) v->set_sphere_position({r.sphere_x, r.sphere_y, r.sphere_z});

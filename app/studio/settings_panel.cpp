@@ -41,7 +41,8 @@ SettingsPanel::SettingsPanel(QWidget* parent)
       gather_rays_box_(new QSpinBox(this)),
       near_box_(new QDoubleSpinBox(this)),
       near_min_rays_box_(new QSpinBox(this)),
-      spots_box_(new QSpinBox(this)) {
+      spots_box_(new QSpinBox(this)),
+      probes_box_(new QComboBox(this)) {
   grid_box_->addItems({tr("Scene's own"), tr("Voxel size"), tr("Total patches")});
   grid_box_->setToolTip(
       tr("How fine the patch grid is: as the scene file suggests, by voxel size, or by the "
@@ -72,6 +73,7 @@ SettingsPanel::SettingsPanel(QWidget* parent)
   add_control("final_gather_near", near_box_);
   add_control("final_gather_near_min_rays", near_min_rays_box_);
   add_control("final_gather_spots", spots_box_);
+  add_control("light_probes", probes_box_);
   // Where the spin boxes start when the setting is left to the scene or the codec.
   voxel_box_->setValue(BakeSettings::kDefaultVoxelResolution);
   patches_total_box_->setValue(2048);
@@ -104,6 +106,8 @@ SettingsPanel::SettingsPanel(QWidget* parent)
   for (QComboBox* box :
        {grid_box_, patch_mode_box_, bounces_box_, codec_box_, ordering_box_, kept_mode_box_})
     connect(box, qOverload<int>(&QComboBox::currentIndexChanged), this, refresh);
+  connect(probes_box_, qOverload<int>(&QComboBox::currentIndexChanged), this,
+          &SettingsPanel::changed);
   connect(gather_rays_box_, qOverload<int>(&QSpinBox::valueChanged), this, refresh);
   connect(near_box_, qOverload<double>(&QDoubleSpinBox::valueChanged), this, refresh);
   for (QSpinBox* box :

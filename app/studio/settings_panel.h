@@ -69,6 +69,7 @@ class SettingsPanel : public QWidget {
   QDoubleSpinBox* near_box_;
   QSpinBox* near_min_rays_box_;
   QSpinBox* spots_box_;
+  QComboBox* probes_box_;
   // Every control that shows one setting, in the settings table's order.
   std::vector<std::pair<const SettingRow*, QWidget*>> controls_;
 };

@@ -219,41 +219,64 @@ json storage_json(const MatrixStorage& s, std::size_t probe_lights_total) {
   return m;
 }
 
-// The light probes: the placement rule, how many, which were rejected and
-// why, and what their gather holds.
+json rejected_json(std::size_t enclosed, std::size_t sees_nothing) {
+  return json::array(
+      {{{"reason",
+         "inside a closed solid: more than half of its test rays meet the back of "
+         "a one-sided face"},
+        {"count", enclosed}},
+       {{"reason", "sees no surface: every test ray leaves the scene or meets a back face"},
+        {"count", sees_nothing}}});
+}
+
+std::size_t placed_in(const std::vector<VolumePlacement>& volumes) {
+  std::size_t n = 0;
+  for (const VolumePlacement& v : volumes) n += v.placed;
+  return n;
+}
+
+// The light probes: the placement rules, how many each placed, which were
+// rejected and why, and what their gather holds.
 json light_probes_json(const BakeResult& r) {
   const ProbePlacement& pl = r.probe_placement;
   const FinalGather& g = r.light_probes.gather;
-  return {
-      {"probes", r.light_probes.size()},
+  json volumes = json::array();
+  for (const VolumePlacement& v : pl.volumes)
+    volumes.push_back({{"min", {v.volume.lo.x, v.volume.lo.y, v.volume.lo.z}},
+                       {"max", {v.volume.hi.x, v.volume.hi.y, v.volume.hi.z}},
+                       {"spacing", v.volume.spacing},
+                       {"lattice", {v.lattice.dims.x, v.lattice.dims.y, v.lattice.dims.z}},
+                       {"candidates", v.candidates},
+                       {"probes", v.placed},
+                       {"rejected", rejected_json(v.rejected_enclosed, v.rejected_sees_nothing)}});
+  json surfaces = {
+      {"placed", pl.surfaces},
       {"rule", "the centre of every empty voxel sharing a face with an occupied voxel"},
       {"candidates", pl.candidates},
-      {"test_rays", kProbeTestRays},
-      {"rejected", json::array({{{"reason",
-                                  "inside a closed solid: more than half of its test rays meet the "
-                                  "back of a one-sided face"},
-                                 {"count", pl.rejected_enclosed}},
-                                {{"reason",
-                                  "sees no surface: every test ray leaves the scene or meets a "
-                                  "back face"},
-                                 {"count", pl.rejected_sees_nothing}}})},
-      {"directions", kProbeDirections},
-      {"sh", "irradiance, real SH L2, 9 coefficients (docs/bake-format.md, Light probes)"},
-      {"rays_per_direction", g.rays},
-      {"entries", g.source.size()},
-      {"entries_per_probe",
-       static_cast<double>(g.source.size()) /
-           static_cast<double>(std::max<std::size_t>(1, r.light_probes.size()))},
-      {"enclosed_directions", g.points_enclosed},
-      {"rays",
-       {{"landed", g.rays_landed},
-        {"escaped", g.rays_escaped},
-        {"back_faces", g.rays_back},
-        {"unrepresented_surface", g.rays_unrepresented}}},
-      {"bytes",
-       12 * r.light_probes.size() +
-           4 * (g.first.size() + g.source.size() + g.weight.size() + 2 * g.cluster_of_patch.size() +
-                g.seen_first.size() + g.seen_sample.size() + g.seen_weight.size())}};
+      {"probes", r.light_probes.size() - placed_in(pl.volumes)},
+      {"rejected", rejected_json(pl.rejected_enclosed, pl.rejected_sees_nothing)}};
+  if (!pl.surfaces_skipped.empty()) surfaces["skipped"] = pl.surfaces_skipped;
+  return {{"probes", r.light_probes.size()},
+          {"test_rays", kProbeTestRays},
+          {"surfaces", surfaces},
+          {"volumes", volumes},
+          {"directions", kProbeDirections},
+          {"sh", "irradiance, real SH L2, 9 coefficients (docs/bake-format.md, Light probes)"},
+          {"rays_per_direction", g.rays},
+          {"entries", g.source.size()},
+          {"entries_per_probe",
+           static_cast<double>(g.source.size()) /
+               static_cast<double>(std::max<std::size_t>(1, r.light_probes.size()))},
+          {"enclosed_directions", g.points_enclosed},
+          {"rays",
+           {{"landed", g.rays_landed},
+            {"escaped", g.rays_escaped},
+            {"back_faces", g.rays_back},
+            {"unrepresented_surface", g.rays_unrepresented}}},
+          {"bytes",
+           12 * r.light_probes.size() + 4 * (g.first.size() + g.source.size() + g.weight.size() +
+                                             2 * g.cluster_of_patch.size() + g.seen_first.size() +
+                                             g.seen_sample.size() + g.seen_weight.size())}};
 }
 
 // Every setting by its manifest key (settings_table.h): unset ones as null,
@@ -280,6 +303,15 @@ json settings_json(const BakeSettings& s) {
   return out;
 }
 
+// Which probes the bake placed: `auto` resolved by what the placement did
+// (r.settings keeps `auto`, so that a re-bake compares what was asked).
+ProbePlacementMode placed_probes(const BakeResult& r) {
+  const ProbePlacementMode asked = r.settings.light_probes;
+  if (asked != ProbePlacementMode::Auto) return asked;
+  if (r.probe_placement.surfaces) return ProbePlacementMode::On;
+  return r.light_probes.volumes.empty() ? ProbePlacementMode::Off : ProbePlacementMode::VolumesOnly;
+}
+
 // The settings as the bake used them: the scene's defaults and the grid
 // resolution (r.settings), and what the compression chose for the codec,
 // kept fraction, error budget, size limit and ordering left to it.
@@ -293,6 +325,7 @@ BakeSettings resolved_settings(const BakeResult& r) {
   }
   s.error_budget = st.error_budget;
   s.size_limit = st.size_limit;
+  s.light_probes = placed_probes(r);
   return s;
 }
 
@@ -486,7 +519,7 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
   } else {
     m["final_gather"] = {{"transfer", "nearest patches"}};
   }
-  if (r.settings.light_probes) m["light_probes"] = light_probes_json(r);
+  if (placed_probes(r) != ProbePlacementMode::Off) m["light_probes"] = light_probes_json(r);
   m["transport"] = transport_json(r.transport);
   m["transport"]["channel_of_rgb"] = r.probe.channel_of_rgb;
   m["compression"] = storage_json(r.storage, r.probe_lights_total);
@@ -617,9 +650,13 @@ json write_bake_files(const AtomicDirectory& dir, const Scene& scene, const Bake
              "landed on the sample's spots)");
     }
   }
-  if (r.settings.light_probes) {
+  if (placed_probes(r) != ProbePlacementMode::Off) {
     write_light_probes(dir.path(), r.light_probes);
     record(bake_file::kProbePositions, "float32 [probes x 3]: light probe positions");
+    if (!r.light_probes.volumes.empty())
+      record(bake_file::kProbeVolumes,
+             "float32 [volumes x 9]: each probe volume's lattice (origin x y z, spacing, cells "
+             "x y z) and its probes (first, count)");
     const auto probe_file = [](const char* name) {
       return gather_file_name(bake_file::kProbeGatherPrefix, name);
     };

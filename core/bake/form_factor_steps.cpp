@@ -186,19 +186,32 @@ void final_gather_step(BakeRun& run) {
   set_seen_weights(r.vertex_gather, r.patches, "final gather");
 }
 
-bool places_light_probes(const BakeRun& run) { return run.result.settings.light_probes; }
+bool places_light_probes(const BakeRun& run) {
+  return run.result.settings.light_probes != ProbePlacementMode::Off;
+}
 
 void light_probes_step(BakeRun& run) {
   BakeResult& r = run.result;
-  r.probe_placement = place_light_probes(*run.tracer, r.voxels,
-                                         static_cast<std::size_t>(r.settings.light_probes_max),
-                                         "light_probes_max", &run.progress);
+  const BakeSettings& s = r.settings;
+  ProbePlacementRequest request;
+  request.surfaces = s.light_probes != ProbePlacementMode::VolumesOnly;
+  request.surfaces_optional = s.light_probes == ProbePlacementMode::Auto;
+  request.volumes = parse_probe_volumes(s.light_probe_volumes, "light_probe_volumes");
+  request.max_probes = static_cast<std::size_t>(s.light_probes_max);
+  request.max_setting = "light_probes_max";
+  request.volumes_setting = "light_probe_volumes";
+  r.probe_placement = place_light_probes(*run.tracer, r.voxels, request, &run.progress);
+  if (!r.probe_placement.surfaces_skipped.empty())
+    run.diagnostics.warn("light_probes", "no light probes next to the surfaces: " +
+                                             r.probe_placement.surfaces_skipped +
+                                             " (set light_probes_max, or light_probes off)");
+  std::vector<ProbeLattice> lattices = r.probe_placement.lattices();
   const SurfacePatchLookup lookup(r.voxels, r.samples, r.patch_of_sample);
-  const int rays =
-      r.settings.final_gather_rays > 0 ? r.settings.final_gather_rays : FinalGatherSettings{}.rays;
-  r.light_probes = gather_light_probes(*run.tracer, lookup, r.patches.patches, r.voxels.grid,
-                                       std::move(r.probe_placement.position), rays, r.settings.seed,
-                                       &run.progress);
+  const int rays = s.final_gather_rays > 0 ? s.final_gather_rays : FinalGatherSettings{}.rays;
+  r.light_probes =
+      gather_light_probes(*run.tracer, lookup, r.patches.patches, r.voxels.grid,
+                          std::move(r.probe_placement.position), rays, s.seed, &run.progress);
+  r.light_probes.volumes = std::move(lattices);
   r.probe_placement.position.clear();
 }
 

@@ -42,6 +42,8 @@ inline constexpr const char* kGatherNearPatch = "gather_near_patch.npy";
 // files of the vertices' gather with this prefix instead of "gather_".
 inline constexpr const char* kProbePositions = "probe_position.npy";
 inline constexpr const char* kProbeGatherPrefix = "probe_gather_";
+// The probe volumes' lattices, when the bake has volumes.
+inline constexpr const char* kProbeVolumes = "probe_volume.npy";
 inline constexpr const char* kGatherPrefix = "gather_";  // of the names above
 inline constexpr const char* kFormFactors = "F.npy";
 inline constexpr const char* kDenseTransport = "T.npy";

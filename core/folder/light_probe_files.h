@@ -2,6 +2,10 @@
 // A bake's light probes (runtime/light_probes.h) as files of the bake folder
 // (docs/bake-format.md, "Light probes"):
 //   probe_position.npy       <f4 [probes, 3]   where each probe stands
+//   probe_volume.npy         <f4 [volumes, 9]  with probe volumes: each one's
+//                                              lattice (origin x y z, spacing,
+//                                              cells x y z) and its probes
+//                                              (first, count)
 //   probe_gather_*.npy                         the gather of its 14 directions,
 //                                              the vertices' gather files' layout,
 //                                              probe p's direction k in row 14 p + k

@@ -237,8 +237,8 @@ ProbeBlend LightingSession::probe_sh_at(const glm::vec3& point,
   // Built on first use: a session that never asks still opens a bake whose
   // probes the index would refuse (not at the grid's cell centres).
   if (!probe_interpolator_)
-    probe_interpolator_ =
-        std::make_unique<ProbeInterpolator>(probes_->position, bake_->description.grid, *tracer_);
+    probe_interpolator_ = std::make_unique<ProbeInterpolator>(
+        probes_->position, bake_->description.grid, *tracer_, probes_->volumes);
   refresh_probe_sh();
   return probe_interpolator_->sh_at(point, frame_probe_sh_, sh, visibility);
 }

@@ -16,8 +16,10 @@ ReportProbes::ReportProbes(const RayTracer& tracer, const ReferencePathTracer& r
     : tracer_(tracer) {
   const Scene& scene = tracer.scene();
   const Voxelization voxels = voxelize(scene, VoxelGrid(scene.bounds(), eval_grid), progress);
-  const ProbePlacement placed =
-      place_light_probes(tracer, voxels, voxels.grid.cell_count(), "eval_grid", progress);
+  ProbePlacementRequest request;
+  request.max_probes = voxels.grid.cell_count();
+  request.max_setting = "eval_grid";
+  const ProbePlacement placed = place_light_probes(tracer, voxels, request, progress);
   for (const std::size_t p : probe_reference_choice(placed.position.size(), kReportProbePoints))
     positions_.push_back(placed.position[p]);
   points_ = probe_reference_points(positions_);
@@ -36,7 +38,7 @@ ProbeReferenceError ReportProbes::measure(const BakeResult& bake,
   bake.light_probes.gather.irradiance(reflected, sample_light, direction_irradiance);
   fit_probe_sh(direction_irradiance, probe_sh);
   const ProbeInterpolator blend(bake.light_probes.position, TransferGrid::from(bake.voxels.grid),
-                                tracer_);
+                                tracer_, bake.light_probes.volumes);
   std::vector<glm::vec3> sh;
   sh.reserve(positions_.size() * kShCoefficients);
   std::array<glm::vec3, kShCoefficients> at{};

@@ -239,7 +239,7 @@ ReportData run_report_sweep(const Scene& scene, const ReportSweepSettings& opt,
       bs.codec = CodecChoice::Dense;
       bs.pictures = false;
       bs.seed = opt.seed;
-      bs.light_probes = opt.light_probes;
+      bs.light_probes = opt.light_probes ? ProbePlacementMode::On : ProbePlacementMode::Off;
       // OpenBLAS: no OpenCL kernel compile inside a timing sweep.
       bs.transport.backend = TransportSettings::Backend::OpenBLAS;
       bs.transport.bounces = bounces.front();

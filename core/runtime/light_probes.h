@@ -50,6 +50,7 @@
 #include <glm/glm.hpp>
 
 #include "runtime/final_gather.h"
+#include "runtime/probe_volume.h"
 
 namespace bounce {
 
@@ -79,11 +80,15 @@ void fit_probe_sh(const std::vector<glm::vec3>& direction_irradiance, std::vecto
 
 // A bake's light probes: where they are and the gather of their directions.
 struct LightProbes {
+  // The probes next to the surfaces first, then each volume's.
   std::vector<glm::vec3> position;
   // Rows for position.size() x kProbeDirections points: probe p's direction
   // k is point p * kProbeDirections + k. No near sources or spots: a probe
-  // stands half a voxel or more from every surface.
+  // next to the surfaces stands half a voxel from them, and a volume's
+  // probes are where its author wants them.
   FinalGather gather;
+  // The probe volumes' lattices (runtime/probe_volume.h), in order.
+  std::vector<ProbeLattice> volumes;
   std::size_t size() const { return position.size(); }
 };
 

@@ -43,31 +43,63 @@ void normalise(ProbeBlend& b) {
 }  // namespace
 
 ProbeInterpolator::ProbeInterpolator(const std::vector<glm::vec3>& positions,
-                                     const TransferGrid& grid, const RayTracer& tracer)
-    : positions_(positions), grid_(grid), tracer_(tracer) {
-  cells_.reserve(positions.size());
-  for (std::size_t p = 0; p < positions.size(); ++p) {
-    const glm::vec3 u = (positions[p] - grid.origin) / grid.cell_size - 0.5f;
-    const glm::vec3 whole = glm::round(u);
-    const glm::ivec3 c(whole);
-    if (glm::any(glm::greaterThan(glm::abs(u - whole), glm::vec3(1e-3f))) || !inside(grid, c))
-      throw Error("light probes", "probe " + std::to_string(p) +
-                                      " is not at the centre of a cell of the bake's grid");
-    cells_.emplace_back(linear(grid, c), static_cast<std::uint32_t>(p));
+                                     const TransferGrid& grid, const RayTracer& tracer,
+                                     const std::vector<ProbeLattice>& volumes)
+    : positions_(positions), tracer_(tracer) {
+  std::vector<bool> in_volume(positions.size(), false);
+  for (const ProbeLattice& v : volumes) {
+    if (v.first > positions.size() || v.count > positions.size() - v.first)
+      throw Error("light probes", "a volume's probes " + std::to_string(v.first) + " to " +
+                                      std::to_string(v.first + v.count) + " of " +
+                                      std::to_string(positions.size()));
+    Lattice& lattice = volumes_.emplace_back(Lattice{v.grid, {}});
+    for (std::size_t p = v.first; p < v.first + v.count; ++p) {
+      if (in_volume[p])
+        throw Error("light probes", "probe " + std::to_string(p) + " is in two volumes");
+      in_volume[p] = true;
+      add_probe(lattice, static_cast<std::uint32_t>(p));
+    }
+    check_distinct(lattice);
   }
-  std::sort(cells_.begin(), cells_.end());
-  for (std::size_t i = 1; i < cells_.size(); ++i)
-    if (cells_[i].first == cells_[i - 1].first)
-      throw Error("light probes", "probes " + std::to_string(cells_[i - 1].second) + " and " +
-                                      std::to_string(cells_[i].second) + " share a cell");
+  surfaces_.grid = grid;
+  for (std::size_t p = 0; p < positions.size(); ++p)
+    if (!in_volume[p]) add_probe(surfaces_, static_cast<std::uint32_t>(p));
+  check_distinct(surfaces_);
 }
 
-std::int64_t ProbeInterpolator::probe_in(const glm::ivec3& c) const {
-  if (!inside(grid_, c)) return -1;
-  const std::uint64_t key = linear(grid_, c);
+void ProbeInterpolator::add_probe(Lattice& lattice, std::uint32_t probe) const {
+  const TransferGrid& g = lattice.grid;
+  const glm::vec3 u = (positions_[probe] - g.origin) / g.cell_size - 0.5f;
+  const glm::vec3 whole = glm::round(u);
+  const glm::ivec3 c(whole);
+  if (glm::any(glm::greaterThan(glm::abs(u - whole), glm::vec3(1e-3f))) || !inside(g, c))
+    throw Error("light probes",
+                "probe " + std::to_string(probe) + " is not at the centre of a cell of its grid");
+  lattice.cells.emplace_back(linear(g, c), probe);
+}
+
+void ProbeInterpolator::check_distinct(Lattice& lattice) {
+  auto& cells = lattice.cells;
+  std::sort(cells.begin(), cells.end());
+  for (std::size_t i = 1; i < cells.size(); ++i)
+    if (cells[i].first == cells[i - 1].first)
+      throw Error("light probes", "probes " + std::to_string(cells[i - 1].second) + " and " +
+                                      std::to_string(cells[i].second) + " share a cell");
+}
+
+std::int64_t ProbeInterpolator::Lattice::probe_in(const glm::ivec3& c) const {
+  if (!inside(grid, c)) return -1;
+  const std::uint64_t key = linear(grid, c);
   const auto it =
-      std::lower_bound(cells_.begin(), cells_.end(), std::make_pair(key, std::uint32_t{0}));
-  return it != cells_.end() && it->first == key ? static_cast<std::int64_t>(it->second) : -1;
+      std::lower_bound(cells.begin(), cells.end(), std::make_pair(key, std::uint32_t{0}));
+  return it != cells.end() && it->first == key ? static_cast<std::int64_t>(it->second) : -1;
+}
+
+bool ProbeInterpolator::Lattice::covers(const glm::vec3& point) const {
+  const glm::vec3 u = (point - grid.origin) / grid.cell_size;
+  for (int a = 0; a < 3; ++a)
+    if (!(u[a] >= 0.0f && u[a] <= static_cast<float>(grid.dims[a]))) return false;
+  return true;
 }
 
 // A surface anywhere on the segment is a wall between: the probe's light
@@ -93,9 +125,9 @@ void ProbeInterpolator::consider(const glm::vec3& point, std::uint32_t probe, fl
   ++out.count;
 }
 
-void ProbeInterpolator::trilinear(const glm::vec3& point, ProbeVisibility visibility,
-                                  ProbeBlend& out) const {
-  const glm::vec3 u = (point - grid_.origin) / grid_.cell_size - 0.5f;
+void ProbeInterpolator::trilinear(const Lattice& lattice, const glm::vec3& point,
+                                  ProbeVisibility visibility, ProbeBlend& out) const {
+  const glm::vec3 u = (point - lattice.grid.origin) / lattice.grid.cell_size - 0.5f;
   const glm::vec3 base = glm::floor(u);
   glm::vec3 f = u - base;
   for (int a = 0; a < 3; ++a) {
@@ -106,7 +138,7 @@ void ProbeInterpolator::trilinear(const glm::vec3& point, ProbeVisibility visibi
     const glm::ivec3 step(corner & 1, (corner >> 1) & 1, (corner >> 2) & 1);
     float w = 1.0f;
     for (int a = 0; a < 3; ++a) w *= step[a] ? f[a] : 1.0f - f[a];
-    const std::int64_t p = probe_in(glm::ivec3(base) + step);
+    const std::int64_t p = lattice.probe_in(glm::ivec3(base) + step);
     if (p >= 0) consider(point, static_cast<std::uint32_t>(p), w, visibility, out);
   }
   normalise(out);
@@ -118,14 +150,14 @@ void ProbeInterpolator::trilinear(const glm::vec3& point, ProbeVisibility visibi
 // a share that falls off with distance and never reaches 0.
 void ProbeInterpolator::neighbourhood(const glm::vec3& point, ProbeVisibility visibility,
                                       ProbeBlend& out) const {
-  const glm::ivec3 centre = grid_.cell_of(point);
+  const glm::ivec3 centre = surfaces_.grid.cell_of(point);
   for (int z = -1; z <= 1; ++z)
     for (int y = -1; y <= 1; ++y)
       for (int x = -1; x <= 1; ++x) {
-        const std::int64_t p = probe_in(centre + glm::ivec3(x, y, z));
+        const std::int64_t p = surfaces_.probe_in(centre + glm::ivec3(x, y, z));
         if (p < 0) continue;
         const glm::vec3 d =
-            glm::abs(positions_[static_cast<std::size_t>(p)] - point) / grid_.cell_size;
+            glm::abs(positions_[static_cast<std::size_t>(p)] - point) / surfaces_.grid.cell_size;
         float w = 1.0f;
         for (int a = 0; a < 3; ++a) w *= std::max(0.0f, 1.0f - 0.5f * d[a]);
         consider(point, static_cast<std::uint32_t>(p), w, visibility, out);
@@ -136,12 +168,12 @@ void ProbeInterpolator::neighbourhood(const glm::vec3& point, ProbeVisibility vi
 
 void ProbeInterpolator::nearest_in_reach(const glm::vec3& point, ProbeVisibility visibility,
                                          ProbeBlend& out) const {
-  const glm::ivec3 centre = grid_.cell_of(point);
+  const glm::ivec3 centre = surfaces_.grid.cell_of(point);
   std::vector<std::pair<float, std::uint32_t>> near;
   for (int z = -kReach; z <= kReach; ++z)
     for (int y = -kReach; y <= kReach; ++y)
       for (int x = -kReach; x <= kReach; ++x) {
-        const std::int64_t p = probe_in(centre + glm::ivec3(x, y, z));
+        const std::int64_t p = surfaces_.probe_in(centre + glm::ivec3(x, y, z));
         if (p < 0) continue;
         const auto probe = static_cast<std::uint32_t>(p);
         const glm::vec3 d = positions_[probe] - point;
@@ -163,8 +195,13 @@ void ProbeInterpolator::nearest_in_reach(const glm::vec3& point, ProbeVisibility
 }
 
 ProbeBlend ProbeInterpolator::blend(const glm::vec3& point, ProbeVisibility visibility) const {
-  ProbeBlend out;
-  trilinear(point, visibility, out);
+  ProbeBlend out;  // a lattice that finds no probe leaves it empty but for its rays
+  for (const Lattice& volume : volumes_) {
+    if (!volume.covers(point)) continue;
+    trilinear(volume, point, visibility, out);
+    if (out.count > 0) return out;
+  }
+  trilinear(surfaces_, point, visibility, out);
   if (out.count == 0) neighbourhood(point, visibility, out);
   if (out.count == 0) nearest_in_reach(point, visibility, out);
   return out;

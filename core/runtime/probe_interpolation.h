@@ -14,6 +14,12 @@
 // wide, so that an object moving along a floor still blends its
 // neighbours; when none of those sees it either, the nearest probe within
 // two cells that does stands in, and failing that the blend is empty.
+//
+// Probes of a probe volume (runtime/probe_volume.h) stand on the volume's
+// own lattice: a point inside a volume's lattice blends that lattice's
+// probes trilinearly with the same visibility test, the first volume that
+// has a probe seeing it; a point no volume lights falls back to the probes
+// next to the surfaces as above.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -24,6 +30,7 @@
 
 #include "raytrace/ray_tracer.h"
 #include "runtime/light_probes.h"
+#include "runtime/probe_volume.h"
 #include "runtime/transfer_grid.h"
 
 namespace bounce {
@@ -48,11 +55,13 @@ enum class ProbeVisibility : std::uint8_t { kTested, kIgnored };
 
 class ProbeInterpolator {
  public:
-  // `positions`: the probes, each at the centre of a cell of `grid`.
+  // `positions`: the probes; those of `volumes` at the centres of their
+  // lattices' cells, every other one at the centre of a cell of `grid`.
   // Throws bounce::Error naming the probe when one is not at a cell centre
-  // or two share a cell. The tracer must outlive the interpolator.
+  // or two share a cell, and when a volume's probes are not among
+  // `positions`. The tracer must outlive the interpolator.
   ProbeInterpolator(const std::vector<glm::vec3>& positions, const TransferGrid& grid,
-                    const RayTracer& tracer);
+                    const RayTracer& tracer, const std::vector<ProbeLattice>& volumes = {});
 
   ProbeBlend blend(const glm::vec3& point,
                    ProbeVisibility visibility = ProbeVisibility::kTested) const;
@@ -68,21 +77,31 @@ class ProbeInterpolator {
   std::size_t size() const { return positions_.size(); }
 
  private:
-  // The probe in cell `c`, or -1 (also for cells outside the grid).
-  std::int64_t probe_in(const glm::ivec3& c) const;
+  // Probes at the centres of a grid's cells: (linear cell index, probe),
+  // sorted by cell.
+  struct Lattice {
+    TransferGrid grid;
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> cells;
+    // The probe in cell `c`, or -1 (also for cells outside the grid).
+    std::int64_t probe_in(const glm::ivec3& c) const;
+    // Whether `point` lies within the grid's cells.
+    bool covers(const glm::vec3& point) const;
+  };
+  void add_probe(Lattice& lattice, std::uint32_t probe) const;
+  static void check_distinct(Lattice& lattice);
   bool sees(const glm::vec3& point, std::uint32_t probe) const;
   // Adds the probe if it has a weight and (when tested) sees the point.
   void consider(const glm::vec3& point, std::uint32_t probe, float weight,
                 ProbeVisibility visibility, ProbeBlend& out) const;
-  void trilinear(const glm::vec3& point, ProbeVisibility visibility, ProbeBlend& out) const;
+  void trilinear(const Lattice& lattice, const glm::vec3& point, ProbeVisibility visibility,
+                 ProbeBlend& out) const;
   void neighbourhood(const glm::vec3& point, ProbeVisibility visibility, ProbeBlend& out) const;
   void nearest_in_reach(const glm::vec3& point, ProbeVisibility visibility, ProbeBlend& out) const;
 
   std::vector<glm::vec3> positions_;
-  TransferGrid grid_;
   const RayTracer& tracer_;
-  // (linear cell index, probe), sorted by cell.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> cells_;
+  Lattice surfaces_;              // the probes next to the surfaces, on the bake's grid
+  std::vector<Lattice> volumes_;  // each volume's, in the order given
 };
 
 }  // namespace bounce

@@ -120,6 +120,11 @@ struct BakeDefaults {
   // Relative RMS error of the indirect light the compressed matrix may cause
   // (BakeSettings::error_budget).
   std::optional<double> error_budget;
+  // Which light probes to place, by the setting's choice name ("on",
+  // "volumes", "off"), and the probe volumes as the setting's text
+  // (runtime/probe_volume.h; empty: none).
+  std::optional<std::string> light_probes;
+  std::string light_probe_volumes;
 };
 
 struct Bounds {

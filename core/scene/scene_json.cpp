@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -281,11 +282,56 @@ std::optional<int> read_count(const JsonReader& r, const Json& bake, const char*
   return static_cast<int>(r.integer(*value, join_key("bake", key), 1, max));
 }
 
+// "on", "volumes" or "off" (true and false stand for on and off).
+std::string read_probe_switch(const JsonReader& r, const Json& value) {
+  const std::string path = "bake.light_probes";
+  if (value.is_boolean()) return value.get<bool>() ? "on" : "off";
+  const std::string s = r.string(value, path);
+  if (s != "on" && s != "volumes" && s != "off")
+    r.fail(path, "must be \"on\", \"volumes\", \"off\", true or false, got " +
+                     JsonReader::describe(value));
+  return s;
+}
+
+// {"min": [x, y, z], "max": [x, y, z], "spacing": s} as the setting's text
+// "x0,y0,z0,x1,y1,z1,s" (runtime/probe_volume.h).
+std::string read_probe_volume(const JsonReader& r, const Json& value, const std::string& path) {
+  r.expect_object(value, path);
+  r.warn_unknown_keys(value, path, {"min", "max", "spacing"});
+  const auto required = [&](const char* key) -> const Json& {
+    const Json* v = find(value, key);
+    if (!v) r.fail(join_key(path, key), "missing; a probe volume has min, max and spacing");
+    return *v;
+  };
+  const glm::vec3 lo = r.vec3_f(required("min"), join_key(path, "min"));
+  const glm::vec3 hi = r.vec3_f(required("max"), join_key(path, "max"));
+  const float spacing = r.number_f(required("spacing"), join_key(path, "spacing"));
+  for (int a = 0; a < 3; ++a)
+    if (!(lo[a] < hi[a])) r.fail(path, "`min` must be below `max` on every axis");
+  if (!(spacing > 0.0f))
+    r.fail(join_key(path, "spacing"), "must be positive, got " + std::to_string(spacing));
+  char text[256];
+  std::snprintf(text, sizeof text, "%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g", lo.x, lo.y, lo.z, hi.x,
+                hi.y, hi.z, spacing);
+  return text;
+}
+
+std::string read_probe_volumes(const JsonReader& r, const Json& value) {
+  const std::string path = "bake.light_probe_volumes";
+  r.expect_array(value, path);
+  std::string text;
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    if (!text.empty()) text += ';';
+    text += read_probe_volume(r, value[i], join_index(path, i));
+  }
+  return text;
+}
+
 BakeDefaults read_bake(const JsonReader& r, const Json& value) {
   r.expect_object(value, "bake");
-  r.warn_unknown_keys(
-      value, "bake",
-      {"voxel", "patches_total", "patches_per_voxel", "samples_per_face", "error_budget"});
+  r.warn_unknown_keys(value, "bake",
+                      {"voxel", "patches_total", "patches_per_voxel", "samples_per_face",
+                       "error_budget", "light_probes", "light_probe_volumes"});
   BakeDefaults d;
   d.voxel_resolution = read_count(r, value, "voxel", kMaxVoxelResolution);
   d.patches_total = read_count(r, value, "patches_total", kMaxPatchesTotal);
@@ -297,6 +343,10 @@ BakeDefaults read_bake(const JsonReader& r, const Json& value) {
       r.fail("bake.error_budget",
              "must be a relative error between 0 and 1 (exclusive), got " + budget->dump());
   }
+  if (const Json* probes = find(value, "light_probes"))
+    d.light_probes = read_probe_switch(r, *probes);
+  if (const Json* volumes = find(value, "light_probe_volumes"))
+    d.light_probe_volumes = read_probe_volumes(r, *volumes);
   return d;
 }
 

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "runtime/probe_volume.h"
 #include "settings/settings_table.h"
 
 namespace bounce {
@@ -20,6 +21,9 @@ void BakeSettings::apply_scene_defaults(const BakeDefaults& d) {
   if (!error_budget && d.error_budget && !kept_fraction && codec != CodecChoice::LargestEntries &&
       codec != CodecChoice::Dense)
     error_budget = d.error_budget;
+  if (light_probes == ProbePlacementMode::Auto && d.light_probes)
+    setting_row("light_probes").set(*this, *d.light_probes);
+  if (light_probe_volumes.empty()) light_probe_volumes = d.light_probe_volumes;
 }
 
 static void require(bool ok, const char* setting, const std::string& what) {
@@ -39,6 +43,29 @@ void BakeSettings::validate() const {
   require(!(codec == CodecChoice::Dense && (kept_fraction || error_budget)),
           kept_fraction ? "kept_fraction" : "error_budget",
           "does not apply to codec dense, which stores the exact matrix");
+  std::vector<ProbeVolume> volumes;
+  try {
+    volumes = parse_probe_volumes(light_probe_volumes, "light_probe_volumes");
+  } catch (const Error& e) {
+    // The same message, as the setting's own error (the front ends name its option).
+    throw InvalidSetting("light_probe_volumes", std::string(e.what()).substr(e.where().size() + 2));
+  }
+  require(!(light_probes == ProbePlacementMode::VolumesOnly && volumes.empty()), "light_probes",
+          "is 'volumes' but there is no probe volume (set light_probe_volumes)");
+}
+
+const char* to_string(ProbePlacementMode mode) {
+  switch (mode) {
+    case ProbePlacementMode::Auto:
+      return "auto";
+    case ProbePlacementMode::On:
+      return "on";
+    case ProbePlacementMode::VolumesOnly:
+      return "volumes";
+    case ProbePlacementMode::Off:
+      return "off";
+  }
+  return "?";
 }
 
 const char* to_string(OutOfCore mode) {

@@ -29,6 +29,15 @@ enum class CodecChoice { Auto, Dense, LargestEntries, LightWeighted };
 // The result is the same bit for bit either way.
 enum class OutOfCore { Auto, On, Off };
 
+// Which light probes the bake places (runtime/light_probe_placement.h):
+//   On:          next to the surfaces, and in every probe volume;
+//   VolumesOnly: only in the probe volumes;
+//   Off:         none;
+//   Auto:        the scene's bake block decides, else On, except that a
+//                grid with more candidates than light_probes_max places
+//                none next to the surfaces and says so (On refuses it).
+enum class ProbePlacementMode { Auto, On, VolumesOnly, Off };
+
 struct BakeSettings {
   // Names the setting (settings_table.h), not a front end's control for it:
   // "setting 'error_budget': ...". The command line adds its option's name.
@@ -71,13 +80,17 @@ struct BakeSettings {
   // every frame, whose light is the sample's (runtime/final_gather.h, spots);
   // 0: samples are lit at their centres.
   int final_gather_spots = FinalGatherSettings{}.spots;
-  // Light probes in the empty cells next to surfaces, gathered like the
-  // vertices (runtime/light_probes.h, runtime/light_probe_placement.h), and
-  // the most the grid may make: more is refused before any is traced. A
-  // probe holds about 2000 gather entries (1800-2300 on Sponza and the
-  // Cornell box), some 25 KB while the bake runs: 100000 are 2.5 GB.
-  bool light_probes = false;
+  // Light probes in the empty cells next to surfaces and in the probe
+  // volumes, gathered like the vertices (runtime/light_probes.h,
+  // runtime/light_probe_placement.h), and the most they may number: more
+  // is refused before any is traced. A probe holds about 2000 gather
+  // entries (1800-2300 on Sponza and the Cornell box), some 25 KB while the
+  // bake runs: 100000 are 2.5 GB.
+  ProbePlacementMode light_probes = ProbePlacementMode::Auto;
   int light_probes_max = 100000;
+  // Probe volumes as text (runtime/probe_volume.h); empty: the scene's bake
+  // block's, else none.
+  std::string light_probe_volumes;
   std::uint64_t seed = 1;
   bool dump_matrices = false;
 
@@ -133,5 +146,6 @@ struct BakeSettings {
 std::string to_string(PatchMode mode);
 const char* to_string(CodecChoice codec);
 const char* to_string(OutOfCore mode);
+const char* to_string(ProbePlacementMode mode);
 
 }  // namespace bounce

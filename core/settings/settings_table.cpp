@@ -63,6 +63,7 @@ void set_flag(BakeSettings& s, const SettingValue& v) {
 const char* name_of(PatchMode m) { return m == PatchMode::Voxel ? "voxel" : "virtual"; }
 const char* name_of(CodecChoice c) { return to_string(c); }
 const char* name_of(OutOfCore o) { return to_string(o); }
+const char* name_of(ProbePlacementMode m) { return to_string(m); }
 const char* name_of(OrderingMethod o) { return ordering_name(o); }
 const char* name_of(TransportSettings::Backend b) {
   switch (b) {
@@ -90,6 +91,9 @@ constexpr PatchMode kPatchModes[] = {PatchMode::Virtual, PatchMode::Voxel};
 constexpr CodecChoice kCodecs[] = {CodecChoice::Auto, CodecChoice::Dense,
                                    CodecChoice::LargestEntries, CodecChoice::LightWeighted};
 constexpr OutOfCore kOutOfCore[] = {OutOfCore::Auto, OutOfCore::On, OutOfCore::Off};
+constexpr ProbePlacementMode kProbeModes[] = {ProbePlacementMode::Auto, ProbePlacementMode::On,
+                                              ProbePlacementMode::VolumesOnly,
+                                              ProbePlacementMode::Off};
 constexpr OrderingMethod kOrderings[] = {OrderingMethod::None, OrderingMethod::GreedyRowTour,
                                          OrderingMethod::GreedyRowThenColumnTour,
                                          OrderingMethod::SketchTour};
@@ -327,13 +331,37 @@ std::vector<SettingRow> make_rows() {
       .name = "light_probes",
       .manifest_key = "light_probes",
       .flag = "--light-probes",
-      .type = SettingType::Flag,
-      .help = "Place light probes in the empty voxels next to surfaces and store their gather "
-              "(probe_*.npy): each frame every probe's irradiance as SH L2, lit by the same "
-              "solution as the vertices, for objects that move",
+      .type = SettingType::Choice,
+      .choices = {{"auto", "auto"},
+                  {"on", "next to surfaces and in volumes"},
+                  {"volumes", "in volumes only"},
+                  {"off", "off"}},
+      .help_shows_default = true,
+      .help = "Light probes for objects that move, each frame every probe's irradiance as SH "
+              "L2, lit by the same solution as the vertices (probe_*.npy): on (in the empty "
+              "voxels next to surfaces, and in every probe volume), volumes (only in the "
+              "probe volumes), off, or auto (the scene's bake block, else on; a grid with more "
+              "candidates than --light-probes-max then places none next to the surfaces and "
+              "says so, where on refuses the bake)",
+      .label = "Light probes",
+      .studio_help = "Points in the empty space that light moving objects with the same "
+                     "bounced light as the walls around them",
       .stage = BakeStage::Patches,
-      .get = get_flag<&S::light_probes>,
-      .set = set_flag<&S::light_probes>,
+      .get = [](const S& s) -> SettingValue { return std::string(name_of(s.light_probes)); },
+      .set = [](S& s, const SettingValue& v) { s.light_probes = named(kProbeModes, v); },
+  });
+  rows.push_back({
+      .name = "light_probe_volumes",
+      .manifest_key = "light_probe_volumes",
+      .flag = "--light-probe-volumes",
+      .type = SettingType::Text,
+      .help = "Boxes filled with light probes at a spacing of their own, beside those next to "
+              "surfaces: x0,y0,z0,x1,y1,z1,spacing per box (two corners in scene units, the "
+              "distance between neighbouring probes), boxes separated by ';'. Default: the "
+              "scene's bake block's, else none",
+      .stage = BakeStage::Patches,
+      .get = [](const S& s) -> SettingValue { return s.light_probe_volumes; },
+      .set = [](S& s, const SettingValue& v) { s.light_probe_volumes = std::get<std::string>(v); },
   });
   rows.push_back({
       .name = "light_probes_max",

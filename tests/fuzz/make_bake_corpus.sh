@@ -30,7 +30,7 @@ files=(manifest.json patches.npy samples.npy lights_first_hit.npy carried_polygo
 
 for scene in cornell-box furnace; do
   "$bounce" bake "resources/scenes/$scene" --voxel 3 --patches-per-voxel 1 --codec ours \
-    --dump-matrices --light-probes --no-pictures --quiet --out "$tmp/$scene"
+    --dump-matrices --light-probes on --no-pictures --quiet --out "$tmp/$scene"
   # No absolute paths of this machine in the committed files.
   sed -i "s|$root/||g" "$tmp/$scene/manifest.json"
 done

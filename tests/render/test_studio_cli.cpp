@@ -101,7 +101,7 @@ TEST_F(StudioCli, BadOptionsFailWithOneLine) {
       {fixture_bake().string() + shot + " --view voxels --probes", "--probes"},
       {fixture_bake().string() + shot + " --view matrix --object x.obj", "--object"},
       // The fixture was baked without light probes.
-      {fixture_bake().string() + shot + " --view preview --probes", "--light-probes"},
+      {fixture_bake().string() + shot + " --view preview --probes", "light_probes"},
   };
   for (const auto& c : cases) {
     const CommandRun r = run_studio(c.args);

@@ -40,7 +40,7 @@ BakeSettings probe_settings(int voxel) {
   s.voxel_resolution = voxel;
   s.codec = CodecChoice::Dense;
   s.pictures = false;
-  s.light_probes = true;
+  s.light_probes = ProbePlacementMode::On;
   return s;
 }
 
@@ -103,7 +103,7 @@ TEST(LightProbes, ProbeOnAWallAgreesWithTheWall) {
   test::ScratchDir dir("bounce-light-probes");
   const Scene scene = cornell();
   BakeSettings s = probe_settings(8);
-  s.light_probes = false;
+  s.light_probes = ProbePlacementMode::Off;
   s.final_gather_rays = 2048;
   const BakeResult r = bake_into(dir.path(), scene, s);
   LightingSession session(dir.path() / "bake");

@@ -79,7 +79,7 @@ class ProbeInterpolationThinWall : public ::testing::Test {
     // Dense: the transport exactly as solved, so that what the probes hold
     // is the bake's light and not compression's.
     BakeSettings s;
-    s.light_probes = true;
+    s.light_probes = ProbePlacementMode::On;
     s.voxel_resolution = 8;
     s.codec = CodecChoice::Dense;
     s.pictures = false;

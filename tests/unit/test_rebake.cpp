@@ -306,8 +306,8 @@ TEST(Rebake, APatchDensityChangeReusesTheSamplesAndEqualsAFullBake) {
   EXPECT_EQ(stage_names(partial.result),
             (std::vector<std::string>{"voxelize (reused)", "sample (reused)", "texture (reused)",
                                       "ray tracer (BVH build)", "patches", "form factors", "checks",
-                                      "closure", "balance", "final gather", "evaluation lights",
-                                      "transport", "compress"}));
+                                      "closure", "balance", "final gather", "light probes",
+                                      "evaluation lights", "transport", "compress"}));
 
   // Equal to a full bake with the new density, bit for bit.
   EXPECT_EQ(partial.result.patch_density, full.result.patch_density);
@@ -342,7 +342,7 @@ TEST(Rebake, APatchDensityChangeReusesTheSamplesAndEqualsAFullBake) {
                 "voxelize (reused)", "sample (reused)", "texture (reused)",
                 "ray tracer (BVH build) (reused)", "patches (reused)", "form factors (reused)",
                 "checks (reused)", "closure (reused)", "balance (reused)", "final gather (reused)",
-                "evaluation lights (reused)", "transport", "compress"}));
+                "light probes (reused)", "evaluation lights (reused)", "transport", "compress"}));
 }
 
 // Another number of meshes than the previous bake had is another scene:

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "base/diagnostics.h"
+#include "runtime/probe_volume.h"
 #include "scene/scene_loader.h"
 #include "scratch_dir.h"
 
@@ -435,6 +436,19 @@ TEST_F(SceneLoaderInput, AbsurdBakeDefaultsAreFatalNamingTheKey) {
       {R"("error_budget": 0)", {"bake.error_budget", "between 0 and 1"}},
       {R"("error_budget": 1.5)", {"bake.error_budget", "between 0 and 1"}},
       {R"("error_budget": "2%")", {"bake.error_budget"}},
+      {R"("light_probes": "some")", {"bake.light_probes", "\"volumes\""}},
+      {R"("light_probes": 1)", {"bake.light_probes"}},
+      {R"("light_probe_volumes": {"min": [0, 0, 0]})", {"bake.light_probe_volumes", "array"}},
+      {R"("light_probe_volumes": [{"min": [0, 0, 0], "max": [1, 1, 1]}])",
+       {"bake.light_probe_volumes[0].spacing", "missing"}},
+      {R"("light_probe_volumes": [{"min": [0, 0, 0], "max": [1, 1, 1], "spacing": 0}])",
+       {"bake.light_probe_volumes[0].spacing", "positive"}},
+      {R"("light_probe_volumes": [{"min": [0, 0, 0], "max": [1, 1, 1], "spacing": -1}])",
+       {"bake.light_probe_volumes[0].spacing", "positive"}},
+      {R"("light_probe_volumes": [{"min": [1, 0, 0], "max": [0, 1, 1], "spacing": 0.5}])",
+       {"bake.light_probe_volumes[0]", "below"}},
+      {R"("light_probe_volumes": [{"min": [0, 0], "max": [1, 1, 1], "spacing": 0.5}])",
+       {"bake.light_probe_volumes[0].min"}},
   };
   for (std::size_t i = 0; i < std::size(cases); ++i) {
     SCOPED_TRACE(cases[i].first);
@@ -453,6 +467,19 @@ TEST_F(SceneLoaderInput, AbsurdBakeDefaultsAreFatalNamingTheKey) {
   EXPECT_EQ(s.defaults.patches_per_voxel, 3);
   EXPECT_EQ(s.defaults.samples_per_face, 64);
   EXPECT_NEAR(s.defaults.error_budget.value_or(0.0), 0.03, 1e-7);
+  // Light probes: a switch (a bool counts) and volumes as the setting's text.
+  const fs::path probes = write(
+      "probes.json",
+      R"({"meshes": [{"file": "tri.obj"}], "bake": {"light_probes": false, "light_probe_volumes": [{"min": [0, 0, 0], "max": [1, 2, 3], "spacing": 0.25}, {"min": [-1, -1, -1], "max": [1, 1, 1], "spacing": 0.1}]}})");
+  const Scene p = load(probes);
+  EXPECT_EQ(p.defaults.light_probes, "off");
+  const std::vector<ProbeVolume> v =
+      parse_probe_volumes(p.defaults.light_probe_volumes, "light_probe_volumes");
+  ASSERT_EQ(v.size(), 2u);
+  EXPECT_EQ(v[0].hi, glm::vec3(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(v[0].spacing, 0.25f);
+  EXPECT_EQ(v[1].lo, glm::vec3(-1.0f));
+  EXPECT_EQ(v[1].spacing, 0.1f);
 }
 
 TEST_F(SceneLoaderInput, PatchDensityIsAPositiveBoundedNumberNamedInErrors) {

@@ -34,6 +34,7 @@ const std::map<std::string, Expected>& expected() {
       {"final_gather_near_min_rays", {"--final-gather-near-min-rays", BakeStage::Patches}},
       {"final_gather_spots", {"--final-gather-spots", BakeStage::Patches}},
       {"light_probes", {"--light-probes", BakeStage::Patches}},
+      {"light_probe_volumes", {"--light-probe-volumes", BakeStage::Patches}},
       {"light_probes_max", {"--light-probes-max", BakeStage::Patches}},
       {"seed", {"--seed", BakeStage::Geometry}},
       {"bounces", {"--bounces", BakeStage::Transport}},
@@ -73,6 +74,9 @@ SettingValue other_value(const SettingRow& row, const SettingValue& v) {
         if (v != SettingValue(std::string(c.name))) return std::string(c.name);
       break;
     case SettingType::Text:
+      // The probe volumes' text must parse (runtime/probe_volume.h).
+      if (std::string_view(row.name) == "light_probe_volumes")
+        return std::string("0,0,0,1,1,1,0.5");
       return std::get<std::string>(v) + "/other";
   }
   ADD_FAILURE() << row.name << " has no other value";
