@@ -95,11 +95,12 @@ std::int64_t ProbeInterpolator::Lattice::probe_in(const glm::ivec3& c) const {
   return it != cells.end() && it->first == key ? static_cast<std::int64_t>(it->second) : -1;
 }
 
-bool ProbeInterpolator::Lattice::covers(const glm::vec3& point) const {
+float ProbeInterpolator::Lattice::share_at(const glm::vec3& point) const {
   const glm::vec3 u = (point - grid.origin) / grid.cell_size;
+  float depth = 0.5f;  // in cells from the edge; the outer probes stand at 0.5
   for (int a = 0; a < 3; ++a)
-    if (!(u[a] >= 0.0f && u[a] <= static_cast<float>(grid.dims[a]))) return false;
-  return true;
+    depth = std::min({depth, u[a], static_cast<float>(grid.dims[a]) - u[a]});
+  return depth > 0.0f ? 2.0f * depth : 0.0f;  // also 0 for NaN
 }
 
 // A surface anywhere on the segment is a wall between: the probe's light
@@ -197,14 +198,38 @@ void ProbeInterpolator::nearest_in_reach(const glm::vec3& point, ProbeVisibility
 ProbeBlend ProbeInterpolator::blend(const glm::vec3& point, ProbeVisibility visibility) const {
   ProbeBlend out;  // a lattice that finds no probe leaves it empty but for its rays
   for (const Lattice& volume : volumes_) {
-    if (!volume.covers(point)) continue;
+    const float share = volume.share_at(point);
+    if (share <= 0.0f) continue;
     trilinear(volume, point, visibility, out);
-    if (out.count > 0) return out;
+    if (out.count == 0) continue;
+    if (share < 1.0f) fade_to_surfaces(point, visibility, share, out);
+    return out;
   }
+  surfaces_blend(point, visibility, out);
+  return out;
+}
+
+void ProbeInterpolator::surfaces_blend(const glm::vec3& point, ProbeVisibility visibility,
+                                       ProbeBlend& out) const {
   trilinear(surfaces_, point, visibility, out);
   if (out.count == 0) neighbourhood(point, visibility, out);
   if (out.count == 0) nearest_in_reach(point, visibility, out);
-  return out;
+}
+
+// `out`, a volume's blend, keeps `share` of the weight; the probes next to
+// the surfaces get the rest, when any of them sees the point.
+void ProbeInterpolator::fade_to_surfaces(const glm::vec3& point, ProbeVisibility visibility,
+                                         float share, ProbeBlend& out) const {
+  ProbeBlend rest;
+  surfaces_blend(point, visibility, rest);
+  out.rays += rest.rays;
+  if (rest.count == 0) return;
+  for (std::size_t i = 0; i < out.count; ++i) out.weight[i] *= share;
+  for (std::size_t i = 0; i < rest.count; ++i) {
+    out.probe[out.count] = rest.probe[i];
+    out.weight[out.count] = (1.0f - share) * rest.weight[i];
+    ++out.count;
+  }
 }
 
 ProbeBlend ProbeInterpolator::sh_at(const glm::vec3& point, const std::vector<glm::vec3>& sh,

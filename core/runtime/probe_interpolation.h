@@ -19,7 +19,11 @@
 // own lattice: a point inside a volume's lattice blends that lattice's
 // probes trilinearly with the same visibility test, the first volume that
 // has a probe seeing it; a point no volume lights falls back to the probes
-// next to the surfaces as above.
+// next to the surfaces as above. Beyond the volume's outer probes (the
+// outer half cell of its lattice) the volume's share falls linearly to
+// zero and the probes next to the surfaces take the rest, so that an
+// object leaving a volume does not jump from one lattice's light to the
+// other's.
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -41,7 +45,8 @@ struct ProbeBlend {
   // the 3 x 3 x 3 cells around the point's own, the nearest in reach, or
   // none (no probe within two cells sees the point).
   enum class Stage : std::uint8_t { kTrilinear, kNeighbourhood, kNearest, kNone };
-  static constexpr std::size_t kMaxProbes = 27;
+  // A volume's 8 and, where it fades out, the 27 of the cells around.
+  static constexpr std::size_t kMaxProbes = 8 + 27;
   std::array<std::uint32_t, kMaxProbes> probe{};
   std::array<float, kMaxProbes> weight{};  // sum to 1 when count > 0
   std::size_t count = 0;
@@ -84,8 +89,9 @@ class ProbeInterpolator {
     std::vector<std::pair<std::uint64_t, std::uint32_t>> cells;
     // The probe in cell `c`, or -1 (also for cells outside the grid).
     std::int64_t probe_in(const glm::ivec3& c) const;
-    // Whether `point` lies within the grid's cells.
-    bool covers(const glm::vec3& point) const;
+    // The share of the blend this lattice takes at `point`: 1 up to its
+    // outer probes, falling linearly to 0 at the edge of its cells.
+    float share_at(const glm::vec3& point) const;
   };
   void add_probe(Lattice& lattice, std::uint32_t probe) const;
   static void check_distinct(Lattice& lattice);
@@ -97,6 +103,11 @@ class ProbeInterpolator {
                  ProbeBlend& out) const;
   void neighbourhood(const glm::vec3& point, ProbeVisibility visibility, ProbeBlend& out) const;
   void nearest_in_reach(const glm::vec3& point, ProbeVisibility visibility, ProbeBlend& out) const;
+  // The probes next to the surfaces: trilinear, then the wider tent, then
+  // the nearest in reach.
+  void surfaces_blend(const glm::vec3& point, ProbeVisibility visibility, ProbeBlend& out) const;
+  void fade_to_surfaces(const glm::vec3& point, ProbeVisibility visibility, float share,
+                        ProbeBlend& out) const;
 
   std::vector<glm::vec3> positions_;
   const RayTracer& tracer_;

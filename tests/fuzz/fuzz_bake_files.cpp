@@ -81,7 +81,8 @@ const char* const kBakeFiles[] = {"manifest.json",
                                   "probe_gather_share.npy",
                                   "probe_gather_seen_first.npy",
                                   "probe_gather_seen_sample.npy",
-                                  "probe_gather_seen_weight.npy"};
+                                  "probe_gather_seen_weight.npy",
+                                  bounce::bake_file::kProbeVolumes};
 constexpr std::size_t kBakeFileCount = std::size(kBakeFiles);
 
 [[maybe_unused]] std::string read_all(const fs::path& path) {

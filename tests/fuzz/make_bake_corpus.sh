@@ -26,11 +26,15 @@ files=(manifest.json patches.npy samples.npy lights_first_hit.npy carried_polygo
   gather_near_position.npy gather_near_normal.npy gather_near_albedo.npy gather_near_patch.npy
   probe_position.npy probe_gather_first.npy probe_gather_source.npy probe_gather_weight.npy
   probe_gather_cluster.npy probe_gather_share.npy probe_gather_seen_first.npy
-  probe_gather_seen_sample.npy probe_gather_seen_weight.npy)
+  probe_gather_seen_sample.npy probe_gather_seen_weight.npy probe_volume.npy)
 
+# The Cornell box with a probe volume too (18 probes above its boxes), so
+# that probe_volume.npy is in the template.
+declare -A volumes=([cornell-box]="-0.5,1.25,-0.5,0.5,1.75,0.5,0.5" [furnace]="")
 for scene in cornell-box furnace; do
   "$bounce" bake "resources/scenes/$scene" --voxel 3 --patches-per-voxel 1 --codec ours \
-    --dump-matrices --light-probes on --no-pictures --quiet --out "$tmp/$scene"
+    --dump-matrices --light-probes on --light-probe-volumes "${volumes[$scene]}" \
+    --no-pictures --quiet --out "$tmp/$scene"
   # No absolute paths of this machine in the committed files.
   sed -i "s|$root/||g" "$tmp/$scene/manifest.json"
 done

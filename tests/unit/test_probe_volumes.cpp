@@ -224,6 +224,50 @@ TEST_F(CornellVolume, ItsProbesAgreeWithThePathTracer) {
   EXPECT_NEAR(e.level, 1.0, 0.03);
 }
 
+// Walking across the box at mid height, through the volume and out of it
+// on both sides, 1 cm at a time: the light an object gets changes smoothly
+// between the volume's outer probes (x from -0.5 to 0.5), in the half cell
+// beyond them where the volume fades out and the probes next to the
+// surfaces fade in, and beyond, where those probes alone light it (mid-air
+// between walls: their wider tent and nearest-probe stages). Measured: the
+// largest step between neighbouring points in each part, against the
+// walk's mean level.
+TEST_F(CornellVolume, TheLightStepsLittleWhereTheVolumeEnds) {
+  std::array<glm::vec3, kShCoefficients> sh{};
+  double level = 0.0, step[3] = {0.0, 0.0, 0.0};  // inside, fading, outside
+  glm::vec3 last(0.0f);
+  int points = 0;
+  for (int i = 0; i <= 180; ++i) {
+    const float x = -0.9f + 0.01f * static_cast<float>(i);
+    const glm::vec3 at(x, 1.5f, 0.05f);
+    const ProbeBlend b = session_->probe_sh_at(at, sh);
+    ASSERT_GT(b.count, 0u) << x;
+    glm::vec3 e(0.0f);
+    for (std::size_t k = 0; k < 6; ++k) e += sh_irradiance(sh.data(), probe_directions()[k]);
+    e /= 6.0f;
+    level += (e.x + e.y + e.z) / 3.0;
+    if (i > 0) {
+      // The part of the step's midpoint (1 mm off the edges at 0.5 and 0.625).
+      const float mid = std::abs(x - 0.005f);
+      const int part = mid < 0.5f ? 0 : mid < 0.625f ? 1 : 2;
+      const glm::vec3 d = glm::abs(e - last);
+      step[part] = std::max<double>({step[part], d.x, d.y, d.z});
+    }
+    last = e;
+    ++points;
+  }
+  level /= points;
+  std::printf(
+      "Across the volume's edge, 1 cm steps: mean level %.4g; largest step %.2f%% of it "
+      "between the volume's probes, %.2f%% where it fades out, %.2f%% beyond\n",
+      level, 100.0 * step[0] / level, 100.0 * step[1] / level, 100.0 * step[2] / level);
+  ASSERT_GT(level, 0.0);
+  // Trilinear between probes 25 cm apart, and a fade over 12.5 cm: no
+  // step of more than a few percent of the level.
+  EXPECT_LT(step[0], 0.05 * level);
+  EXPECT_LT(step[1], 0.05 * level);
+}
+
 TEST(ProbeVolumeErrors, AreRefusedBeforeTracingNamingTheSetting) {
   const Scene scene = cornell();
   const auto bake_error = [&](const BakeSettings& s) {
