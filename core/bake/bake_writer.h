@@ -7,14 +7,10 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/bake.h"
+#include "bake/bake_manifest.h"
 #include "folder/bake_format.h"
 
 namespace bounce {
-
-// The manifest without its "files" list: settings, counts, timings, checks,
-// warnings and what was left out.
-nlohmann::json make_manifest(const Scene& scene, const BakeResult& result,
-                             const Diagnostics& diagnostics);
 
 // Returns the manifest as written (with "files").
 nlohmann::json write_bake(const std::filesystem::path& out_dir, const Scene& scene,
