@@ -357,8 +357,8 @@ std::vector<SettingRow> make_rows() {
       .type = SettingType::Text,
       .help = "Boxes filled with light probes at a spacing of their own, beside those next to "
               "surfaces: x0,y0,z0,x1,y1,z1,spacing per box (two corners in scene units, the "
-              "distance between neighbouring probes), boxes separated by ';'. Default: the "
-              "scene's bake block's, else none",
+              "distance between neighbouring probes), boxes separated by ';', e.g. "
+              "'-1,0,-1,1,2,1,0.25'. Default: the scene's bake block's, else none",
       .stage = BakeStage::Patches,
       .get = [](const S& s) -> SettingValue { return s.light_probe_volumes; },
       .set = [](S& s, const SettingValue& v) { s.light_probe_volumes = std::get<std::string>(v); },
@@ -371,9 +371,10 @@ std::vector<SettingRow> make_rows() {
       .min = 1,
       .max = 16777216,
       .help_shows_default = true,
-      .help = "Most light probes a bake may place: a grid with more empty voxels next to "
-              "surfaces is refused before any probe is traced (a probe holds about 2000 "
-              "gather entries, some 25 KB while baking and 15 KB in the folder)",
+      .help = "Most light probes a bake may place: more candidates (empty voxels next to "
+              "surfaces and the probe volumes' lattice points) are refused before any probe is "
+              "traced (a probe holds about 2000 gather entries, some 25 KB while baking and "
+              "15 KB in the folder)",
       .stage = BakeStage::Patches,
       .get = get_int<&S::light_probes_max>,
       .set = set_int<&S::light_probes_max>,
