@@ -187,15 +187,18 @@ ProbePlacement place_light_probes(const RayTracer& tracer, const Voxelization& v
     VolumePlacement& vp = placement.volumes.emplace_back();
     vp.volume = v;
     vp.lattice = volume_lattice(v);
-    vp.candidates = static_cast<std::size_t>(volume_point_count(v));
+    // The points the loop below adds, so the ranges of `verdict` line up
+    // (check_request has bounded their count).
+    const glm::ivec3 d = vp.lattice.dims;
+    vp.candidates = static_cast<std::size_t>(d.x) * static_cast<std::size_t>(d.y) *
+                    static_cast<std::size_t>(d.z);
     add_lattice_points(vp.lattice, points);
   }
   if (progress) progress->begin_stage("light probe placement", points.size());
   const std::vector<Verdict> verdict = judge_all(tracer, points);
-  std::size_t begin = 0;
   keep(points, verdict, 0, cells.size(), placement.rejected_enclosed,
        placement.rejected_sees_nothing, placement.position);
-  begin = cells.size();
+  std::size_t begin = cells.size();
   for (VolumePlacement& vp : placement.volumes) {
     vp.placed = keep(points, verdict, begin, begin + vp.candidates, vp.rejected_enclosed,
                      vp.rejected_sees_nothing, placement.position);
