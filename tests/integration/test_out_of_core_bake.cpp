@@ -3,9 +3,11 @@
 // bit: the same bake run both ways must leave byte-identical F.npy, T.npy
 // and compressed files and the same numbers in the manifest, and no
 // temporary file behind. A folder that cannot hold the files is one error
-// naming it, and no bake folder. Both runs use OpenBLAS: --gemm auto picks
-// a backend by timing, a loaded machine may pick CLBlast for one run only,
-// and the backends round differently.
+// naming it, and no bake folder. Both runs use OpenBLAS and the same
+// OpenBLAS kernels: --gemm auto picks a backend by timing, and where OpenBLAS
+// does not know the CPU its kernels are picked by timing too, so a loaded
+// machine may pick differently for one run only, and the choices round
+// differently.
 #include "cli_harness.h"
 
 namespace bounce::itest {
@@ -14,6 +16,8 @@ namespace {
 // The manifest without what legitimately differs between two runs: times
 // (and the GEMM backend's reason, which quotes one), memory, the out-of-core
 // setting and decision itself.
+constexpr const char* kKernels = "OpenBLAS kernels: ";
+
 json comparable(json m) {
   m.erase("stages");
   m.erase("total_seconds");
@@ -32,10 +36,23 @@ json comparable(json m) {
     }
   };
   strip(m);
-  // The GEMM backend's reason quotes a timed product.
-  for (json& d : m["transport"]["decisions"])
-    if (d["what"].get<std::string>().rfind("GEMM backend", 0) == 0) d.erase("why");
+  // The GEMM backend's and the kernels' reasons quote a timed product, or
+  // the environment that pinned the kernels.
+  for (json& d : m["transport"]["decisions"]) {
+    const std::string what = d["what"].get<std::string>();
+    if (what.rfind("GEMM backend", 0) == 0 || what.rfind(kKernels, 0) == 0) d.erase("why");
+  }
   return m;
+}
+
+// The OpenBLAS kernels a bake used, from its manifest's decisions; empty
+// when it records none.
+std::string kernels_used(const json& manifest) {
+  for (const json& d : manifest["transport"]["decisions"]) {
+    const std::string what = d["what"].get<std::string>();
+    if (what.rfind(kKernels, 0) == 0) return what.substr(std::string(kKernels).size());
+  }
+  return {};
 }
 
 struct Case {
@@ -68,7 +85,14 @@ TEST_P(OutOfCoreBake, IsBitIdenticalToTheInMemoryBake) {
                                      "--out",
                                      out[mode].string()};
     args.insert(args.end(), GetParam().args.begin(), GetParam().args.end());
-    const RunResult r = run(args, tmp.path());
+    RunOptions options;
+    options.cwd = tmp.path();
+    // The second run uses the kernels the first one chose.
+    if (mode == "on") {
+      const std::string kernels = kernels_used(read_manifest(out["off"]));
+      if (!kernels.empty()) options.env["OPENBLAS_CORETYPE"] = kernels;
+    }
+    const RunResult r = run(args, options);
     ASSERT_EQ(r.exit_code, 0) << r;
   }
   const json on = read_manifest(out["on"]), off = read_manifest(out["off"]);
