@@ -17,13 +17,49 @@ bool sees_light(const RayTracer& tracer, const glm::vec3& origin, const Light& l
   return !tracer.occluded(origin, light.position - origin, 0.0f, 1.0f - 1e-4f);
 }
 
+// One sample's visibility of one light, traced at most once per frame. With
+// a shadow budget (runtime/shadow_budget.h) it is kept between frames: a
+// sample whose patch is not traced this frame reuses what its last trace
+// found. A traced sample that did not need the ray (it faced away) is kept
+// as unknown, and traced when it is needed.
+class SampleShadow {
+ public:
+  SampleShadow() = default;  // no budget: traced when needed
+  SampleShadow(std::uint8_t* kept, bool traced) : kept_(kept), traced_(traced) {}
+  SampleShadow(const SampleShadow&) = delete;
+  SampleShadow& operator=(const SampleShadow&) = delete;
+  ~SampleShadow() {
+    if (kept_ && traced_ && known_ < 0) *kept_ = kUnknown;
+  }
+
+  template <class Trace>
+  bool sees(Trace&& trace) {
+    if (known_ < 0) {
+      if (kept_ && !traced_ && *kept_ != kUnknown) {
+        known_ = *kept_;
+      } else {
+        known_ = trace() ? 1 : 0;
+        if (kept_) *kept_ = static_cast<std::uint8_t>(known_);
+      }
+    }
+    return known_ == 1;
+  }
+
+ private:
+  static constexpr std::uint8_t kUnknown = 2;
+  std::uint8_t* kept_ = nullptr;
+  bool traced_ = true;
+  int known_ = -1;
+};
+
 // Irradiance at point p (normal n) from one light, visibility included.
 glm::vec3 from_light(const RayTracer& tracer, const glm::vec3& p, const glm::vec3& n,
-                     const LightReach& light, float eps) {
+                     const LightReach& light, float eps, SampleShadow& shadow) {
   ShadowRay ray;
   glm::vec3 value;
-  if (!light.at(p, n, eps, ray, value) ||
-      tracer.occluded(ray.origin, ray.direction, ray.t_near, ray.t_far))
+  if (!light.at(p, n, eps, ray, value) || !shadow.sees([&] {
+        return !tracer.occluded(ray.origin, ray.direction, ray.t_near, ray.t_far);
+      }))
     return glm::vec3(0.0f);
   return value;
 }
@@ -72,13 +108,15 @@ constexpr float kMidpointRadius = 0.02f;
 // docs/benchmarks.md). Visibility: see kOwnRaysSolidAngle.
 glm::vec3 point_light_power(const RayTracer& tracer, const SampleSet& set,
                             std::span<const CarriedPolygonFrame> frames, std::uint32_t si,
-                            const Light& light, const SpotCone& cone, float eps) {
+                            const Light& light, const SpotCone& cone, float eps,
+                            SampleShadow& shadow) {
   const Sample& s = set.samples[si];
   const glm::vec3 flux = light.color * light.intensity;
-  int sample_sees = -1;  // the sample's own shadow ray, traced on first use
+  // The sample's own shadow ray, traced on first use.
   auto sample_visibility = [&] {
-    if (sample_sees < 0) sample_sees = sees_light(tracer, s.position + eps * s.normal, light);
-    return static_cast<float>(sample_sees);
+    return shadow.sees([&] { return sees_light(tracer, s.position + eps * s.normal, light); })
+               ? 1.0f
+               : 0.0f;
   };
   glm::vec3 power(0.0f);
   for (std::uint32_t c = set.carried_first[si]; c < set.carried_first[si + 1]; ++c) {
@@ -167,7 +205,7 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
                        std::span<const CarriedPolygonFrame> frames, const PatchSet& patches,
                        const std::vector<Light>& lights, const std::vector<AreaLight>& area_lights,
                        int area_strata, std::span<glm::vec3> e, std::span<glm::vec3> sample_e,
-                       AreaLightCache* area_cache) {
+                       AreaLightCache* area_cache, ShadowBudget* shadows) {
   if (!sample_e.empty() && sample_e.size() != samples.samples.size())
     throw Error("direct light", "the per-sample output has " + std::to_string(sample_e.size()) +
                                     " entries for " + std::to_string(samples.samples.size()) +
@@ -198,6 +236,14 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
                       [&](auto& out) {
                         area_irradiance_per_sample(tracer, samples, area_lights, area_strata, out);
                       });
+  // Each light's kept visibility per sample, with a shadow budget whose
+  // batches are the patches.
+  std::vector<std::uint8_t*> kept(lights.size(), nullptr);
+  if (shadows) {
+    shadows->begin_frame(samples.samples.data(), patches.size(), lights);
+    for (std::size_t li = 0; li < lights.size(); ++li)
+      kept[li] = shadows->visibility_of(li, samples.samples.size()).data();
+  }
 #pragma omp parallel for schedule(dynamic, 16)
   for (std::int64_t pi = 0; pi < static_cast<std::int64_t>(patches.size()); ++pi) {
     const auto p = static_cast<std::size_t>(pi);
@@ -210,11 +256,12 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
       glm::vec3 polygon_power(0.0f);  // integrated over its polygons
       for (std::size_t li = 0; li < lights.size(); ++li) {
         const Light& light = lights[li];
+        SampleShadow shadow(kept[li] ? kept[li] + si : nullptr, !shadows || shadows->traced(li, p));
         if (polygons && light.type != Light::Type::Directional)
           polygon_power +=
-              point_light_power(tracer, samples, frames, si, light, reach[li].cone(), eps);
+              point_light_power(tracer, samples, frames, si, light, reach[li].cone(), eps, shadow);
         else
-          es += from_light(tracer, s.position, s.normal, reach[li], eps);
+          es += from_light(tracer, s.position, s.normal, reach[li], eps, shadow);
       }
       if (!area_e.empty()) es += area_e[si];
       power += polygon_power + s.area * es;
@@ -238,7 +285,10 @@ glm::vec3 irradiance_at(const RayTracer& tracer, const glm::vec3& p, const glm::
                         int area_strata, std::uint64_t seed) {
   const float eps = 10.0f * tracer.epsilon();  // the same offset as for patch samples
   glm::vec3 e(0.0f);
-  for (const Light& light : lights) e += from_light(tracer, p, n, LightReach(light), eps);
+  for (const Light& light : lights) {
+    SampleShadow shadow;
+    e += from_light(tracer, p, n, LightReach(light), eps, shadow);
+  }
   for (const AreaLight& light : area)
     e += area_light_irradiance(tracer, p, n, light, area_strata, seed);
   return e;

@@ -20,6 +20,7 @@
 #include "runtime/area_light_cache.h"
 #include "runtime/area_lights.h"
 #include "runtime/carried_polygon_frames.h"
+#include "runtime/shadow_budget.h"
 #include "scene/scene.h"
 
 namespace bounce {
@@ -46,12 +47,16 @@ void direct_irradiance(const RayTracer& tracer, const SampleSet& samples, const 
 // the counts differ and a point or spot light needs them. `area_cache` (if
 // given) keeps the samples' light from the area lights between calls
 // (runtime/area_light_cache.h): it must be used with these samples only.
+// `shadows` (if given) spreads the samples' shadow rays to point, spot and
+// directional lights over its frames while a light moves, one batch per
+// patch (runtime/shadow_budget.h); the rays of polygons large enough to take
+// their own are traced every frame. Use it with these samples only.
 void direct_irradiance(const RayTracer& tracer, const SampleSet& samples,
                        std::span<const CarriedPolygonFrame> frames, const PatchSet& patches,
                        const std::vector<Light>& lights, const std::vector<AreaLight>& area,
                        int area_strata, std::span<glm::vec3> irradiance,
                        std::span<glm::vec3> sample_irradiance = {},
-                       AreaLightCache* area_cache = nullptr);
+                       AreaLightCache* area_cache = nullptr, ShadowBudget* shadows = nullptr);
 
 // Irradiance (per colour channel) at one surface point p with unit normal n
 // (the side that receives), shadow rays included, for callers that shade

@@ -22,8 +22,13 @@ TransportMultiplier timed_multiplier(const StoredTransport& transport,
 
 // Every frame keeps each sample's direct irradiance: a final gather with
 // sample sources reads it (a few bytes per sample).
-RuntimeFrameSettings with_sample_irradiance(RuntimeFrameSettings s) {
+// The frame as the relighter runs it: with each sample's light for the
+// gather's sample sources, and the samples' shadow rays spread like the near
+// sources'.
+RuntimeFrameSettings frame_settings(const RelighterSettings& settings) {
+  RuntimeFrameSettings s = settings.frame;
   s.sample_irradiance = true;
+  s.shadow_frames = settings.shadow_frames;
   return s;
 }
 
@@ -38,8 +43,7 @@ Relighter::Relighter(const RayTracer& tracer, const SampleSet& samples, const Pa
       samples_(samples),
       patches_(patches),
       near_shadows_(settings.shadow_frames),
-      frame_(tracer, samples, patches, multiplier_.multiply_into(),
-             with_sample_irradiance(settings.frame)) {
+      frame_(tracer, samples, patches, multiplier_.multiply_into(), frame_settings(settings)) {
   compile_seconds_ = since(compile_start_);
 }
 

@@ -28,10 +28,11 @@ struct RelighterSettings {
   MultiplyChoice multiply = MultiplyChoice::kAuto;
   CppLoop loop = CppLoop::kMeasured;
   RuntimeFrameSettings frame;
-  // The gather's near sources trace their shadow rays to a light that moved
-  // over this many frames (runtime/shadow_budget.h): 1, every ray in the
-  // frame it moved; k, a k-th of them per frame, the light exact k frames
-  // after the light stops.
+  // The patches' samples and the gather's near sources trace their shadow
+  // rays to a light that moved over this many frames
+  // (runtime/shadow_budget.h): 1, every ray in the frame it moved; k, a k-th
+  // of them per frame, the light exact k frames after the light stops. It
+  // replaces frame.shadow_frames.
   int shadow_frames = 1;
 };
 
@@ -72,10 +73,10 @@ class Relighter {
   // Shadow-ray batches the last gather traced to its near sources (over all
   // lights; a light that did not move traces none).
   std::size_t near_traced_batches() const { return near_shadows_.traced_batches(); }
-  // The near sources' shadows are exact for the lights of the last gather
-  // (always, with shadow_frames 1; else once the gathers since a light last
-  // moved traced every batch).
-  bool shadows_settled() const { return near_shadows_.settled(); }
+  // The samples' and near sources' shadows are exact for the lights of the
+  // last frame and gather (always, with shadow_frames 1; else once the frames
+  // and gathers since a light last moved traced every batch).
+  bool shadows_settled() const { return frame_.shadows_settled() && near_shadows_.settled(); }
 
   // The last frame's b and T b per patch, from its published buffers or its
   // record. Throws bounce::Error when the frame keeps neither.

@@ -66,6 +66,8 @@ RuntimeFrame::RuntimeFrame(const RayTracer& tracer, const SampleSet& samples,
                                        std::to_string(samples_.samples.size()) +
                                        ": the samples are not the patches' own");
   if (settings_.area_strata < 1) throw Error("runtime frame", "area_strata must be at least 1");
+  if (settings_.shadow_frames < 1) throw Error("runtime frame", "shadow_frames must be at least 1");
+  if (settings_.shadow_frames > 1) shadows_.emplace(settings_.shadow_frames);
   build();
 }
 
@@ -101,11 +103,12 @@ void RuntimeFrame::build() {
   if (settings_.sample_irradiance)
     direct_writes.push_back(graph_.add_imported("E per sample", sample_irradiance_.data(),
                                                 sample_irradiance_.size() * sizeof(glm::vec3)));
-  add_timed_pass(
-      "direct light", {lights}, direct_writes, [this, e, span](const FrameGraph::Context& c) {
-        direct_irradiance(tracer_, samples_, frames_, patches_, *lights_, *area_,
-                          settings_.area_strata, span(c, e), sample_irradiance_, &area_cache_);
-      });
+  add_timed_pass("direct light", {lights}, direct_writes,
+                 [this, e, span](const FrameGraph::Context& c) {
+                   direct_irradiance(tracer_, samples_, frames_, patches_, *lights_, *area_,
+                                     settings_.area_strata, span(c, e), sample_irradiance_,
+                                     &area_cache_, shadows_ ? &*shadows_ : nullptr);
+                 });
   add_timed_pass("first hit", {e}, {b}, [this, e, b, span](const FrameGraph::Context& c) {
     seen_first_hit(samples_, patches_, span(c, e), sample_irradiance_, span(c, b));
   });
@@ -172,6 +175,11 @@ void RuntimeFrame::solve(const std::vector<Light>& lights, const std::vector<Are
   graph_.execute();
   lights_ = nullptr;
   area_ = nullptr;
+  last_light_count_ = lights.size();
+}
+
+std::size_t RuntimeFrame::traced_shadow_batches() const {
+  return shadows_ ? shadows_->traced_batches() : last_light_count_ * n_;
 }
 
 }  // namespace bounce

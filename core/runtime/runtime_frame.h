@@ -29,6 +29,7 @@
 // The results equal light_patches() (runtime/patch_lighting.h): the same
 // direct_irradiance() per patch, the same sums in the same order.
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,7 @@
 #include "runtime/carried_polygon_frames.h"
 #include "runtime/frame_graph.h"
 #include "runtime/patch_lighting.h"
+#include "runtime/shadow_budget.h"
 #include "scene/scene.h"
 
 namespace bounce {
@@ -59,6 +61,9 @@ struct RuntimeFrameSettings {
   // Keep each sample's direct irradiance (sample_irradiance()), for a final
   // gather with sample sources.
   bool sample_irradiance = false;
+  // The samples' shadow rays to a light that moved, spread over this many
+  // frames (runtime/shadow_budget.h): 1, every ray in the frame it moved.
+  int shadow_frames = 1;
   // FrameGraph::set_poison_dead_transients: NaN into every dead transient's
   // range after each pass (tests: proves no pass reads a dead or overwritten
   // buffer).
@@ -94,6 +99,12 @@ class RuntimeFrame {
   const std::vector<glm::vec3>& sample_irradiance() const { return sample_irradiance_; }
   // Per patch: E (r, g, b), b, T b; empty unless settings.record.
   const std::vector<float>& record() const { return record_; }
+  // The samples' shadows are exact for the last frame's lights (always, with
+  // shadow_frames 1).
+  bool shadows_settled() const { return !shadows_ || shadows_->settled(); }
+  // Batches of samples (one per patch) whose shadow rays the last frame
+  // traced, over all lights; with shadow_frames 1, every patch per light.
+  std::size_t traced_shadow_batches() const;
 
   // Seconds each pass took in the last solve(), in pass order.
   const std::vector<double>& pass_seconds() const { return pass_seconds_; }
@@ -122,6 +133,9 @@ class RuntimeFrame {
   // The samples' light from the area lights, worked out again only when they
   // change.
   AreaLightCache area_cache_;
+  // The samples' kept shadows, with shadow_frames above 1.
+  std::optional<ShadowBudget> shadows_;
+  std::size_t last_light_count_ = 0;
   // The current frame's lights, set by solve() for the direct-light pass.
   const std::vector<Light>* lights_ = nullptr;
   const std::vector<AreaLight>* area_ = nullptr;

@@ -1,7 +1,8 @@
 #pragma once
-// Shadow rays from many points (the final gather's near sources) to the
-// point, spot and directional lights, spread over frames while a light
-// moves, as Enlighten spreads its updates over a budget per frame. The
+// Shadow rays from many points (the patches' samples, the final gather's
+// near sources) to the point, spot and directional lights, spread over
+// frames while a light moves, as Enlighten spreads its updates over a budget
+// per frame. The
 // points come in batches (runs of consecutive points); each frame after a
 // light moved traces every k-th batch (a different one each frame), and the
 // others keep the visibility they were last traced with. Their unshadowed

@@ -126,10 +126,11 @@ TEST(LightingSession, MovedLightLightsThePatchesAsARelighterLitByHand) {
   }
 }
 
-// The near sources' shadow rays spread over k frames (runtime/shadow_budget.h):
-// a k-th of the batches traced per frame while the lamp moves, none while
-// nothing moves, and k frames after the lamp stops the light is, to the
-// bit, what tracing every ray gives.
+// The samples' and near sources' shadow rays spread over k frames
+// (runtime/shadow_budget.h): a k-th of the batches traced per frame while the
+// lamp moves, none while nothing moves, and k frames after the lamp stops
+// the light on the patches and at the vertices is, to the bit, what tracing
+// every ray gives.
 TEST(LightingSession, ShadowRaysSpreadOverFramesAreExactKFramesAfterTheLightStops) {
   const Fixture& f = fixture();
   constexpr int kFrames = 4;
@@ -141,6 +142,9 @@ TEST(LightingSession, ShadowRaysSpreadOverFramesAreExactKFramesAfterTheLightStop
   const std::size_t near = every->final_gather()->near.size();
   ASSERT_GT(near, 256u * kFrames) << "batches of near sources to spread";
   const std::size_t batches = (near + 255) / 256;
+  const std::size_t patches = every->bake().size();
+  ASSERT_GT(patches, std::size_t{kFrames});
+  const auto patch_light = [](const auto& s) { return s->relighter().frame().record(); };
   std::vector<glm::vec3> e_every, e_spread;
   const auto frame = [&] {
     every->light();
@@ -152,9 +156,12 @@ TEST(LightingSession, ShadowRaysSpreadOverFramesAreExactKFramesAfterTheLightStop
   ASSERT_EQ(f.scene->lights.size(), 1u);
   EXPECT_EQ(every->relighter().near_traced_batches(), batches) << "the first frame: all";
   EXPECT_EQ(e_spread, e_every) << "the first frame traces every ray";
+  EXPECT_EQ(spread->relighter().frame().traced_shadow_batches(), patches) << "the first frame";
+  EXPECT_FALSE(patch_light(every).empty());
+  EXPECT_EQ(patch_light(spread), patch_light(every));
   const Light& lamp = f.scene->lights.front();
   ASSERT_EQ(lamp.type, Light::Type::Point);
-  bool differed = false;
+  bool differed = false, patches_differed = false;
   for (int m = 1; m <= 3; ++m) {
     const glm::vec3 moved = lamp.position + 0.15f * static_cast<float>(m) * glm::vec3(1, 0, 0);
     every->move_light(lamp.name, moved);
@@ -164,14 +171,22 @@ TEST(LightingSession, ShadowRaysSpreadOverFramesAreExactKFramesAfterTheLightStop
     const std::size_t traced = spread->relighter().near_traced_batches();
     EXPECT_GE(traced, batches / kFrames);
     EXPECT_LE(traced, batches / kFrames + 1);
+    const std::size_t traced_patches = spread->relighter().frame().traced_shadow_batches();
+    EXPECT_GE(traced_patches, patches / kFrames);
+    EXPECT_LE(traced_patches, patches / kFrames + 1);
     differed = differed || e_spread != e_every;
+    patches_differed = patches_differed || patch_light(spread) != patch_light(every);
   }
   EXPECT_TRUE(differed) << "stale shadows while the lamp moves";
+  EXPECT_TRUE(patches_differed) << "stale sample shadows while the lamp moves";
   for (int still = 1; still <= kFrames; ++still) {
     frame();
     EXPECT_EQ(every->relighter().near_traced_batches(), 0u) << "nothing moved";
   }
+  EXPECT_EQ(spread->relighter().frame().traced_shadow_batches(), 0u) << "every slice traced";
+  EXPECT_TRUE(spread->relighter().shadows_settled());
   EXPECT_EQ(e_spread, e_every) << kFrames << " frames after the lamp stopped";
+  EXPECT_EQ(patch_light(spread), patch_light(every)) << kFrames << " frames after it stopped";
 }
 
 TEST(LightingSession, LitMeshThroughTheFrameEqualsLitMeshThroughItsTb) {
