@@ -148,6 +148,7 @@ LightMoveBench run_light_move_bench(const std::filesystem::path& bake,
     throw Error("light move bench", "shadow frames must be 1..64");
   LightingSessionSettings s;
   s.scene = settings.scene;
+  s.relighter.loop = CppLoop::kFloat32;
   LightingSession every(bake, s);
   s.relighter.shadow_frames = settings.shadow_frames;
   LightingSession spread(bake, s);

@@ -6,7 +6,9 @@
 // traced in the frame a light moves and for the rays spread over k frames
 // (runtime/shadow_budget.h). With the spread rays, each frame's irradiance
 // at the lit mesh's vertices is compared with the frame that traced them
-// all, while the light moves and after it stops, until it is exact.
+// all, while the light moves and after it stops, until it is exact. Both
+// sessions multiply T b with the float32 loop: a loop each chose by timing
+// could differ (bfloat16 rounds), and the difference would not be the rays'.
 #include <filesystem>
 #include <string>
 #include <vector>
