@@ -10,8 +10,11 @@
 // chose kernels older than AVX on a CPU that has AVX, it times a small sgemm
 // on OpenBLAS's choice and on the kernels the CPU's instruction sets allow
 // (AVX-512 -> SkylakeX, AVX2 + FMA -> Haswell, AVX -> Sandybridge), and keeps
-// the faster. Anything else is left as OpenBLAS chose it: a CPU it knows, an
-// OPENBLAS_CORETYPE the user set, or an OpenBLAS built for one CPU.
+// the faster. Each is timed on one thread in that thread's CPU time, so that
+// a loaded machine does not change the choice (the kernels round
+// differently, and two bakes of one scene should give the same bytes). Anything else is left as
+// OpenBLAS chose it: a CPU it knows, an OPENBLAS_CORETYPE the user set, or an OpenBLAS built for
+// one CPU.
 #include <shared_mutex>
 #include <string>
 
@@ -22,7 +25,8 @@ struct BlasKernels {
   std::string used;       // what runs now
   std::string why;        // one line: why `used`
   std::string candidate;  // the kernels tried against `detected` ("" when none were)
-  // sgemm GFLOP/s of each, measured on n = kProbeSize; 0 when not measured.
+  // One thread's sgemm GFLOP/s of each, measured on n = kProbeSize; 0 when
+  // not measured.
   double detected_gflops = 0.0, candidate_gflops = 0.0;
   static constexpr int kProbeSize = 384;
 };

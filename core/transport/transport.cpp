@@ -42,8 +42,8 @@ double seconds_since(Clock::time_point start) {
 TransportDecision blas_kernels_decision(const BlasKernels& k) {
   std::string why = k.why;
   if (k.candidate_gflops > 0.0)
-    why +=
-        text_format(" in a timed %d x %d sgemm", BlasKernels::kProbeSize, BlasKernels::kProbeSize);
+    why += text_format(" in a %d x %d sgemm on one thread, timed in its CPU time",
+                       BlasKernels::kProbeSize, BlasKernels::kProbeSize);
   return {"OpenBLAS kernels: " + k.used, why};
 }
 
