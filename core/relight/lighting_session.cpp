@@ -85,6 +85,7 @@ void LightingSession::start(const LightingSessionSettings& settings, Diagnostics
   tracer_ = std::make_unique<RayTracer>(*scene_);
   gather_ = read_final_gather(bake_->dir, bake_->size(), bake_->samples.samples.size());
   probes_ = read_light_probes(bake_->dir, bake_->size(), bake_->samples.samples.size());
+  with_probe_emission_ = settings.probe_emission;
   relighter_ =
       std::make_unique<Relighter>(*tracer_, bake_->samples, bake_->patches,
                                   stored_transport(*bake_), settings.relighter, diagnostics);
@@ -225,8 +226,33 @@ void LightingSession::probe_sh(std::vector<glm::vec3>& sh) {
 void LightingSession::refresh_probe_sh() {
   if (!frame_probe_sh_stale_) return;
   relighter_->gather_far(probes_->gather, probe_irradiance_);
+  if (with_probe_emission_) add_probe_emission(probe_irradiance_);
   fit_probe_sh(probe_irradiance_, frame_probe_sh_);
   frame_probe_sh_stale_ = false;
+}
+
+// The emissive surfaces do not change with the lights: their light at the
+// probes is gathered once, through the probes' own gather, from each patch's
+// emission (the exitance the frame adds to b + T b). A sample source takes
+// its patch's: the bake folder keeps emission per patch only.
+void LightingSession::add_probe_emission(std::vector<glm::vec3>& direction_irradiance) {
+  if (!probe_emission_) {
+    const PatchSet& patches = bake_->patches;
+    std::vector<glm::vec3> patch_emission(patches.size()),
+        sample_emission(bake_->samples.samples.size(), glm::vec3(0.0f));
+    bool emits = false;
+    for (std::size_t p = 0; p < patches.size(); ++p) {
+      patch_emission[p] = patches.patches[p].emission;
+      emits = emits || patch_emission[p] != glm::vec3(0.0f);
+      for (std::uint32_t k = patches.member_first[p]; k < patches.member_first[p + 1]; ++k)
+        sample_emission[patches.member_samples[k]] = patch_emission[p];
+    }
+    probe_emission_.emplace();
+    if (emits) probes_->gather.irradiance(patch_emission, sample_emission, *probe_emission_);
+  }
+  if (probe_emission_->size() != direction_irradiance.size()) return;  // nothing emits
+  for (std::size_t i = 0; i < direction_irradiance.size(); ++i)
+    direction_irradiance[i] += (*probe_emission_)[i];
 }
 
 ProbeBlend LightingSession::probe_sh_at(const glm::vec3& point,

@@ -48,6 +48,11 @@ struct LightingSessionSettings {
   BakeReader::Dense dense = BakeReader::Dense::kIfNotCompressed;
   // The product T b, its C++ loop and what the frame keeps (runtime/relighter.h).
   RelighterSettings relighter;
+  // Whether the light probes' SH holds the light the emissive surfaces send
+  // them (what an engine lights a moving object with: its own lights do not
+  // include emissive surfaces). Off: the light reflected at least once
+  // alone, what a path tracer's indirect light at the probe is.
+  bool probe_emission = true;
 };
 
 // The scene `bake` was made from: `given`, or when empty the path its
@@ -128,7 +133,9 @@ class LightingSession {
   // The last frame at the probes: kShCoefficients irradiance SH coefficients
   // per probe (probe p's coefficient j at p * kShCoefficients + j; the
   // convention is runtime/light_probes.h's), from the same b + T b the
-  // vertices gather, worked out once per frame. Empty without probes.
+  // vertices gather, plus the emissive surfaces' light (worked out once per
+  // session) unless settings.probe_emission is off; worked out once per
+  // frame. Empty without probes.
   void probe_sh(std::vector<glm::vec3>& sh);
   // The last frame's irradiance SH at `point` in the empty space, blended
   // from the probes around it that see it (runtime/probe_interpolation.h):
@@ -149,6 +156,8 @@ class LightingSession {
   void start(const LightingSessionSettings& settings, Diagnostics* diagnostics);
   // Gathers the probes' SH of the frame when light() ran since the last time.
   void refresh_probe_sh();
+  // Adds the emissive surfaces' light to each probe direction's irradiance.
+  void add_probe_emission(std::vector<glm::vec3>& direction_irradiance);
   LitMesh lit_from_gathered(const std::vector<glm::vec3>& gathered, Progress* progress);
   // The nearest patches' light on the mesh: `patch_exitance` is emission + b + T b.
   LitMesh lit_from_nearest(const std::vector<glm::vec3>& patch_exitance, Progress* progress);
@@ -159,6 +168,10 @@ class LightingSession {
   std::optional<FinalGather> gather_;
   std::optional<LightProbes> probes_;
   std::vector<glm::vec3> probe_irradiance_;  // per probe direction, kept between frames
+  // The emissive surfaces' light per probe direction, gathered on first use;
+  // empty when nothing emits.
+  std::optional<std::vector<glm::vec3>> probe_emission_;
+  bool with_probe_emission_ = true;  // settings.probe_emission
   std::unique_ptr<ProbeInterpolator> probe_interpolator_;
   std::vector<glm::vec3> frame_probe_sh_;  // the probes' SH of the last frame
   bool frame_probe_sh_stale_ = true;       // light() ran since it was worked out

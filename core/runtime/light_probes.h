@@ -35,9 +35,11 @@
 //   - the coefficients c_j are of IRRADIANCE: E(n) = sum_j c_j Y_j(n) is the
 //     irradiance (W/m^2) a surface with normal n receives at the probe, from
 //     light reflected at least once (b + T b, the quantity the vertices'
-//     gather sums); a Lambertian surface of albedo a sends out a E(n) / pi
-//     radiance. The direct light of the scene's lights is not in it: it
-//     stays with the engine's own lights, as the vertices' is computed apart;
+//     gather sums), plus the emissive surfaces' light when the caller adds
+//     it (LightingSession does); a Lambertian surface of albedo a sends out
+//     a E(n) / pi radiance. The direct light of the scene's point, spot and
+//     directional lights is not in it: it stays with the engine's own
+//     lights, as the vertices' is computed apart;
 //   - radiance coefficients (three.js's SphericalHarmonics3 / LightProbe,
 //     Unity's SphericalHarmonicsL2) are c_j / A_l with A_0 = pi,
 //     A_1 = 2 pi / 3, A_2 = pi / 4 (the clamped-cosine convolution); a mirror

@@ -67,7 +67,9 @@ TEST(LightProbes, CornellProbeShMatchesThePathTracerAtTheAxisNormals) {
   test::ScratchDir dir("bounce-light-probes");
   const Scene scene = cornell();
   bake_into(dir.path(), scene, probe_settings(8));
-  LightingSession session(dir.path() / "bake");
+  LightingSessionSettings indirect;  // the path tracer's indirect light has no emission
+  indirect.probe_emission = false;
+  LightingSession session(dir.path() / "bake", indirect);
   ASSERT_TRUE(session.light_probes().has_value());
   const LightProbes& probes = *session.light_probes();
   ASSERT_GT(probes.size(), 50u);
@@ -89,6 +91,43 @@ TEST(LightProbes, CornellProbeShMatchesThePathTracerAtTheAxisNormals) {
   EXPECT_LT(e.relative_rmse, std::sqrt(0.08 * 0.08 + e.reference_noise * e.reference_noise));
   // The level's noise is that of a mean over hundreds of points: negligible.
   EXPECT_NEAR(e.level, 1.0, 0.03);
+}
+
+// The white furnace (a closed cube, albedo 0.5 and emission 1 on every
+// wall): every wall leaves 1 / (1 - 0.5) = 2, of which 1 is emitted and 1
+// reflected, and a closed surface of uniform exitance M gives irradiance M
+// for every normal at every point inside. So each probe's SH gives 2 for
+// the six axis normals with the walls' emission, and 1 without. Every ray
+// of a probe's gather meets a wall, and an irradiance that is the same in
+// every direction is the SH's first term alone, fitted exactly: what is
+// left is the float32 rounding of the transport and the sums (measured
+// under 1e-5).
+TEST(LightProbes, FurnaceProbesSeeTheWallsEmissionAndTheirReflectedLight) {
+  test::ScratchDir dir("bounce-light-probes");
+  Diagnostics d;
+  const Scene scene = SceneLoader(d).load(std::string(BOUNCE_RESOURCE_DIR) + "/scenes/furnace");
+  BakeSettings s = probe_settings(8);
+  bake_into(dir.path(), scene, s);
+  for (const bool emission : {true, false}) {
+    LightingSessionSettings settings;
+    settings.probe_emission = emission;
+    LightingSession session(dir.path() / "bake", settings);
+    ASSERT_TRUE(session.light_probes().has_value());
+    ASSERT_GT(session.light_probes()->size(), 8u);
+    session.light();
+    std::vector<glm::vec3> sh;
+    session.probe_sh(sh);
+    const float expected = emission ? 2.0f : 1.0f;
+    for (std::size_t p = 0; p < session.light_probes()->size(); ++p)
+      for (const glm::vec3 n : {glm::vec3(1, 0, 0), glm::vec3(-1, 0, 0), glm::vec3(0, 1, 0),
+                                glm::vec3(0, -1, 0), glm::vec3(0, 0, 1), glm::vec3(0, 0, -1)}) {
+        const glm::vec3 e = sh_irradiance(&sh[p * kShCoefficients], n);
+        for (int c = 0; c < 3; ++c)
+          ASSERT_NEAR(e[c], expected, 1e-3f * expected)
+              << "probe " << p << " normal " << n.x << "," << n.y << "," << n.z
+              << (emission ? " with" : " without") << " emission";
+      }
+  }
 }
 
 // A probe just off a lit-mesh vertex on a flat open wall against the vertex

@@ -124,7 +124,9 @@ class CornellVolume : public ::testing::Test {
     result_ = std::make_unique<BakeResult>(
         Baker(*scene_, volume_settings(ProbePlacementMode::On, kVolume), d).run(progress));
     write_bake(dir_->path() / "bake", *scene_, *result_, d);
-    session_ = std::make_unique<LightingSession>(dir_->path() / "bake");
+    LightingSessionSettings indirect;  // what the path tracer's indirect light holds
+    indirect.probe_emission = false;
+    session_ = std::make_unique<LightingSession>(dir_->path() / "bake", indirect);
     session_->light();
   }
   static void TearDownTestSuite() {
