@@ -1,5 +1,7 @@
 #include "relight/lighting_session.h"
 
+#include <algorithm>
+
 #include "bake/stored_transport.h"
 #include "base/error.h"
 #include "folder/final_gather_files.h"
@@ -237,20 +239,18 @@ void LightingSession::refresh_probe_sh() {
 // its patch's: the bake folder keeps emission per patch only.
 void LightingSession::add_probe_emission(std::vector<glm::vec3>& direction_irradiance) {
   if (!probe_emission_) {
-    const PatchSet& patches = bake_->patches;
-    std::vector<glm::vec3> patch_emission(patches.size()),
-        sample_emission(bake_->samples.samples.size(), glm::vec3(0.0f));
-    bool emits = false;
-    for (std::size_t p = 0; p < patches.size(); ++p) {
-      patch_emission[p] = patches.patches[p].emission;
-      emits = emits || patch_emission[p] != glm::vec3(0.0f);
-      for (std::uint32_t k = patches.member_first[p]; k < patches.member_first[p + 1]; ++k)
-        sample_emission[patches.member_samples[k]] = patch_emission[p];
-    }
+    std::vector<glm::vec3> patch_emission;
+    for (const Patch& p : bake_->patches.patches) patch_emission.push_back(p.emission);
+    std::vector<glm::vec3> sample_emission;
+    for (const std::int32_t p : bake_->patch_of_sample)
+      sample_emission.push_back(p >= 0 ? patch_emission[static_cast<std::size_t>(p)]
+                                       : glm::vec3(0.0f));
     probe_emission_.emplace();
-    if (emits) probes_->gather.irradiance(patch_emission, sample_emission, *probe_emission_);
+    if (std::any_of(patch_emission.begin(), patch_emission.end(),
+                    [](const glm::vec3& e) { return e != glm::vec3(0.0f); }))
+      probes_->gather.irradiance(patch_emission, sample_emission, *probe_emission_);
   }
-  if (probe_emission_->size() != direction_irradiance.size()) return;  // nothing emits
+  if (probe_emission_->empty()) return;  // nothing emits
   for (std::size_t i = 0; i < direction_irradiance.size(); ++i)
     direction_irradiance[i] += (*probe_emission_)[i];
 }

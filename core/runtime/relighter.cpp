@@ -20,11 +20,9 @@ TransportMultiplier timed_multiplier(const StoredTransport& transport,
   return m;
 }
 
-// Every frame keeps each sample's direct irradiance: a final gather with
-// sample sources reads it (a few bytes per sample).
-// The frame as the relighter runs it: with each sample's light for the
-// gather's sample sources, and the samples' shadow rays spread like the near
-// sources'.
+// The frame as the relighter runs it: it keeps each sample's direct
+// irradiance, which a final gather with sample sources reads (a few bytes
+// per sample), and spreads the samples' shadow rays like the near sources'.
 RuntimeFrameSettings frame_settings(const RelighterSettings& settings) {
   RuntimeFrameSettings s = settings.frame;
   s.sample_irradiance = true;

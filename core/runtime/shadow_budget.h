@@ -2,12 +2,11 @@
 // Shadow rays from many points (the patches' samples, the final gather's
 // near sources) to the point, spot and directional lights, spread over
 // frames while a light moves, as Enlighten spreads its updates over a budget
-// per frame. The
-// points come in batches (runs of consecutive points); each frame after a
-// light moved traces every k-th batch (a different one each frame), and the
-// others keep the visibility they were last traced with. Their unshadowed
-// light is still computed every frame: only whether something is in the way
-// lags. k frames after a light stops, every batch has been traced at its
+// per frame. The points come in batches (runs of consecutive points); each
+// frame after a light moved traces every k-th batch (a different one each
+// frame), and the others keep the visibility they were last traced with.
+// Their unshadowed light is still computed every frame: only whether
+// something is in the way lags. k frames after a light stops, every batch has been traced at its
 // last place, so the light is exactly what tracing every ray gives; a light
 // that does not move traces nothing. k = 1 traces every ray of every light
 // that moved, every frame.

@@ -12,9 +12,9 @@
 // (AVX-512 -> SkylakeX, AVX2 + FMA -> Haswell, AVX -> Sandybridge), and keeps
 // the faster. Each is timed on one thread in that thread's CPU time, so that
 // a loaded machine does not change the choice (the kernels round
-// differently, and two bakes of one scene should give the same bytes). Anything else is left as
-// OpenBLAS chose it: a CPU it knows, an OPENBLAS_CORETYPE the user set, or an OpenBLAS built for
-// one CPU.
+// differently, and two bakes of one scene should give the same bytes).
+// Anything else is left as OpenBLAS chose it: a CPU it knows, an
+// OPENBLAS_CORETYPE the user set, or an OpenBLAS built for one CPU.
 #include <shared_mutex>
 #include <string>
 
