@@ -316,9 +316,12 @@ json make_manifest(const Scene& scene, const BakeResult& r, const Diagnostics& d
                    {"cut_away_area", r.samples.cut_away_area},
                    {"voxels_without_samples", r.samples.voxels_without_samples}};
   if (r.settings.patch_mode == PatchMode::Virtual)
-    m["clustering"] = {{"feature_targets", r.clustering.feature_targets},
-                       {"target_block_voxels", r.clustering.target_block},
-                       {"voxels_above_target", r.clustering.voxels_above_target}};
+    m["clustering"] = {
+        {"feature_targets", r.clustering.feature_targets},
+        {"target_block_voxels", r.clustering.target_block},
+        {"voxels_above_target", r.clustering.voxels_above_target},
+        {"voxels_with_separated_samples", r.clustering.voxels_with_separated_samples},
+        {"separated_sample_pairs", r.clustering.separated_sample_pairs}};
   json stages = json::array();
   for (const StageStats& st : r.stages) {
     json stage = {

@@ -33,8 +33,8 @@ void patches_step(BakeRun& run) {
       run.diagnostics.warn("patches", std::to_string(r.clustering.voxels_above_target) +
                                           " voxels kept more than " +
                                           std::to_string(*r.settings.patches_per_voxel) +
-                                          " patches: their samples face opposite ways and are "
-                                          "never merged");
+                                          " patches: their samples face opposite ways or stand "
+                                          "on two sides of a surface, and are never merged");
   } else {
     run.progress.begin_stage("voxel patches", 1);
     r.patches = voxel_patches(r.samples);

@@ -6,6 +6,7 @@
 #include <queue>
 #include <unordered_map>
 
+#include "patches/sample_separation.h"
 #include "patches/target_exchange.h"
 
 namespace bounce {
@@ -163,11 +164,22 @@ struct Cluster {
   glm::vec3 normal_sum{0.0f};  // area-weighted
   std::vector<float> f;        // F to each target, as a source (area-weighted mean)
   bool emissive = false;
+  // Only in a voxel with separated samples (SampleSeparation): the members
+  // as bits of the voxel's local sample index, and every sample separated
+  // from one of them. Merged clusters take the union of both.
+  std::vector<std::uint64_t> member_bits, apart_bits;
   glm::vec3 normal() const {
     const float len = glm::length(normal_sum);
     return len > 0.0f ? normal_sum / len : glm::vec3(0.0f);
   }
 };
+
+// A member of one is separated from a member of the other.
+bool kept_apart(const Cluster& a, const Cluster& b) {
+  for (std::size_t w = 0; w < a.apart_bits.size(); ++w)
+    if (a.apart_bits[w] & b.member_bits[w]) return true;
+  return false;
+}
 
 float metric(const Cluster& a, const Cluster& b, const std::vector<float>& target_area) {
   float ff = 0.0f;
@@ -293,14 +305,23 @@ PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vo
   };
   const bool budget = settings.total_patches > 0;
   std::vector<std::vector<Merge>> merges_of_voxel(nv);
+  std::vector<std::size_t> separated_pairs(nv, 0);
 #pragma omp parallel for schedule(dynamic, 4)
   for (std::int64_t vi = 0; vi < static_cast<std::int64_t>(nv); ++vi) {
     if (progress && progress->should_stop()) continue;
     const auto v = static_cast<std::size_t>(vi);
+    const SampleSeparation separation(tracer, set, v);
+    separated_pairs[v] = separation.separated_pairs();
     std::vector<Cluster> cl;
     for (std::uint32_t s = set.first[v]; s < set.first[v + 1]; ++s) {
       const Sample& x = set.samples[s];
       Cluster c;
+      if (!separation.empty()) {
+        const std::size_t local = s - set.first[v];
+        c.member_bits.assign(separation.words(), 0);
+        c.member_bits[local / 64] = std::uint64_t{1} << (local % 64);
+        c.apart_bits.assign(separation.row(local), separation.row(local) + separation.words());
+      }
       c.members = {s};
       c.area = x.area;
       c.color = x.albedo;
@@ -316,15 +337,16 @@ PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vo
     // with non-emitting surface: a lamp just under a ceiling is their
     // cheapest merge by normal, colour and position, and the merged patch
     // would send the lamp's light out as if from the shaded ceiling behind it
-    // too (docs/method.md section 4).
+    // too (docs/method.md section 4). Nor are samples with a surface between
+    // them, such as the floor on the two sides of a thin wall.
     constexpr float kNever = std::numeric_limits<float>::infinity();
     std::vector<float> m(n * n, kNever);
     std::vector<bool> alive(n, true);
     auto update = [&](std::size_t a, std::size_t b) {
-      const float d =
-          glm::dot(cl[a].normal(), cl[b].normal()) < 0.0f || cl[a].emissive != cl[b].emissive
-              ? kNever
-              : metric(cl[a], cl[b], targets.area);
+      const float d = glm::dot(cl[a].normal(), cl[b].normal()) < 0.0f ||
+                              cl[a].emissive != cl[b].emissive || kept_apart(cl[a], cl[b])
+                          ? kNever
+                          : metric(cl[a], cl[b], targets.area);
       m[a * n + b] = m[b * n + a] = d;
     };
     for (std::size_t a = 0; a < n; ++a)
@@ -356,6 +378,10 @@ PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vo
       A.normal_sum += B.normal_sum;
       A.area = area;
       A.members.insert(A.members.end(), B.members.begin(), B.members.end());
+      for (std::size_t w = 0; w < A.member_bits.size(); ++w) {
+        A.member_bits[w] |= B.member_bits[w];
+        A.apart_bits[w] |= B.apart_bits[w];
+      }
       alive[bb] = false;
       --remaining;
       for (std::size_t c = 0; c < n; ++c)
@@ -410,6 +436,10 @@ PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vo
   PatchSet patches;
   for (std::size_t v = 0; v < nv; ++v) {
     if (!budget && clusters_of_voxel[v].size() > keep_in(v)) stats.voxels_above_target++;
+    if (separated_pairs[v] > 0) {
+      ++stats.voxels_with_separated_samples;
+      stats.separated_sample_pairs += separated_pairs[v];
+    }
     for (const auto& members : clusters_of_voxel[v]) patches.add_patch(set.samples, members);
   }
   if (progress) progress->end_stage();

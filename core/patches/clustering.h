@@ -23,7 +23,8 @@
 // Two clusters whose normals are more than 90 degrees apart are never merged
 // (their merged normal would be meaningless, e.g. the two sides of a thin
 // wall); such a voxel keeps more than `patches_per_voxel` patches and the
-// count is reported.
+// count is reported. Nor are two clusters with a surface between their
+// samples (the floor on the two sides of that wall, SampleSeparation).
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -76,6 +77,10 @@ struct ClusteringStats {
   std::size_t feature_targets = 0;
   std::uint32_t target_block = 1;         // voxels per target along each axis
   std::uint32_t voxels_above_target = 0;  // voxels that kept more patches than asked
+  // Voxels with samples on two sides of a surface between them, and such
+  // pairs of samples, which no patch holds together (SampleSeparation).
+  std::uint32_t voxels_with_separated_samples = 0;
+  std::size_t separated_sample_pairs = 0;
 };
 
 PatchSet cluster_virtual_patches(const RayTracer& tracer, const Voxelization& vox,

@@ -83,16 +83,19 @@ TEST(BakeSettings, PatchesPerVoxelCapsThePatchesInEachVoxel) {
     expect_valid_patches(p, what);
     patches_per_voxel(*b);  // checks voxels.npy's patch counts
     // A voxel may keep more patches than asked only when the rest face more
-    // than 90 degrees apart (two sides of a thin wall) or one emits and the
-    // other does not (the light under the ceiling); the manifest counts
-    // those voxels.
+    // than 90 degrees apart (two sides of a thin wall), one emits and the
+    // other does not (the light under the ceiling), or its samples stand on
+    // two sides of something (the floor beside a box and behind it). The
+    // manifest counts those voxels; the last kind leaves patches less than
+    // 90 degrees apart, in at most the voxels it counts as having them.
     std::map<std::size_t, std::vector<std::size_t>> of_voxel;
     for (std::size_t i = 0; i < p.shape[0]; ++i)
       of_voxel[static_cast<std::size_t>(at(p, i, patch_col::kVoxel))].push_back(i);
-    std::size_t above = 0;
+    std::size_t above = 0, facing_alike = 0;
     for (const auto& [voxel, members] : of_voxel) {
       if (members.size() <= cap) continue;
       ++above;
+      bool alike = false;
       for (std::size_t a = 0; a < members.size(); ++a)
         for (std::size_t c = a + 1; c < members.size(); ++c) {
           const auto emits = [&](std::size_t i) {
@@ -105,11 +108,13 @@ TEST(BakeSettings, PatchesPerVoxelCapsThePatchesInEachVoxel) {
           for (std::size_t k = 0; k < 3; ++k)
             dot += at(p, members[a], patch_col::kNormal + k) *
                    at(p, members[c], patch_col::kNormal + k);
-          EXPECT_LT(dot, 1e-4) << what << ": voxel " << voxel << " keeps " << members.size()
-                               << " patches, two of them less than 90 degrees apart (dot " << dot
-                               << ")";
+          alike = alike || dot >= 1e-4;
         }
+      facing_alike += alike ? 1 : 0;
     }
+    EXPECT_LE(facing_alike,
+              b->manifest["clustering"]["voxels_with_separated_samples"].get<std::size_t>())
+        << what;
     EXPECT_LE(above, b->manifest["clustering"]["voxels_above_target"].get<std::size_t>()) << what;
   }
 }
