@@ -20,36 +20,45 @@ namespace bounce {
 
 namespace {
 
+// LAPACKE's _work entry points, without the plain ones' single-threaded NaN
+// scan of the whole input on every call (the LU again for each
+// right-hand-side block): the transport refuses NaN and Inf in F before the
+// system is built (transport.cpp) and checks T after.
 template <class Real>
 struct Lapack;
 
 template <>
 struct Lapack<float> {
   static lapack_int getrf(int n, float* a, lapack_int* ipiv) {
-    return LAPACKE_sgetrf(LAPACK_COL_MAJOR, n, n, a, n, ipiv);
+    return LAPACKE_sgetrf_work(LAPACK_COL_MAJOR, n, n, a, n, ipiv);
   }
   static lapack_int gecon(int n, const float* a, double anorm, double* rcond) {
     float r = 0.0f;
-    const lapack_int info =
-        LAPACKE_sgecon(LAPACK_COL_MAJOR, '1', n, a, n, static_cast<float>(anorm), &r);
+    std::vector<float> work(4 * static_cast<std::size_t>(n));
+    std::vector<lapack_int> iwork(static_cast<std::size_t>(n));
+    const lapack_int info = LAPACKE_sgecon_work(
+        LAPACK_COL_MAJOR, '1', n, a, n, static_cast<float>(anorm), &r, work.data(), iwork.data());
     *rcond = r;
     return info;
   }
   static lapack_int getrs(int n, int nrhs, const float* a, const lapack_int* ipiv, float* b) {
-    return LAPACKE_sgetrs(LAPACK_COL_MAJOR, 'N', n, nrhs, a, n, ipiv, b, n);
+    return LAPACKE_sgetrs_work(LAPACK_COL_MAJOR, 'N', n, nrhs, a, n, ipiv, b, n);
   }
 };
 
 template <>
 struct Lapack<double> {
   static lapack_int getrf(int n, double* a, lapack_int* ipiv) {
-    return LAPACKE_dgetrf(LAPACK_COL_MAJOR, n, n, a, n, ipiv);
+    return LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, n, n, a, n, ipiv);
   }
   static lapack_int gecon(int n, const double* a, double anorm, double* rcond) {
-    return LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', n, a, n, anorm, rcond);
+    std::vector<double> work(4 * static_cast<std::size_t>(n));
+    std::vector<lapack_int> iwork(static_cast<std::size_t>(n));
+    return LAPACKE_dgecon_work(LAPACK_COL_MAJOR, '1', n, a, n, anorm, rcond, work.data(),
+                               iwork.data());
   }
   static lapack_int getrs(int n, int nrhs, const double* a, const lapack_int* ipiv, double* b) {
-    return LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', n, nrhs, a, n, ipiv, b, n);
+    return LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', n, nrhs, a, n, ipiv, b, n);
   }
 };
 

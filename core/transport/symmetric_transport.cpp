@@ -26,23 +26,30 @@ constexpr double kFloat64ErrorLimit = 1e-2;
 // M^T stay in L1/L2 together.
 constexpr std::size_t kTile = 64;
 
+// The factorisation, condition estimate and solves call LAPACKE's _work
+// entry points: the plain ones first scan their whole input for NaN on one
+// thread, every call (L again for each right-hand-side block), which this
+// solve does not need: the transport refuses NaN and Inf in F before S is
+// built (transport.cpp) and checks T after.
 template <class Real>
 struct Lapack;
 
 template <>
 struct Lapack<float> {
   static lapack_int potrf(int n, float* a) {
-    return LAPACKE_spotrf(LAPACK_COL_MAJOR, 'L', n, a, n);
+    return LAPACKE_spotrf_work(LAPACK_COL_MAJOR, 'L', n, a, n);
   }
   static lapack_int pocon(int n, const float* a, double anorm, double* rcond) {
     float r = 0.0f;
-    const lapack_int info =
-        LAPACKE_spocon(LAPACK_COL_MAJOR, 'L', n, a, n, static_cast<float>(anorm), &r);
+    std::vector<float> work(3 * static_cast<std::size_t>(n));
+    std::vector<lapack_int> iwork(static_cast<std::size_t>(n));
+    const lapack_int info = LAPACKE_spocon_work(
+        LAPACK_COL_MAJOR, 'L', n, a, n, static_cast<float>(anorm), &r, work.data(), iwork.data());
     *rcond = r;
     return info;
   }
   static lapack_int potrs(int n, int nrhs, const float* a, float* b, int ldb) {
-    return LAPACKE_spotrs(LAPACK_COL_MAJOR, 'L', n, nrhs, a, n, b, ldb);
+    return LAPACKE_spotrs_work(LAPACK_COL_MAJOR, 'L', n, nrhs, a, n, b, ldb);
   }
   // c += a b, column-major.
   static void gemm(int m, int n, int k, const float* a, int lda, const float* b, int ldb, float* c,
@@ -55,13 +62,16 @@ struct Lapack<float> {
 template <>
 struct Lapack<double> {
   static lapack_int potrf(int n, double* a) {
-    return LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', n, a, n);
+    return LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'L', n, a, n);
   }
   static lapack_int pocon(int n, const double* a, double anorm, double* rcond) {
-    return LAPACKE_dpocon(LAPACK_COL_MAJOR, 'L', n, a, n, anorm, rcond);
+    std::vector<double> work(3 * static_cast<std::size_t>(n));
+    std::vector<lapack_int> iwork(static_cast<std::size_t>(n));
+    return LAPACKE_dpocon_work(LAPACK_COL_MAJOR, 'L', n, a, n, anorm, rcond, work.data(),
+                               iwork.data());
   }
   static lapack_int potrs(int n, int nrhs, const double* a, double* b, int ldb) {
-    return LAPACKE_dpotrs(LAPACK_COL_MAJOR, 'L', n, nrhs, a, n, b, ldb);
+    return LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', n, nrhs, a, n, b, ldb);
   }
   static void gemm(int m, int n, int k, const double* a, int lda, const double* b, int ldb,
                    double* c, int ldc) {
