@@ -91,6 +91,7 @@
 #include "raytrace/ray_tracer.h"
 #include "runtime/area_light_cache.h"
 #include "runtime/area_lights.h"
+#include "runtime/gather_row_budget.h"
 #include "runtime/mesh_transfer.h"
 #include "runtime/shadow_budget.h"
 
@@ -207,15 +208,19 @@ struct FinalGather {
   // given) keeps the near sources' light from the area lights between
   // frames (runtime/area_light_cache.h); `shadow_budget` (if given)
   // spreads the shadow rays to the other lights over frames while they
-  // move (runtime/shadow_budget.h). Use each with this gather only.
-  void irradiance_lighting_near(const std::vector<glm::vec3>& patch_exitance,
-                                const std::vector<glm::vec3>& sample_exitance,
-                                const RayTracer& tracer, const std::vector<Light>& lights,
-                                const std::vector<AreaLight>& area,
-                                const std::vector<glm::vec3>& patch_indirect,
-                                std::vector<glm::vec3>& out, double* near_seconds = nullptr,
-                                AreaLightCache* area_cache = nullptr,
-                                ShadowBudget* shadow_budget = nullptr) const;
+  // move (runtime/shadow_budget.h). `row_budget` (if given) sums only some
+  // rows while the sources' light is not exact (runtime/gather_row_budget.h):
+  // exact when `sources_exact` (the patches' and samples' light, from the
+  // frame) and the near sources' shadows are; the rows it leaves keep what
+  // `out` held, so `out` must hold this gather's last product. Use each with
+  // this gather only.
+  void irradiance_lighting_near(
+      const std::vector<glm::vec3>& patch_exitance, const std::vector<glm::vec3>& sample_exitance,
+      const RayTracer& tracer, const std::vector<Light>& lights, const std::vector<AreaLight>& area,
+      const std::vector<glm::vec3>& patch_indirect, std::vector<glm::vec3>& out,
+      double* near_seconds = nullptr, AreaLightCache* area_cache = nullptr,
+      ShadowBudget* shadow_budget = nullptr, GatherRowBudget* row_budget = nullptr,
+      bool sources_exact = true) const;
   // Checks the rows: monotone offsets, sources in range, finite weights in
   // [0, 1], row totals at most 1 (+ rounding), clusters' shares. Throws
   // bounce::Error naming `what` and the first bad row.
@@ -224,8 +229,10 @@ struct FinalGather {
  private:
   void check_light(const std::vector<glm::vec3>& patch_exitance,
                    const std::vector<glm::vec3>& sample_exitance) const;
-  // The product from the padded light of every source.
-  void sum_padded(const gather_loops::PaddedLight* light, std::vector<glm::vec3>& out) const;
+  // The product from the padded light of every source, over the rows
+  // `slice` takes.
+  void sum_padded(const gather_loops::PaddedLight* light, std::vector<glm::vec3>& out,
+                  RowSlice slice = {}) const;
 };
 
 // The light a sample source carries: the sample's own first-hit light

@@ -130,7 +130,8 @@ void FinalGather::irradiance_lighting_near(
     const std::vector<glm::vec3>& patch_exitance, const std::vector<glm::vec3>& sample_exitance,
     const RayTracer& tracer, const std::vector<Light>& lights, const std::vector<AreaLight>& area,
     const std::vector<glm::vec3>& patch_indirect, std::vector<glm::vec3>& out, double* near_seconds,
-    AreaLightCache* area_cache, ShadowBudget* shadow_budget) const {
+    AreaLightCache* area_cache, ShadowBudget* shadow_budget, GatherRowBudget* row_budget,
+    bool sources_exact) const {
   check_light(patch_exitance, sample_exitance);
   padded_light.resize(patches + clusters + samples + near.size());
   const auto start = std::chrono::steady_clock::now();
@@ -140,10 +141,16 @@ void FinalGather::irradiance_lighting_near(
   if (near_seconds)
     *near_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   pad_light(*this, patch_exitance, sample_exitance, nullptr, padded_light);
-  sum_padded(padded_light.data(), out);
+  RowSlice rows;
+  if (row_budget) {
+    const bool exact = sources_exact && (!shadow_budget || shadow_budget->settled());
+    rows = row_budget->next(exact, out.size() != points());
+  }
+  sum_padded(padded_light.data(), out, rows);
 }
 
-void FinalGather::sum_padded(const PaddedLight* light, std::vector<glm::vec3>& out) const {
+void FinalGather::sum_padded(const PaddedLight* light, std::vector<glm::vec3>& out,
+                             RowSlice slice) const {
   const std::size_t n = points();
   out.resize(n);
   if (compact.size() == source.size() && !compact.empty()) {
@@ -151,14 +158,15 @@ void FinalGather::sum_padded(const PaddedLight* light, std::vector<glm::vec3>& o
         gather_loops::compact_loop(compact_loop.empty() ? "sse2" : compact_loop),
         gather_loops::CompactRows{light, first.data(), compact.data(), compact_count_bits,
                                   static_cast<float>(1.0 / compact_rays)},
-        n, out.data());
+        n, out.data(), slice);
     return;
   }
   const gather_loops::FloatEntries entries{light, source.data(), weight.data()};
 #pragma omp parallel for schedule(static, 1024)
   for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
     const auto row = static_cast<std::size_t>(i);
-    out[row] = gather_loops::sum_row(entries, first[row], first[row + 1], 1.0f);
+    if (slice.sums_band(row / kRowBand))
+      out[row] = gather_loops::sum_row(entries, first[row], first[row + 1], 1.0f);
   }
 }
 

@@ -161,15 +161,18 @@ CompactLoop compact_loop(const std::string& name) {
 }
 
 void sum_compact_rows(const CompactLoop& loop, const CompactRows& rows, std::size_t count,
-                      glm::vec3* out) {
-  // Bands of 1024 rows: a few hundred kilobytes of entries each, enough to
-  // hide the scheduling and few enough that both threads end together.
-  constexpr std::size_t kBand = 1024;
-  const auto bands = static_cast<std::int64_t>((count + kBand - 1) / kBand);
+                      glm::vec3* out, RowSlice slice) {
+  // Bands of kRowBand rows: a few hundred kilobytes of entries each, enough
+  // to hide the scheduling and few enough that both threads end together.
+  const std::size_t all_bands = (count + kRowBand - 1) / kRowBand;
+  const std::size_t step = slice.all() ? 1 : static_cast<std::size_t>(slice.slices);
+  const std::size_t start = slice.all() ? 0 : static_cast<std::size_t>(slice.slice);
+  const auto bands =
+      static_cast<std::int64_t>(all_bands > start ? (all_bands - start + step - 1) / step : 0);
 #pragma omp parallel for schedule(static, 1)
   for (std::int64_t b = 0; b < bands; ++b) {
-    const std::size_t lo = static_cast<std::size_t>(b) * kBand;
-    loop.sum(rows, lo, std::min(count, lo + kBand), out);
+    const std::size_t lo = (start + static_cast<std::size_t>(b) * step) * kRowBand;
+    loop.sum(rows, lo, std::min(count, lo + kRowBand), out);
   }
 }
 

@@ -14,6 +14,8 @@
 
 #include <glm/glm.hpp>
 
+#include "runtime/gather_row_budget.h"
+
 #if defined(__SSE2__)
 #include <immintrin.h>
 #endif
@@ -108,8 +110,10 @@ std::vector<CompactLoop> compact_loops();
 // name.
 CompactLoop compact_loop(const std::string& name);
 
-// Sums every row of `rows` (`count` rows) with `loop` on the threads.
+// Sums the rows of `rows` (`count` rows) that `slice` takes, in bands of
+// kRowBand, with `loop` on the threads; the others in `out` are left as
+// they are.
 void sum_compact_rows(const CompactLoop& loop, const CompactRows& rows, std::size_t count,
-                      glm::vec3* out);
+                      glm::vec3* out, RowSlice slice = {});
 
 }  // namespace bounce::gather_loops

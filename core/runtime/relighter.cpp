@@ -41,6 +41,7 @@ Relighter::Relighter(const RayTracer& tracer, const SampleSet& samples, const Pa
       samples_(samples),
       patches_(patches),
       near_shadows_(settings.shadow_frames),
+      gather_rows_(settings.shadow_frames),
       frame_(tracer, samples, patches, multiplier_.multiply_into(), frame_settings(settings)) {
   compile_seconds_ = since(compile_start_);
 }
@@ -102,8 +103,19 @@ void Relighter::source_light(const FinalGather& gather) const {
 void Relighter::gather(const FinalGather& gather, std::vector<glm::vec3>& irradiance) const {
   source_light(gather);
   // The near sources' light goes straight into the product's buffer.
+  if (gather_rows_.frames() == 1) {
+    gather.irradiance_lighting_near(reflected_, sample_light_, tracer_, lights_, area_, indirect_,
+                                    irradiance, &near_seconds_, &near_area_cache_, &near_shadows_);
+    return;
+  }
+  if (gathered_for_ != &gather) {
+    gathered_.clear();
+    gathered_for_ = &gather;
+  }
   gather.irradiance_lighting_near(reflected_, sample_light_, tracer_, lights_, area_, indirect_,
-                                  irradiance, &near_seconds_, &near_area_cache_, &near_shadows_);
+                                  gathered_, &near_seconds_, &near_area_cache_, &near_shadows_,
+                                  &gather_rows_, frame_.shadows_settled());
+  irradiance = gathered_;
 }
 
 void Relighter::gather_far(const FinalGather& gather, std::vector<glm::vec3>& irradiance) const {

@@ -32,7 +32,9 @@ struct RelighterSettings {
   // rays to a light that moved over this many frames
   // (runtime/shadow_budget.h): 1, every ray in the frame it moved; k, a k-th
   // of them per frame, the light exact k frames after the light stops. It
-  // replaces frame.shadow_frames.
+  // replaces frame.shadow_frames. While they are spread, gather() sums a
+  // k-th of the vertices' rows a frame too (runtime/gather_row_budget.h),
+  // and all of them in the frame the shadows are exact again.
   int shadow_frames = 1;
 };
 
@@ -74,9 +76,14 @@ class Relighter {
   // lights; a light that did not move traces none).
   std::size_t near_traced_batches() const { return near_shadows_.traced_batches(); }
   // The samples' and near sources' shadows are exact for the lights of the
-  // last frame and gather (always, with shadow_frames 1; else once the frames
-  // and gathers since a light last moved traced every batch).
-  bool shadows_settled() const { return frame_.shadows_settled() && near_shadows_.settled(); }
+  // last frame and gather, and the gather summed every row (always, with
+  // shadow_frames 1; else once the frames and gathers since a light last
+  // moved traced every batch).
+  // The rows of the vertices' gather the last gather() summed.
+  const GatherRowBudget& gather_rows() const { return gather_rows_; }
+  bool shadows_settled() const {
+    return frame_.shadows_settled() && near_shadows_.settled() && gather_rows_.settled();
+  }
 
   // The last frame's b and T b per patch, from its published buffers or its
   // record. Throws bounce::Error when the frame keeps neither.
@@ -97,6 +104,11 @@ class Relighter {
   // gather stay the same.
   mutable AreaLightCache near_area_cache_;
   mutable ShadowBudget near_shadows_;
+  // gather()'s rows while shadows are spread, and its last product (the
+  // rows a frame does not sum keep it), for the gather `gathered_for_`.
+  mutable GatherRowBudget gather_rows_;
+  mutable std::vector<glm::vec3> gathered_;
+  mutable const FinalGather* gathered_for_ = nullptr;
   // The last frame's b + T b per patch and its samples' light, as `gather`
   // reads them, into the buffers below.
   void source_light(const FinalGather& gather) const;

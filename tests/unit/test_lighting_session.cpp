@@ -162,10 +162,12 @@ TEST(LightingSession, ShadowRaysSpreadOverFramesAreExactKFramesAfterTheLightStop
   const Light& lamp = f.scene->lights.front();
   ASSERT_EQ(lamp.type, Light::Type::Point);
   bool differed = false, patches_differed = false;
+  std::vector<glm::vec3> e_before;
   for (int m = 1; m <= 3; ++m) {
     const glm::vec3 moved = lamp.position + 0.15f * static_cast<float>(m) * glm::vec3(1, 0, 0);
     every->move_light(lamp.name, moved);
     spread->move_light(lamp.name, moved);
+    e_before = e_spread;
     frame();
     EXPECT_EQ(every->relighter().near_traced_batches(), batches) << "every ray of the lamp";
     const std::size_t traced = spread->relighter().near_traced_batches();
@@ -176,6 +178,16 @@ TEST(LightingSession, ShadowRaysSpreadOverFramesAreExactKFramesAfterTheLightStop
     EXPECT_LE(traced_patches, patches / kFrames + 1);
     differed = differed || e_spread != e_every;
     patches_differed = patches_differed || patch_light(spread) != patch_light(every);
+    // The gather summed a k-th of the vertices' rows; the others kept the
+    // last frame's light.
+    const RowSlice rows = spread->relighter().gather_rows().last();
+    ASSERT_FALSE(rows.all()) << "a k-th of the rows while the lamp moves";
+    ASSERT_EQ(e_spread.size(), e_before.size());
+    for (std::size_t v = 0; v < e_spread.size(); ++v) {
+      if (!rows.sums_band(v / kRowBand)) {
+        ASSERT_EQ(e_spread[v], e_before[v]) << "vertex " << v;
+      }
+    }
   }
   EXPECT_TRUE(differed) << "stale shadows while the lamp moves";
   EXPECT_TRUE(patches_differed) << "stale sample shadows while the lamp moves";
@@ -185,6 +197,7 @@ TEST(LightingSession, ShadowRaysSpreadOverFramesAreExactKFramesAfterTheLightStop
   }
   EXPECT_EQ(spread->relighter().frame().traced_shadow_batches(), 0u) << "every slice traced";
   EXPECT_TRUE(spread->relighter().shadows_settled());
+  EXPECT_TRUE(spread->relighter().gather_rows().last().all()) << "every row once exact";
   EXPECT_EQ(e_spread, e_every) << kFrames << " frames after the lamp stopped";
   EXPECT_EQ(patch_light(spread), patch_light(every)) << kFrames << " frames after it stopped";
 }
