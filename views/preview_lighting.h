@@ -52,10 +52,11 @@ class PreviewLighting {
     double probe_seconds = 0.0;  // the probes' gather, fit and the sphere's blend
   };
 
-  // A moving light's shadow rays to the final gather's near sources are
-  // spread over this many solves (runtime/shadow_budget.h): a drag costs a
-  // quarter of them per frame, and kShadowFrames solves at the position
-  // where the light stops make its light exact.
+  // A moving light's shadow rays (the patches' samples' and the final
+  // gather's near sources') and the gather's vertex rows are spread over
+  // this many solves (runtime/shadow_budget.h, runtime/gather_row_budget.h):
+  // a drag costs a quarter of them per frame, and kShadowFrames solves at
+  // the position where the light stops make its light exact.
   static constexpr int kShadowFrames = 4;
 
   // Throws bounce::Error when the bake's scene is not loaded, the scene has

@@ -197,8 +197,9 @@ void register_bench_runtime(CLI::App& bench) {
                   "frame)")
       ->capture_default_str();
   cmd->add_option("--shadow-frames", opt->moves.shadow_frames,
-                  "For the light moves: k, the near sources' shadow rays spread over k frames "
-                  "(rows 'over k frames', with their difference from every ray per frame)")
+                  "For the light moves: k, the samples' and near sources' shadow rays and the "
+                  "gather's vertex rows spread over k frames (rows 'over k frames', with their "
+                  "difference from every ray per frame)")
       ->capture_default_str();
   cmd->add_flag("--no-moves", opt->no_moves,
                 "Skip the light moves (each light of the scene moved frame by frame, every "
