@@ -5,6 +5,8 @@
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 
+#include <algorithm>
+#include <cstdio>
 #include <iostream>
 
 #include <QElapsedTimer>
@@ -25,6 +27,34 @@ double mean_luminance(const QImage& image, int x0, int x1) {
       sum += 0.2126 * qRed(c) + 0.7152 * qGreen(c) + 0.0722 * qBlue(c);
     }
   return sum / (static_cast<double>(x1 - x0) * im.height());
+}
+
+}  // namespace
+
+namespace {
+
+// A lit mesh's vertex colours, read back from a binary glTF.
+std::vector<aiColor4D> vertex_colours(const std::filesystem::path& glb) {
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(glb.string(), 0);
+  EXPECT_NE(scene, nullptr) << glb << ": " << importer.GetErrorString();
+  if (!scene || scene->mNumMeshes == 0) return {};
+  std::vector<aiColor4D> colours;
+  for (unsigned k = 0; k < scene->mNumMeshes; ++k) {
+    const aiMesh* m = scene->mMeshes[k];
+    if (!m->HasVertexColors(0)) return {};
+    colours.insert(colours.end(), m->mColors[0], m->mColors[0] + m->mNumVertices);
+  }
+  return colours;
+}
+
+// Largest difference of any channel of any vertex.
+float largest_difference(const std::vector<aiColor4D>& a, const std::vector<aiColor4D>& b) {
+  float d = 0.0f;
+  for (std::size_t v = 0; v < std::min(a.size(), b.size()); ++v)
+    d = std::max(
+        {d, std::abs(a[v].r - b[v].r), std::abs(a[v].g - b[v].g), std::abs(a[v].b - b[v].b)});
+  return d;
 }
 
 }  // namespace
@@ -232,6 +262,52 @@ class TexturedPreview : public PreviewOfBake {
            p.y() < view_.height() - margin;
   }
 };
+
+// The lamp dragged in the preview and let go: once its spread shadow rays
+// and gather rows have settled there, the lit mesh the preview exports is
+// `bounce solve`'s for the lamp at that position (this scene's only light:
+// the preview lights with its lamp alone). Both multiply as `--multiply
+// auto` does (this bake is dense); float rounding apart (the two may sum in
+// another order), they agree to 1% of the brightest colour, while the
+// light with the lamp half a metre away differs by more.
+TEST_F(TexturedPreview, WhereTheLampStopsItsLightIsBounceSolves) {
+  ASSERT_EQ(data_->scene->lights.size(), 1u);
+  const std::string name = data_->scene->lights.front().name;
+  const glm::vec3 last(0.2f, 1.2f, 0.0f);
+  for (const float x : {-0.3f, -0.1f, 0.1f}) view_.set_light_position({x, 1.3f, -0.5f});
+  view_.set_light_position(last);
+  QElapsedTimer waited;
+  waited.start();
+  while ((view_.solved_light_position() != last || !view_.solved_settled()) &&
+         waited.elapsed() < 60'000)
+    QApplication::processEvents(QEventLoop::AllEvents, 50);
+  ASSERT_TRUE(view_.solved_settled());
+  const std::filesystem::path dir = work_dir("preview-against-solve");
+  view_.export_lit_glb((dir / "preview.glb").string());
+  const auto solve_at = [&](const std::string& position, const std::string& out) {
+    const CommandRun r = run_command(
+        std::string(BOUNCE_CLI) + " solve " + std::string(BOUNCE_RENDER_TEXTURED_BAKE) +
+        " --light '" + name + ":" + position +
+        "' --no-images --multiply auto --float32 --quiet --out " + (dir / out).string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    return vertex_colours(dir / out / "lit.glb");
+  };
+  const std::vector<aiColor4D> preview = vertex_colours(dir / "preview.glb");
+  const std::vector<aiColor4D> solved = solve_at("0.2,1.2,0.0", "here");
+  const std::vector<aiColor4D> elsewhere = solve_at("-0.3,0.7,0.5", "elsewhere");
+  ASSERT_FALSE(preview.empty());
+  ASSERT_EQ(preview.size(), solved.size());
+  ASSERT_EQ(preview.size(), elsewhere.size());
+  float brightest = 0.0f;
+  for (const aiColor4D& c : solved) brightest = std::max({brightest, c.r, c.g, c.b});
+  ASSERT_GT(brightest, 0.0f);
+  const float here = largest_difference(preview, solved);
+  const float there = largest_difference(preview, elsewhere);
+  std::printf("preview against bounce solve: %.3g of the brightest colour here, %.3g there\n",
+              here / brightest, there / brightest);
+  EXPECT_LE(here, 0.01f * brightest);
+  EXPECT_GT(there, 0.05f * brightest);
+}
 
 namespace {
 
