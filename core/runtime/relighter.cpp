@@ -102,20 +102,20 @@ void Relighter::source_light(const FinalGather& gather) const {
 
 void Relighter::gather(const FinalGather& gather, std::vector<glm::vec3>& irradiance) const {
   source_light(gather);
-  // The near sources' light goes straight into the product's buffer.
-  if (gather_rows_.frames() == 1) {
-    gather.irradiance_lighting_near(reflected_, sample_light_, tracer_, lights_, area_, indirect_,
-                                    irradiance, &near_seconds_, &near_area_cache_, &near_shadows_);
-    return;
-  }
-  if (gathered_for_ != &gather) {
+  // With every row summed every frame (k = 1) the product goes straight to
+  // the caller; else into the kept product, whose rows a frame leaves keep
+  // their light, then copied out.
+  const bool spread = gather_rows_.frames() > 1;
+  if (spread && gathered_for_ != &gather) {
     gathered_.clear();
     gathered_for_ = &gather;
   }
+  std::vector<glm::vec3>& out = spread ? gathered_ : irradiance;
+  // The near sources' light goes straight into the product's buffer.
   gather.irradiance_lighting_near(reflected_, sample_light_, tracer_, lights_, area_, indirect_,
-                                  gathered_, &near_seconds_, &near_area_cache_, &near_shadows_,
+                                  out, &near_seconds_, &near_area_cache_, &near_shadows_,
                                   &gather_rows_, frame_.shadows_settled());
-  irradiance = gathered_;
+  if (spread) irradiance = gathered_;
 }
 
 void Relighter::gather_far(const FinalGather& gather, std::vector<glm::vec3>& irradiance) const {

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <memory>
 
+#include <QApplication>
+#include <QElapsedTimer>
 #include <QImage>
 #include <QPointF>
 
@@ -51,6 +53,15 @@ class PreviewOfBake : public RenderTest {
     settle();
     view_.set_data(data_);
     settle();
+  }
+  // Waits (up to a minute) until the preview has solved the light at
+  // `position` with its spread shadow rays and gather rows settled there.
+  void wait_until_settled_at(const glm::vec3& position) {
+    QElapsedTimer waited;
+    waited.start();
+    while ((view_.solved_light_position() != position || !view_.solved_settled()) &&
+           waited.elapsed() < 60'000)
+      QApplication::processEvents(QEventLoop::AllEvents, 50);
   }
   QImage shot(views::PreviewWidget::Passes passes) {
     view_.set_passes(passes);

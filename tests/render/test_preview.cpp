@@ -9,8 +9,6 @@
 #include <cstdio>
 #include <iostream>
 
-#include <QElapsedTimer>
-
 #include "preview_test_support.h"
 
 namespace bounce::render_test {
@@ -121,11 +119,7 @@ TEST_F(Preview, TheLatestLightPositionWins) {
   const glm::vec3 last(0.3f, 0.8f, 0.2f);
   for (const float x : {-0.4f, -0.2f, 0.0f, 0.1f}) view_.set_light_position({x, 1.2f, 0.1f});
   view_.set_light_position(last);
-  QElapsedTimer waited;
-  waited.start();
-  while ((view_.solved_light_position() != last || !view_.solved_settled()) &&
-         waited.elapsed() < 60'000)
-    QApplication::processEvents(QEventLoop::AllEvents, 50);
+  wait_until_settled_at(last);
   ASSERT_EQ(view_.solved_light_position(), last) << "the last light position was never solved";
   ASSERT_TRUE(view_.solved_settled()) << "the preview did not solve again where the light stopped";
   const QImage dragged = shot({});
@@ -276,11 +270,7 @@ TEST_F(TexturedPreview, WhereTheLampStopsItsLightIsBounceSolves) {
   const glm::vec3 last(0.2f, 1.2f, 0.0f);
   for (const float x : {-0.3f, -0.1f, 0.1f}) view_.set_light_position({x, 1.3f, -0.5f});
   view_.set_light_position(last);
-  QElapsedTimer waited;
-  waited.start();
-  while ((view_.solved_light_position() != last || !view_.solved_settled()) &&
-         waited.elapsed() < 60'000)
-    QApplication::processEvents(QEventLoop::AllEvents, 50);
+  wait_until_settled_at(last);
   ASSERT_TRUE(view_.solved_settled());
   const std::filesystem::path dir = work_dir("preview-against-solve");
   view_.export_lit_glb((dir / "preview.glb").string());
